@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The main job: model file in, plan out, one stage after another (seed Figure 4.1).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "origamic/mesh_io.hpp"
+#include "origamic/oa.hpp"
+#include "origamic/placement.hpp"
+#include "origamic/raster.hpp"
+
+namespace origamic {
+
+struct DesignOptions {
+  Sheet sheet;                 // the flat card
+  LoadOptions load;
+  PlacementOptions placement;
+  RasterOptions raster;
+};
+
+struct StageTime {
+  std::string stage;
+  double ms = 0;
+};
+
+struct DesignResult {
+  std::filesystem::path model_file;
+  std::string format;
+  std::size_t triangles = 0;
+  std::size_t vertices = 0;
+  bool file_normals = false;
+  Placement placement;
+  RasterMaps maps;
+  std::vector<StageTime> times;
+};
+
+/// Runs the pipeline on a model file. It currently ends after raster extraction.
+/// \throws InputError for a bad file or absurd options.
+DesignResult design(const std::filesystem::path& model_file, const DesignOptions& options);
+
+}  // namespace origamic

@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The coordinate conventions every stage relies on (seed §2.1, eq. 2.1-2.2).
+//
+// OA space, in mm, of the card opened at 90 degrees:
+//   x  along the main fold, from the sheet's left edge;
+//   h  height above the floor plane (h >= 0 is above the floor);
+//   d  depth in front of the back plane (d >= 0 is in front of it, towards the viewer).
+// (x, h, d) is right-handed: x right, h up, d towards the viewer. A glm::dvec3 holding an OA point
+// stores (x, h, d) in (.x, .y, .z).
+//
+// Plan space, in mm, of the flat sheet:
+//   X = x,  Y = h - d.
+// The main fold is Y = 0, the back plane is Y >= 0 and the floor Y <= 0. Every point of the 90-degree
+// pop-up on the 45-degree line {(X, Y + t, t) : t >= 0} lands on the same plan point (X, Y).
+//
+// Faces are V (parallel to the back plane, constant d) or H (parallel to the floor, constant h);
+// the fold between V(d) and H(h) lies on Y = h - d.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+namespace origamic {
+
+/// The flat card: width along the main fold, height across it; the main fold halves the height.
+struct Sheet {
+  double width_mm = 210.0;   // along the main fold (X)
+  double height_mm = 297.0;  // across the main fold (Y), back plane and floor half each
+
+  double half_height_mm() const { return height_mm / 2; }
+  double min_X() const { return 0.0; }
+  double max_X() const { return width_mm; }
+  double min_Y() const { return -half_height_mm(); }
+  double max_Y() const { return half_height_mm(); }
+};
+
+/// A point of the plan, in mm.
+struct PlanPoint {
+  double X = 0;
+  double Y = 0;
+};
+
+/// The plan point of an OA point (x, h, d): (x, h - d).
+inline PlanPoint plan_of(const glm::dvec3& oa) { return {oa.x, oa.y - oa.z}; }
+
+}  // namespace origamic

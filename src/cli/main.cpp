@@ -1,0 +1,156 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The origamic command: parses options, calls the library, reports. No algorithm lives here.
+#include <charconv>
+#include <cstdio>
+#include <exception>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <CLI/CLI.hpp>
+
+#include "origamic/design.hpp"
+#include "origamic/error.hpp"
+#include "origamic/raster_images.hpp"
+#include "origamic/report.hpp"
+#include "origamic/version.hpp"
+
+namespace {
+
+using origamic::InputError;
+
+// A whole decimal number, or nothing.
+std::optional<double> parse_number(std::string_view text) {
+  double value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+// "210x297" -> Sheet.
+origamic::Sheet parse_card(const std::string& text) {
+  const auto x = text.find_first_of("xX");
+  const auto width = parse_number(std::string_view(text).substr(0, x));
+  const auto height = x == std::string::npos ? std::nullopt : parse_number(std::string_view(text).substr(x + 1));
+  if (!width || !height) throw InputError("--card: expected WIDTHxHEIGHT in mm, such as 210x297, not '" + text + "'");
+  return {*width, *height};
+}
+
+// "X,H,D" -> OA offset in mm.
+glm::dvec3 parse_offset(const std::string& text) {
+  glm::dvec3 v;
+  std::string_view rest = text;
+  for (int k = 0; k < 3; ++k) {
+    const auto comma = k < 2 ? rest.find(',') : std::string_view::npos;
+    const auto value = parse_number(rest.substr(0, comma));
+    if (!value || (k < 2 && comma == std::string_view::npos))
+      throw InputError("--offset: expected X,H,D in mm, such as 105,0,0, not '" + text + "'");
+    v[k] = *value;
+    rest = k < 2 ? rest.substr(comma + 1) : rest;
+  }
+  return v;
+}
+
+// The model's name without folders and extensions: "dragon.ply.gz" -> "dragon".
+std::string model_name(const std::filesystem::path& file) {
+  std::filesystem::path name = file.filename();
+  if (name.extension() == ".gz" || name.extension() == ".GZ") name = name.stem();
+  return name.stem().string();
+}
+
+struct DesignArgs {
+  std::string model;
+  std::string card = "210x297";
+  std::string up = "y";
+  double rotate_deg = 0;
+  std::optional<double> scale;
+  std::string offset;
+  double margin_mm = 10;
+  double px_per_mm = 4;
+  std::string out_dir;
+  std::string maps_dir;
+};
+
+void add_design_options(CLI::App& design, DesignArgs& args) {
+  design.add_option("MODEL", args.model, "3D model: .obj, .stl, .ply or .off, optionally .gz")->required();
+  design.add_option("--card", args.card, "flat sheet WIDTHxHEIGHT in mm; the main fold halves the height")
+      ->capture_default_str();
+  design.add_option("--up", args.up, "model axis pointing up: y (viewer at +z) or z (viewer at -y)")
+      ->check(CLI::IsMember({"y", "z"}))
+      ->capture_default_str();
+  design.add_option("--rotate", args.rotate_deg, "turn the model about its up axis, degrees counter-clockwise")
+      ->capture_default_str();
+  design.add_option("--scale", args.scale, "mm per model unit (default: fit the sheet)");
+  design.add_option("--offset", args.offset, "X,H,D in mm of the model's origin (default: on the floor, "
+                                             "against the back plane, centred)");
+  design.add_option("--margin", args.margin_mm, "auto-fit keeps the plan this far inside the sheet, mm")
+      ->capture_default_str();
+  design.add_option("--px-per-mm", args.px_per_mm, "raster resolution, pixels per mm")->capture_default_str();
+  design.add_option("--out", args.out_dir, "write the report (MODEL.json) into this folder");
+  design.add_option("--dump-maps", args.maps_dir, "write the raster maps D, F, T, N and hit kind as PNGs here");
+}
+
+int run_design(const DesignArgs& args) {
+  origamic::DesignOptions options;
+  options.sheet = parse_card(args.card);
+  options.placement.up = args.up == "z" ? origamic::UpAxis::Z : origamic::UpAxis::Y;
+  options.placement.rotate_deg = args.rotate_deg;
+  options.placement.scale = args.scale;
+  if (!args.offset.empty()) options.placement.offset_mm = parse_offset(args.offset);
+  options.placement.margin_mm = args.margin_mm;
+  options.raster.px_per_mm = args.px_per_mm;
+
+  const origamic::DesignResult result = origamic::design(args.model, options);
+  std::printf("%s\n", origamic::summary_line(result).c_str());
+  if (!args.out_dir.empty()) {
+    const std::filesystem::path report = std::filesystem::path(args.out_dir) / (model_name(args.model) + ".json");
+    std::filesystem::create_directories(args.out_dir);
+    origamic::write_report(result, options, report);
+    std::printf("report: %s\n", report.c_str());
+  }
+  if (!args.maps_dir.empty()) {
+    origamic::write_raster_images(result.maps, args.maps_dir);
+    std::printf("maps: %s/{D,F,T,N,kind}.png\n", args.maps_dir.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"origamic: Origamic Architecture pop-up plans from 3D models", "origamic"};
+  app.set_version_flag("--version", std::string("origamic ") + origamic::version);
+  app.require_subcommand(1);
+  DesignArgs design_args;
+  CLI::App* design = app.add_subcommand("design", "design a pop-up plan for a 3D model");
+  add_design_options(*design, design_args);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "origamic: %s (see origamic --help)\n", e.what());
+    return 2;
+  }
+
+  try {
+    return run_design(design_args);
+  } catch (const origamic::InputError& e) {
+    std::fprintf(stderr, "origamic: %s\n", e.what());
+    return 2;
+  } catch (const origamic::OutputError& e) {
+    std::fprintf(stderr, "origamic: %s\n", e.what());
+    return 2;
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::fprintf(stderr, "origamic: %s\n", e.what());
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "origamic: out of memory\n");
+    return 2;
+  }
+}

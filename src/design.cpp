@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "origamic/design.hpp"
+
+#include <chrono>
+
+namespace origamic {
+namespace {
+
+class StageClock {
+ public:
+  explicit StageClock(std::vector<StageTime>& times) : times_(times) {}
+  void lap(std::string stage) {
+    const auto now = std::chrono::steady_clock::now();
+    times_.push_back({std::move(stage), std::chrono::duration<double, std::milli>(now - last_).count()});
+    last_ = now;
+  }
+
+ private:
+  std::vector<StageTime>& times_;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace
+
+DesignResult design(const std::filesystem::path& model_file, const DesignOptions& options) {
+  DesignResult result;
+  result.model_file = model_file;
+  StageClock clock(result.times);
+
+  LoadedMesh loaded = load_mesh(model_file, options.load);
+  result.format = loaded.format;
+  result.triangles = loaded.mesh.triangles.size();
+  result.vertices = loaded.mesh.positions.size();
+  result.file_normals = loaded.file_normals;
+  clock.lap("load");
+
+  result.placement = place(loaded.mesh, options.sheet, options.placement);
+  const RayScene scene(apply(result.placement, std::move(loaded.mesh)));
+  clock.lap("place+bvh");
+
+  result.maps = raster(scene, options.sheet, options.raster);
+  clock.lap("raster");
+  return result;
+}
+
+}  // namespace origamic

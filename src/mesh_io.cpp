@@ -1,0 +1,334 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "origamic/mesh_io.hpp"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <numbers>
+#include <numeric>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+#include "origamic/error.hpp"
+
+namespace origamic {
+namespace {
+
+struct MeshTraits : OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+};
+using OmMesh = OpenMesh::TriMesh_ArrayKernelT<MeshTraits>;
+
+[[noreturn]] void fail(const std::filesystem::path& file, const std::string& problem) {
+  throw InputError(file.string() + ": " + problem);
+}
+
+std::string lower(std::string s) {
+  std::ranges::transform(s, s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+bool ends_with_gz(const std::filesystem::path& file) { return lower(file.extension().string()) == ".gz"; }
+
+std::string read_plain(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) fail(file, "cannot open file");
+  std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) fail(file, "cannot read file");
+  return bytes;
+}
+
+std::string read_gzipped(const std::filesystem::path& file) {
+  gzFile gz = gzopen(file.c_str(), "rb");
+  if (!gz) fail(file, "cannot open file");
+  std::string bytes;
+  char buffer[1 << 16];
+  int n = 0;
+  while ((n = gzread(gz, buffer, sizeof buffer)) > 0) bytes.append(buffer, static_cast<std::size_t>(n));
+  int code = Z_OK;
+  const std::string message = gzerror(gz, &code);  // a stream cut short ends reading with Z_BUF_ERROR
+  gzclose(gz);
+  if (n < 0 || (code != Z_OK && code != Z_STREAM_END)) fail(file, "truncated or corrupt gzip data (" + message + ")");
+  return bytes;
+}
+
+// A binary STL is an 80-byte header, a triangle count and 50 bytes a triangle. Files that begin
+// with "solid" are ASCII unless their size matches that layout exactly (some binary writers put
+// "solid" in the header).
+bool is_binary_stl(const std::filesystem::path& file, const std::string& bytes) {
+  const bool sized = bytes.size() >= 84 && [&] {
+    std::uint32_t count = 0;
+    std::memcpy(&count, bytes.data() + 80, 4);
+    return bytes.size() == 84 + 50 * static_cast<std::uint64_t>(count);
+  }();
+  if (sized) return true;
+  std::size_t start = 0;
+  while (start < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[start]))) ++start;
+  if (bytes.compare(start, 5, "solid") == 0) return false;
+  if (bytes.size() < 84) fail(file, "truncated binary STL (shorter than its 84-byte header)");
+  std::uint32_t count = 0;
+  std::memcpy(&count, bytes.data() + 80, 4);
+  fail(file, "truncated or corrupt binary STL (header says " + std::to_string(count) +
+                 " triangles, which need " + std::to_string(84 + 50 * std::uint64_t{count}) +
+                 " bytes; the file has " + std::to_string(bytes.size()) + ")");
+}
+
+// What a text file promises, to catch files that end early or hold malformed numbers: OpenMesh's
+// readers stop quietly at the end of the data and skip vertex lines they cannot parse.
+struct Promised {
+  long vertices = -1;      // vertex count of an OFF or PLY header, or "v" lines of an OBJ
+  long data_needed = -1;   // lines an ASCII OFF or PLY must have after its header: vertices + faces
+  long data_found = -1;    // lines it has
+};
+
+bool is_blank_or_comment(std::string_view line) {
+  const auto first = line.find_first_not_of(" \t\r");
+  return first == std::string_view::npos || line[first] == '#';
+}
+
+// Non-blank, non-comment lines from offset on.
+long count_data_lines(const std::string& bytes, std::size_t offset) {
+  long count = 0;
+  while (offset < bytes.size()) {
+    std::size_t end = bytes.find('\n', offset);
+    if (end == std::string::npos) end = bytes.size();
+    count += !is_blank_or_comment(std::string_view(bytes).substr(offset, end - offset));
+    offset = end + 1;
+  }
+  return count;
+}
+
+Promised promised_counts(const std::string& format, const std::string& bytes) {
+  Promised promised;
+  if (format == "obj") {
+    promised.vertices = 0;
+    for (std::size_t at = 0; at < bytes.size();) {
+      std::size_t end = bytes.find('\n', at);
+      if (end == std::string::npos) end = bytes.size();
+      promised.vertices += end - at > 2 && bytes[at] == 'v' && (bytes[at + 1] == ' ' || bytes[at + 1] == '\t');
+      at = end + 1;
+    }
+  } else if (format == "off") {
+    std::istringstream in(bytes.substr(0, std::min<std::size_t>(bytes.size(), 4096)));
+    std::string keyword, line;
+    in >> keyword;  // OFF, COFF, NOFF, ...
+    if (keyword.find("OFF") == std::string::npos || keyword.find("BINARY") != std::string::npos) return promised;
+    while (in >> std::ws && in.peek() == '#') std::getline(in, line);
+    long faces = 0;
+    if (!(in >> promised.vertices >> faces)) return {};
+    std::getline(in, line);
+    promised.data_needed = promised.vertices + faces;
+    promised.data_found = count_data_lines(bytes, static_cast<std::size_t>(in.tellg()));
+  } else if (format == "ply") {
+    const std::size_t header_end = bytes.find("end_header");
+    if (header_end == std::string::npos) return promised;
+    std::istringstream in(bytes.substr(0, header_end));
+    std::string line;
+    bool ascii = false;
+    long faces = 0;
+    while (std::getline(in, line)) {
+      std::istringstream words(line);
+      std::string keyword, word;
+      long count = -1;
+      words >> keyword >> word;
+      if (keyword == "format") ascii = word == "ascii";
+      if (keyword == "element" && words >> count) {
+        if (word == "vertex") promised.vertices = count;
+        if (word == "face") faces = count;
+      }
+    }
+    if (ascii) {
+      promised.data_needed = promised.vertices + faces;
+      promised.data_found = count_data_lines(bytes, bytes.find('\n', header_end) + 1);
+    }
+  }
+  return promised;
+}
+
+// OpenMesh reports through global streams; keep its chatter off the user's terminal while we read.
+struct QuietOpenMesh {
+  QuietOpenMesh() {
+    omerr().disable();
+    omlog().disable();
+    omout().disable();
+  }
+  ~QuietOpenMesh() {
+    omerr().enable();
+    omlog().enable();
+    omout().enable();
+  }
+};
+
+// The faces of the OpenMesh mesh as triangles over the vertices they use (unused vertices would
+// otherwise count in the model's extent).
+TriangleMesh triangle_soup(const OmMesh& om, bool with_file_normals) {
+  constexpr std::uint32_t unused = ~std::uint32_t{0};
+  std::vector<std::uint32_t> new_index(om.n_vertices(), unused);
+  TriangleMesh mesh;
+  mesh.triangles.reserve(om.n_faces());
+  if (with_file_normals) mesh.corner_normals.reserve(3 * om.n_faces());
+  for (const auto f : om.faces()) {
+    std::array<std::uint32_t, 3> triangle{};
+    std::size_t corner = 0;
+    for (const auto v : om.fv_range(f)) {
+      std::uint32_t& index = new_index[static_cast<std::size_t>(v.idx())];
+      if (index == unused) {
+        index = static_cast<std::uint32_t>(mesh.positions.size());
+        const auto& p = om.point(v);
+        mesh.positions.emplace_back(p[0], p[1], p[2]);
+      }
+      triangle[corner++] = index;
+      if (with_file_normals) {
+        const auto& n = om.normal(v);
+        mesh.corner_normals.emplace_back(n[0], n[1], n[2]);
+      }
+    }
+    mesh.triangles.push_back(triangle);
+  }
+  return mesh;
+}
+
+glm::dvec3 face_normal(const TriangleMesh& mesh, const std::array<std::uint32_t, 3>& t) {
+  const glm::dvec3 n = glm::cross(mesh.positions[t[1]] - mesh.positions[t[0]],
+                                  mesh.positions[t[2]] - mesh.positions[t[0]]);
+  const double length = glm::length(n);
+  return length > 0 ? n / length : glm::dvec3(0.0);
+}
+
+double corner_angle(const TriangleMesh& mesh, const std::array<std::uint32_t, 3>& t, int corner) {
+  const glm::dvec3& p = mesh.positions[t[static_cast<std::size_t>(corner)]];
+  const glm::dvec3 a = mesh.positions[t[static_cast<std::size_t>((corner + 1) % 3)]] - p;
+  const glm::dvec3 b = mesh.positions[t[static_cast<std::size_t>((corner + 2) % 3)]] - p;
+  const double la = glm::length(a), lb = glm::length(b);
+  if (la == 0 || lb == 0) return 0;
+  return std::acos(std::clamp(glm::dot(a, b) / (la * lb), -1.0, 1.0));
+}
+
+// Angle-weighted normals per corner over the faces around the corner's vertex whose normal is
+// within the feature angle of the corner's own face.
+std::vector<glm::vec3> feature_corner_normals(const TriangleMesh& mesh, double feature_angle_deg) {
+  const std::size_t n_vertices = mesh.positions.size();
+  std::vector<std::uint32_t> first(n_vertices + 1, 0);
+  for (const auto& t : mesh.triangles)
+    for (auto v : t) ++first[v + 1];
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  std::vector<std::uint32_t> corners(first.back());
+  std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+    for (int c = 0; c < 3; ++c)
+      corners[fill[mesh.triangles[f][static_cast<std::size_t>(c)]]++] = static_cast<std::uint32_t>(3 * f + c);
+
+  std::vector<glm::dvec3> normals(mesh.triangles.size());
+  std::vector<double> angles(3 * mesh.triangles.size());
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    normals[f] = face_normal(mesh, mesh.triangles[f]);
+    for (int c = 0; c < 3; ++c) angles[3 * f + c] = corner_angle(mesh, mesh.triangles[f], c);
+  }
+
+  const double cos_feature = std::cos(feature_angle_deg * std::numbers::pi / 180);
+  std::vector<glm::vec3> result(3 * mesh.triangles.size());
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    for (int c = 0; c < 3; ++c) {
+      const std::uint32_t v = mesh.triangles[f][static_cast<std::size_t>(c)];
+      glm::dvec3 sum(0.0);
+      for (std::uint32_t k = first[v]; k < first[v + 1]; ++k) {
+        const std::size_t g = corners[k] / 3;
+        if (glm::dot(normals[g], normals[f]) >= cos_feature) sum += angles[corners[k]] * normals[g];
+      }
+      const double length = glm::length(sum);
+      result[3 * f + c] = glm::vec3(length > 0 ? sum / length : normals[f]);
+    }
+  }
+  return result;
+}
+
+// File normals may be unnormalised or missing (zero); those corners take their face's normal.
+void unit_or_face_normals(TriangleMesh& mesh) {
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      glm::vec3& n = mesh.corner_normals[3 * f + c];
+      const float length = glm::length(n);
+      n = std::isfinite(length) && length > 0 ? n / length : glm::vec3(face_normal(mesh, mesh.triangles[f]));
+    }
+  }
+}
+
+}  // namespace
+
+std::string mesh_format_of(const std::filesystem::path& file) {
+  std::filesystem::path name = file.filename();
+  if (ends_with_gz(name)) name = name.stem();
+  const std::string extension = lower(name.extension().string());
+  for (const char* format : {"obj", "stl", "ply", "off"})
+    if (extension == std::string(".") + format) return format;
+  return "";
+}
+
+LoadedMesh load_mesh(const std::filesystem::path& file, const LoadOptions& options) {
+  LoadedMesh loaded;
+  loaded.format = mesh_format_of(file);
+  loaded.gzipped = ends_with_gz(file);
+  std::error_code error;
+  if (!std::filesystem::exists(file, error)) fail(file, "no such file");
+  if (std::filesystem::is_directory(file, error)) fail(file, "is a folder, not a mesh file");
+  if (loaded.format.empty())
+    fail(file, "unknown mesh format '" + file.extension().string() +
+                   "' (expected .obj, .stl, .ply or .off, optionally gzipped as .gz)");
+
+  std::string bytes = loaded.gzipped ? read_gzipped(file) : read_plain(file);
+  if (bytes.empty()) fail(file, "empty file");
+
+  OpenMesh::IO::Options read_options;
+  read_options += OpenMesh::IO::Options::VertexNormal;
+  if (loaded.format == "stl" && is_binary_stl(file, bytes)) read_options += OpenMesh::IO::Options::Binary;
+  const Promised promised = promised_counts(loaded.format, bytes);
+  if (promised.data_found < promised.data_needed)
+    fail(file, "truncated: the header promises " + std::to_string(promised.data_needed) +
+                   " vertex and face lines, the file has " + std::to_string(promised.data_found));
+  if (loaded.format == "stl" && !read_options.check(OpenMesh::IO::Options::Binary) &&
+      bytes.find("endsolid", bytes.size() > 512 ? bytes.size() - 512 : 0) == std::string::npos)
+    fail(file, "truncated ASCII STL (no 'endsolid' at the end)");
+
+  OmMesh om;
+  om.request_vertex_normals();
+  bool read_ok = false;
+  {
+    const QuietOpenMesh quiet;
+    std::istringstream in(std::move(bytes));
+    read_ok = OpenMesh::IO::read_mesh(om, in, "." + loaded.format, read_options);
+  }
+  if (!read_ok) fail(file, "cannot parse as " + lower(loaded.format) + " (unreadable or corrupt data)");
+  if (promised.vertices >= 0 && static_cast<long>(om.n_vertices()) < promised.vertices)
+    fail(file, "truncated or malformed: " + std::to_string(promised.vertices) + " vertices promised, " +
+                   std::to_string(om.n_vertices()) + " readable (a coordinate may be missing or not a finite number)");
+  if (om.n_faces() == 0) fail(file, "no faces");
+
+  loaded.file_normals = read_options.check(OpenMesh::IO::Options::VertexNormal);
+  loaded.mesh = triangle_soup(om, loaded.file_normals);
+  om.clear();
+
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  for (const auto& p : loaded.mesh.positions) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      fail(file, "non-finite vertex coordinate");
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  if (lo == hi) fail(file, "model has zero extent (all vertices at one point)");
+
+  if (loaded.file_normals)
+    unit_or_face_normals(loaded.mesh);
+  else
+    loaded.mesh.corner_normals = feature_corner_normals(loaded.mesh, options.feature_angle_deg);
+  return loaded;
+}
+
+}  // namespace origamic

@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "origamic/report.hpp"
+
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "atomic_file.hpp"
+#include "origamic/version.hpp"
+
+namespace origamic {
+namespace {
+
+nlohmann::json vec(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+nlohmann::json placement_json(const Placement& p, const PlacementOptions& options) {
+  nlohmann::json linear = nlohmann::json::array();
+  for (int row = 0; row < 3; ++row) linear.push_back({p.linear[0][row], p.linear[1][row], p.linear[2][row]});
+  return {
+      {"up", options.up == UpAxis::Y ? "y" : "z"},
+      {"rotate_deg", options.rotate_deg},
+      {"scale_mm_per_unit", p.scale},
+      {"auto_scale", !options.scale.has_value()},
+      {"auto_offset", !options.offset_mm.has_value()},
+      {"margin_mm", options.margin_mm},
+      {"transform", {{"comment", "oa_xhd_mm = linear * model_xyz + translation"},
+                     {"linear", linear},
+                     {"translation_mm", vec(p.translation)}}},
+      {"oa_bbox_mm", {{"min_xhd", vec(p.min_oa)}, {"max_xhd", vec(p.max_oa)}}},
+      {"plan_bbox_mm", {{"min_XY", {p.min_plan.X, p.min_plan.Y}}, {"max_XY", {p.max_plan.X, p.max_plan.Y}}}},
+  };
+}
+
+}  // namespace
+
+std::string report_json(const DesignResult& result, const DesignOptions& options) {
+  const RasterMaps& maps = result.maps;
+  nlohmann::json times = nlohmann::json::object();
+  for (const auto& t : result.times) times[t.stage] = t.ms;
+  const nlohmann::json report = {
+      {"origamic_version", version},
+      {"units", "mm"},
+      {"model", {{"file", result.model_file.string()},
+                 {"format", result.format},
+                 {"triangles", result.triangles},
+                 {"vertices", result.vertices},
+                 {"normals", result.file_normals ? "file" : "computed"}}},
+      {"sheet", {{"width_mm", options.sheet.width_mm}, {"height_mm", options.sheet.height_mm}}},
+      {"placement", placement_json(result.placement, options.placement)},
+      {"raster", {{"px_per_mm", maps.grid.px_per_mm},
+                  {"cols", maps.grid.cols},
+                  {"rows", maps.grid.rows},
+                  {"model_pixels", maps.model_pixels},
+                  {"front_d_mm", maps.reference.front_d_mm},
+                  {"top_h_mm", maps.reference.top_h_mm}}},
+      {"time_ms", times},
+  };
+  return report.dump(2) + "\n";
+}
+
+std::string summary_line(const DesignResult& result) {
+  double total_ms = 0;
+  for (const auto& t : result.times) total_ms += t.ms;
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "%s: %zu triangles placed at %.4g mm/unit; raster %dx%d px, %zu model pixels (%.1f%%); %.0f ms",
+                result.model_file.filename().c_str(), result.triangles, result.placement.scale, result.maps.grid.cols,
+                result.maps.grid.rows, result.maps.model_pixels,
+                100.0 * static_cast<double>(result.maps.model_pixels) / static_cast<double>(result.maps.kind.size()),
+                total_ms);
+  return line;
+}
+
+void write_report(const DesignResult& result, const DesignOptions& options, const std::filesystem::path& file) {
+  write_file_atomically(file, report_json(result, options));
+}
+
+}  // namespace origamic

@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The real executable, as a user runs it.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "helpers.hpp"
+
+namespace origamic {
+namespace {
+
+struct CommandRun {
+  int status = -1;
+  std::string output;  // stdout and stderr
+};
+
+CommandRun run(const std::string& arguments) {
+  const std::string command = std::string(ORIGAMIC_EXE) + " " + arguments + " 2>&1";
+  CommandRun result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> buffer{};
+  while (std::fgets(buffer.data(), buffer.size(), pipe)) result.output += buffer.data();
+  const int status = pclose(pipe);
+  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+std::string quoted(const std::filesystem::path& p) {
+  std::string text = p.string();
+  text.insert(text.begin(), '\'');
+  text.push_back('\'');  // one + chain here trips GCC 12's false -Wrestrict
+  return text;
+}
+
+TEST(Cli, HelpAndVersion) {
+  const CommandRun help = run("--help");
+  EXPECT_EQ(help.status, 0);
+  EXPECT_NE(help.output.find("design"), std::string::npos);
+  const CommandRun design_help = run("design --help");
+  EXPECT_EQ(design_help.status, 0);
+  for (const char* option : {"--card", "--up", "--rotate", "--scale", "--offset", "--margin", "--px-per-mm",
+                             "--dump-maps", "--out"})
+    EXPECT_NE(design_help.output.find(option), std::string::npos) << option;
+  const CommandRun version = run("--version");
+  EXPECT_EQ(version.status, 0);
+  EXPECT_EQ(version.output.rfind("origamic ", 0), 0u) << version.output;
+}
+
+TEST(Cli, DesignWritesTheReportAndTheMaps) {
+  const test::TempDir dir;
+  const CommandRun r = run("design " + quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") + " --out " +
+                    quoted(dir / "out") + " --dump-maps " + quoted(dir / "maps"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* name : {"D.png", "F.png", "T.png", "N.png", "kind.png"}) {
+    std::ifstream png(dir / "maps" / name, std::ios::binary);
+    std::array<char, 8> magic{};
+    png.read(magic.data(), 8);
+    EXPECT_EQ(std::string(magic.data() + 1, 3), "PNG") << name;
+  }
+  std::ifstream in(dir / "out" / "house.json");
+  const auto report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["units"], "mm");
+  EXPECT_EQ(report["sheet"]["width_mm"], 210.0);
+  EXPECT_EQ(report["raster"]["cols"], 840);
+  EXPECT_GT(report["raster"]["model_pixels"].get<int>(), 10000);
+  EXPECT_EQ(report["placement"]["oa_bbox_mm"]["min_xhd"][1], 0.0);  // standing on the floor
+  EXPECT_EQ(report["placement"]["oa_bbox_mm"]["min_xhd"][2], 0.0);  // against the back plane
+  EXPECT_TRUE(report["time_ms"].contains("raster"));
+}
+
+// Every bad input: one line naming the file or option and the problem, status 2, no output file.
+void expect_rejected(const std::string& arguments, const std::string& names, const std::string& problem) {
+  SCOPED_TRACE(arguments);
+  const test::TempDir out;
+  const CommandRun r = run("design " + arguments + " --out " + quoted(out / "report") + " --dump-maps " + quoted(out / "maps"));
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_EQ(std::ranges::count(r.output, '\n'), 1) << r.output;
+  EXPECT_NE(r.output.find(names), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(problem), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out / "report")) << "partial output";
+  EXPECT_FALSE(std::filesystem::exists(out / "maps")) << "partial output";
+}
+
+TEST(Cli, BadInputFilesExitWithStatusTwo) {
+  const test::TempDir dir;
+  test::write_text(dir / "empty.stl", "");
+  test::write_text(dir / "garbage.off", "OFF\nnot numbers\n");
+  test::write_text(dir / "noface.obj", "v 0 0 0\nv 1 0 0\n");
+  test::write_text(dir / "nan.obj", "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n");
+  test::write_text(dir / "point.obj", "v 1 1 1\nv 1 1 1\nv 1 1 1\nf 1 2 3\n");
+  test::write_text(dir / "model.3ds", "x");
+  test::write_stl_binary(dir / "whole.stl", test::box({0, 0, 0}, {1, 1, 1}));
+  std::filesystem::resize_file(dir / "whole.stl", 300);
+  test::write_text(dir / "bad.obj.gz", "not gzip data at all, but named .gz");
+  expect_rejected(quoted(dir / "missing.obj"), "missing.obj", "no such file");
+  expect_rejected(quoted(dir / "empty.stl"), "empty.stl", "empty");
+  expect_rejected(quoted(dir / "garbage.off"), "garbage.off", "");
+  expect_rejected(quoted(dir / "noface.obj"), "noface.obj", "no faces");
+  expect_rejected(quoted(dir / "nan.obj"), "nan.obj", "finite");
+  expect_rejected(quoted(dir / "point.obj"), "point.obj", "zero extent");
+  expect_rejected(quoted(dir / "model.3ds"), "model.3ds", "unknown mesh format");
+  expect_rejected(quoted(dir / "whole.stl"), "whole.stl", "truncated");
+  expect_rejected(quoted(dir / "bad.obj.gz"), "bad.obj.gz", "no faces");
+}
+
+TEST(Cli, AbsurdOptionsExitWithStatusTwo) {
+  const std::string house = quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj");
+  expect_rejected(house + " --card 210", "--card", "WIDTHxHEIGHT");
+  expect_rejected(house + " --card 0x297", "--card", "positive");
+  expect_rejected(house + " --px-per-mm 0", "--px-per-mm", "positive");
+  expect_rejected(house + " --px-per-mm 500", "--px-per-mm", "Mpx");
+  expect_rejected(house + " --scale -3", "--scale", "positive");
+  expect_rejected(house + " --scale 1000", "--scale", "leaves the");
+  expect_rejected(house + " --scale 10 --offset 300,0,0", "--scale/--offset", "leaves the");
+  expect_rejected(house + " --offset 1,2", "--offset", "X,H,D");
+  expect_rejected(house + " --margin 200", "--margin", "no room");
+  expect_rejected(house + " --up x", "--up", "");
+  expect_rejected(house + " --rotate abc", "--rotate", "");
+  expect_rejected(house + " --bogus", "--bogus", "");
+}
+
+}  // namespace
+}  // namespace origamic

@@ -1,0 +1,193 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "helpers.hpp"
+
+#include <zlib.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+namespace origamic::test {
+
+TriangleMesh box(const glm::dvec3& lo, const glm::dvec3& hi) {
+  TriangleMesh mesh;
+  for (int i = 0; i < 8; ++i)
+    mesh.positions.emplace_back(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
+  // Two triangles a side, counter-clockwise seen from outside.
+  mesh.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                    {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  return mesh;
+}
+
+TriangleMesh sphere(const glm::dvec3& centre, double radius, int segments, int rings) {
+  TriangleMesh mesh;
+  const double pi = std::numbers::pi;
+  const std::uint32_t top = 0;
+  mesh.positions.push_back(centre + glm::dvec3(0, radius, 0));
+  for (int r = 1; r < rings; ++r) {
+    const double polar = pi * r / rings;
+    for (int s = 0; s < segments; ++s) {
+      const double azimuth = 2 * pi * s / segments;
+      mesh.positions.push_back(centre + radius * glm::dvec3(std::sin(polar) * std::cos(azimuth), std::cos(polar),
+                                                            std::sin(polar) * std::sin(azimuth)));
+    }
+  }
+  const auto bottom = static_cast<std::uint32_t>(mesh.positions.size());
+  mesh.positions.push_back(centre - glm::dvec3(0, radius, 0));
+  // Ring r (1 .. rings - 1), segment s.
+  auto at = [&](int r, int s) { return static_cast<std::uint32_t>(1 + (r - 1) * segments + (s % segments)); };
+  for (int s = 0; s < segments; ++s) {
+    mesh.triangles.push_back({top, at(1, s + 1), at(1, s)});
+    mesh.triangles.push_back({bottom, at(rings - 1, s), at(rings - 1, s + 1)});
+    for (int r = 1; r < rings - 1; ++r) {
+      mesh.triangles.push_back({at(r, s), at(r, s + 1), at(r + 1, s)});
+      mesh.triangles.push_back({at(r, s + 1), at(r + 1, s + 1), at(r + 1, s)});
+    }
+  }
+  return mesh;
+}
+
+TempDir::TempDir() {
+  static std::mt19937_64 random{std::random_device{}()};
+  path = std::filesystem::temp_directory_path() / ("origamic-test-" + std::to_string(random()));
+  std::filesystem::create_directories(path);
+}
+
+TempDir::~TempDir() {
+  std::error_code ignored;
+  std::filesystem::remove_all(path, ignored);
+}
+
+void write_text(const std::filesystem::path& file, const std::string& text) {
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+}
+
+namespace {
+
+std::string number(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+std::string xyz(const glm::dvec3& p) { return number(p.x) + " " + number(p.y) + " " + number(p.z); }
+
+glm::dvec3 unit_normal(const TriangleMesh& mesh, const std::array<std::uint32_t, 3>& t) {
+  return glm::normalize(glm::cross(mesh.positions[t[1]] - mesh.positions[t[0]],
+                                   mesh.positions[t[2]] - mesh.positions[t[0]]));
+}
+
+}  // namespace
+
+void write_obj(const std::filesystem::path& file, const TriangleMesh& mesh) {
+  std::string text = "# made by origamic's tests\n";
+  for (const auto& p : mesh.positions) text += "v " + xyz(p) + "\n";
+  for (const auto& t : mesh.triangles)
+    text += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + "\n";
+  write_text(file, text);
+}
+
+void write_off(const std::filesystem::path& file, const TriangleMesh& mesh) {
+  std::string text = "OFF\n" + std::to_string(mesh.positions.size()) + " " + std::to_string(mesh.triangles.size()) + " 0\n";
+  for (const auto& p : mesh.positions) text += xyz(p) + "\n";
+  for (const auto& t : mesh.triangles)
+    text += "3 " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) + "\n";
+  write_text(file, text);
+}
+
+void write_ply_ascii(const std::filesystem::path& file, const TriangleMesh& mesh) {
+  std::string text = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(mesh.positions.size()) +
+                     "\nproperty double x\nproperty double y\nproperty double z\nelement face " +
+                     std::to_string(mesh.triangles.size()) + "\nproperty list uchar int vertex_indices\nend_header\n";
+  for (const auto& p : mesh.positions) text += xyz(p) + "\n";
+  for (const auto& t : mesh.triangles)
+    text += "3 " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) + "\n";
+  write_text(file, text);
+}
+
+void write_ply_binary(const std::filesystem::path& file, const TriangleMesh& mesh) {
+  std::string text = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(mesh.positions.size()) +
+                     "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
+                     std::to_string(mesh.triangles.size()) + "\nproperty list uchar int vertex_indices\nend_header\n";
+  for (const auto& p : mesh.positions)
+    for (int k = 0; k < 3; ++k) {
+      const float v = static_cast<float>(p[k]);
+      text.append(reinterpret_cast<const char*>(&v), 4);
+    }
+  for (const auto& t : mesh.triangles) {
+    text.push_back(3);
+    for (auto i : t) {
+      const std::int32_t v = static_cast<std::int32_t>(i);
+      text.append(reinterpret_cast<const char*>(&v), 4);
+    }
+  }
+  write_text(file, text);
+}
+
+void write_stl_ascii(const std::filesystem::path& file, const TriangleMesh& mesh) {
+  std::string text = "solid test\n";
+  for (const auto& t : mesh.triangles) {
+    text += "facet normal " + xyz(unit_normal(mesh, t)) + "\nouter loop\n";
+    for (auto i : t) text += "vertex " + xyz(mesh.positions[i]) + "\n";
+    text += "endloop\nendfacet\n";
+  }
+  write_text(file, text + "endsolid test\n");
+}
+
+void write_stl_binary(const std::filesystem::path& file, const TriangleMesh& mesh) {
+  std::string bytes(80, ' ');
+  bytes.replace(0, 14, "origamic tests");
+  const std::uint32_t count = static_cast<std::uint32_t>(mesh.triangles.size());
+  bytes.append(reinterpret_cast<const char*>(&count), 4);
+  auto put = [&](const glm::dvec3& v) {
+    for (int k = 0; k < 3; ++k) {
+      const float f = static_cast<float>(v[k]);
+      bytes.append(reinterpret_cast<const char*>(&f), 4);
+    }
+  };
+  for (const auto& t : mesh.triangles) {
+    put(unit_normal(mesh, t));
+    for (auto i : t) put(mesh.positions[i]);
+    bytes.append(2, '\0');
+  }
+  write_text(file, bytes);
+}
+
+void gzip_file(const std::filesystem::path& from, const std::filesystem::path& to) {
+  std::ifstream in(from, std::ios::binary);
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  gzFile gz = gzopen(to.c_str(), "wb");
+  if (!gz || gzwrite(gz, bytes.data(), static_cast<unsigned>(bytes.size())) != static_cast<int>(bytes.size()))
+    throw std::runtime_error("cannot gzip to " + to.string());
+  gzclose(gz);
+}
+
+std::filesystem::path models_dir() {
+  const std::filesystem::path dir = ORIGAMIC_MODELS_DIR;
+  return std::filesystem::exists(dir / "MANIFEST.tsv") ? dir : std::filesystem::path();
+}
+
+std::vector<ManifestEntry> manifest() {
+  std::vector<ManifestEntry> entries;
+  std::ifstream in(models_dir() / "MANIFEST.tsv");
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    std::vector<std::string> fields;
+    std::istringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, '\t');) fields.push_back(cell);
+    if (fields.size() > 9) entries.push_back({fields[0], std::stoul(fields[4]), fields[9]});
+  }
+  return entries;
+}
+
+}  // namespace origamic::test

@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Meshes made in code, mesh files written by hand (independently of OpenMesh), temporary folders.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "origamic/mesh_io.hpp"
+
+namespace origamic::test {
+
+/// An axis-aligned box from lo to hi, 12 triangles wound outwards.
+TriangleMesh box(const glm::dvec3& lo, const glm::dvec3& hi);
+
+/// A UV sphere of the given segments around and rings from pole to pole.
+TriangleMesh sphere(const glm::dvec3& centre, double radius, int segments, int rings);
+
+/// A fresh empty folder under the system's temporary folder, removed at destruction.
+struct TempDir {
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  std::filesystem::path path;
+  std::filesystem::path operator/(const std::string& name) const { return path / name; }
+};
+
+void write_text(const std::filesystem::path& file, const std::string& text);
+void write_obj(const std::filesystem::path& file, const TriangleMesh& mesh);
+void write_off(const std::filesystem::path& file, const TriangleMesh& mesh);
+void write_ply_ascii(const std::filesystem::path& file, const TriangleMesh& mesh);
+void write_ply_binary(const std::filesystem::path& file, const TriangleMesh& mesh);
+void write_stl_ascii(const std::filesystem::path& file, const TriangleMesh& mesh);
+void write_stl_binary(const std::filesystem::path& file, const TriangleMesh& mesh);
+void gzip_file(const std::filesystem::path& from, const std::filesystem::path& to);
+
+/// The folder of real models, or "" when it is not beside the project.
+std::filesystem::path models_dir();
+
+/// Rows of MANIFEST.tsv: file name and triangle count.
+struct ManifestEntry {
+  std::string file;
+  std::size_t triangles = 0;
+  std::string up_axis;
+};
+std::vector<ManifestEntry> manifest();
+
+}  // namespace origamic::test

@@ -1,0 +1,185 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "origamic/mesh_io.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <functional>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "helpers.hpp"
+#include "origamic/error.hpp"
+
+namespace origamic {
+namespace {
+
+using test::TempDir;
+
+void expect_same_extent(const TriangleMesh& mesh, const glm::dvec3& lo, const glm::dvec3& hi, double tol) {
+  glm::dvec3 a(1e300), b(-1e300);
+  for (const auto& p : mesh.positions) {
+    a = glm::min(a, p);
+    b = glm::max(b, p);
+  }
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(a[k], lo[k], tol);
+    EXPECT_NEAR(b[k], hi[k], tol);
+  }
+}
+
+TEST(MeshIo, EveryFormatReadsTheSameBox) {
+  const glm::dvec3 lo(-1.5, 0.25, 2), hi(3, 4.5, 7.75);
+  const TriangleMesh box = test::box(lo, hi);
+  const TempDir dir;
+  using Writer = std::function<void(const std::filesystem::path&, const TriangleMesh&)>;
+  const std::vector<std::pair<std::string, Writer>> files = {
+      {"box.obj", test::write_obj},          {"box.off", test::write_off},
+      {"box.ply", test::write_ply_ascii},    {"box_binary.ply", test::write_ply_binary},
+      {"box.stl", test::write_stl_ascii},    {"box_binary.STL", test::write_stl_binary},
+  };
+  for (const auto& [name, write] : files) {
+    SCOPED_TRACE(name);
+    write(dir / name, box);
+    const LoadedMesh loaded = load_mesh(dir / name);
+    EXPECT_EQ(loaded.mesh.triangles.size(), 12u);
+    EXPECT_EQ(loaded.mesh.positions.size(), 8u);  // STL corners are welded back to 8 vertices
+    EXPECT_EQ(loaded.mesh.corner_normals.size(), 36u);
+    expect_same_extent(loaded.mesh, lo, hi, 0.0);  // all coordinates are exact in float
+
+    test::gzip_file(dir / name, dir / (name + ".gz"));
+    const LoadedMesh gzipped = load_mesh(dir / (name + ".gz"));
+    EXPECT_TRUE(gzipped.gzipped);
+    EXPECT_EQ(gzipped.mesh.positions, loaded.mesh.positions);
+    EXPECT_EQ(gzipped.mesh.triangles, loaded.mesh.triangles);
+  }
+}
+
+TEST(MeshIo, PolygonsAreTriangulatedAndUnusedVerticesDropped) {
+  const TempDir dir;
+  // A unit square as one quad, plus a stray vertex far away that no face uses.
+  test::write_text(dir / "quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 100 100 100\nf 1 2 3 4\n");
+  const LoadedMesh loaded = load_mesh(dir / "quad.obj");
+  EXPECT_EQ(loaded.mesh.triangles.size(), 2u);
+  EXPECT_EQ(loaded.mesh.positions.size(), 4u);
+  expect_same_extent(loaded.mesh, {0, 0, 0}, {1, 1, 0}, 0.0);
+}
+
+TEST(MeshIo, ComputedNormalsAreSmoothOnASphereAndSharpOnABox) {
+  const TempDir dir;
+  test::write_obj(dir / "box.obj", test::box({0, 0, 0}, {1, 1, 1}));
+  const LoadedMesh box = load_mesh(dir / "box.obj");
+  EXPECT_FALSE(box.file_normals);
+  for (std::size_t f = 0; f < box.mesh.triangles.size(); ++f) {
+    const auto& t = box.mesh.triangles[f];
+    const glm::dvec3 face = glm::normalize(glm::cross(box.mesh.positions[t[1]] - box.mesh.positions[t[0]],
+                                                      box.mesh.positions[t[2]] - box.mesh.positions[t[0]]));
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(glm::dot(glm::dvec3(box.mesh.corner_normals[3 * f + c]), face), 1.0, 1e-6);
+  }
+  const glm::dvec3 centre(0.5, -2, 3);
+  test::write_obj(dir / "sphere.obj", test::sphere(centre, 2.0, 48, 24));
+  const LoadedMesh sphere = load_mesh(dir / "sphere.obj");
+  for (std::size_t f = 0; f < sphere.mesh.triangles.size(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const glm::dvec3 radial = glm::normalize(sphere.mesh.positions[sphere.mesh.triangles[f][c]] - centre);
+      // Averaged over the ring of faces: within a few degrees of the true normal, not a face's.
+      EXPECT_GT(std::abs(glm::dot(glm::dvec3(sphere.mesh.corner_normals[3 * f + c]), radial)), 0.998);
+    }
+}
+
+TEST(MeshIo, FileNormalsAreUsedWhenPresent) {
+  const TempDir dir;
+  test::write_text(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 2\nvn 0 0 2\nvn 0 0 2\nf 1//1 2//2 3//3\n");
+  const LoadedMesh loaded = load_mesh(dir / "tri.obj");
+  EXPECT_TRUE(loaded.file_normals);
+  for (const auto& n : loaded.mesh.corner_normals) EXPECT_EQ(n, glm::vec3(0, 0, 1));  // normalised
+}
+
+// Every bad input gets an InputError whose one-line message names the file and the problem.
+void expect_input_error(const std::filesystem::path& file, const std::string& problem) {
+  SCOPED_TRACE(file.filename().string());
+  try {
+    load_mesh(file);
+    ADD_FAILURE() << "no error for " << file;
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(file.string()), std::string::npos) << message;
+    EXPECT_NE(message.find(problem), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+}
+
+TEST(MeshIo, BadInputsAreReportedWithFileAndProblem) {
+  const TempDir dir;
+  const TriangleMesh box = test::box({0, 0, 0}, {1, 2, 3});
+  test::write_stl_binary(dir / "whole.stl", box);
+  std::ifstream in(dir / "whole.stl", std::ios::binary);
+  const std::string stl{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  test::write_text(dir / "cut.stl", stl.substr(0, stl.size() - 20));
+  test::write_stl_ascii(dir / "whole_ascii.stl", box);
+  std::ifstream in_ascii(dir / "whole_ascii.stl", std::ios::binary);
+  const std::string ascii{std::istreambuf_iterator<char>(in_ascii), std::istreambuf_iterator<char>()};
+  test::write_text(dir / "cut_ascii.stl", ascii.substr(0, ascii.size() / 2));
+  test::write_off(dir / "whole.off", box);
+  std::ifstream in_off(dir / "whole.off", std::ios::binary);
+  const std::string off{std::istreambuf_iterator<char>(in_off), std::istreambuf_iterator<char>()};
+  test::write_text(dir / "cut.off", off.substr(0, off.size() / 2));
+  test::write_ply_ascii(dir / "whole.ply", box);
+  std::ifstream in_ply(dir / "whole.ply", std::ios::binary);
+  const std::string ply{std::istreambuf_iterator<char>(in_ply), std::istreambuf_iterator<char>()};
+  test::write_text(dir / "cut.ply", ply.substr(0, ply.size() - 30));
+  test::gzip_file(dir / "whole.off", dir / "whole.off.gz");
+  std::ifstream in_gz(dir / "whole.off.gz", std::ios::binary);
+  const std::string gz{std::istreambuf_iterator<char>(in_gz), std::istreambuf_iterator<char>()};
+  test::write_text(dir / "cut.off.gz", gz.substr(0, gz.size() / 2));
+  test::write_text(dir / "empty.obj", "");
+  test::write_text(dir / "garbage.ply", "this is not a mesh\n");
+  test::write_text(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  test::write_text(dir / "nan.obj", "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n");
+  test::write_text(dir / "huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1e999 0\nf 1 2 3\n");
+  test::write_text(dir / "point.obj", "v 1 1 1\nv 1 1 1\nv 1 1 1\nf 1 2 3\n");
+  test::write_text(dir / "model.xyz", "1 2 3\n");
+  std::filesystem::create_directory(dir / "folder.obj");
+
+  expect_input_error(dir / "missing.obj", "no such file");
+  expect_input_error(dir / "folder.obj", "folder");
+  expect_input_error(dir / "model.xyz", "unknown mesh format");
+  expect_input_error(dir / "empty.obj", "empty file");
+  expect_input_error(dir / "cut.stl", "truncated");
+  expect_input_error(dir / "cut_ascii.stl", "truncated");
+  expect_input_error(dir / "cut.off", "truncated");
+  expect_input_error(dir / "cut.ply", "truncated");
+  expect_input_error(dir / "cut.off.gz", "truncated or corrupt gzip");
+  expect_input_error(dir / "garbage.ply", "cannot parse");
+  expect_input_error(dir / "points.obj", "no faces");
+  expect_input_error(dir / "nan.obj", "not a finite number");
+  expect_input_error(dir / "huge.obj", "not a finite number");
+  expect_input_error(dir / "point.obj", "zero extent");
+}
+
+TEST(MeshIo, FormatIsTakenFromTheNameCaseInsensitively) {
+  EXPECT_EQ(mesh_format_of("a/b/Model.OBJ"), "obj");
+  EXPECT_EQ(mesh_format_of("dragon.ply.gz"), "ply");
+  EXPECT_EQ(mesh_format_of("part.STL.GZ"), "stl");
+  EXPECT_EQ(mesh_format_of("scene.gltf"), "");
+  EXPECT_EQ(mesh_format_of("archive.gz"), "");
+}
+
+// Every real model loads whole: all of its triangles, with their many parts, holes, duplicate and
+// non-manifold faces (MANIFEST.tsv counts them independently).
+TEST(MeshIo, EveryRealModelLoadsAllItsTriangles) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  const auto entries = test::manifest();
+  ASSERT_GE(entries.size(), 20u);
+  for (const auto& entry : entries) {
+    SCOPED_TRACE(entry.file);
+    const LoadedMesh loaded = load_mesh(test::models_dir() / entry.file);
+    EXPECT_EQ(loaded.mesh.triangles.size(), entry.triangles);
+    EXPECT_EQ(loaded.mesh.corner_normals.size(), 3 * entry.triangles);
+    EXPECT_EQ(loaded.format, mesh_format_of(entry.file));
+  }
+}
+
+}  // namespace
+}  // namespace origamic

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Quick start: install, build, and design a pop-up for the project's own demo model.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash tools/build.sh
+out=out/house
+build/origamic design fixtures/house.obj --out "$out" --dump-maps "$out/maps"
+echo "outputs are in $(pwd)/$out: house.json (report) and maps/ (D, F, T, N and hit-kind PNGs)"
