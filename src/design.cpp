@@ -40,6 +40,11 @@ DesignResult design(const std::filesystem::path& model_file, const DesignOptions
 
   result.maps = raster(scene, options.sheet, options.raster);
   clock.lap("raster");
+
+  result.segmentation = segment(result.maps, options.segment);
+  clock.lap("segment");
+  result.slices = slice(result.maps, result.segmentation, options.slice);
+  clock.lap("slice");
   return result;
 }
 

@@ -261,6 +261,8 @@ void unit_or_face_normals(TriangleMesh& mesh) {
   }
 }
 
+LoadedMesh load_mesh_unguarded(const std::filesystem::path& file, const LoadOptions& options);
+
 }  // namespace
 
 std::string mesh_format_of(const std::filesystem::path& file) {
@@ -273,12 +275,25 @@ std::string mesh_format_of(const std::filesystem::path& file) {
 }
 
 LoadedMesh load_mesh(const std::filesystem::path& file, const LoadOptions& options) {
+  try {
+    return load_mesh_unguarded(file, options);
+  } catch (const std::bad_alloc&) {
+    fail(file, "out of memory while reading (a header may promise absurd element counts)");
+  } catch (const std::length_error&) {
+    fail(file, "out of memory while reading (a header may promise absurd element counts)");
+  }
+}
+
+namespace {
+
+LoadedMesh load_mesh_unguarded(const std::filesystem::path& file, const LoadOptions& options) {
   LoadedMesh loaded;
   loaded.format = mesh_format_of(file);
   loaded.gzipped = ends_with_gz(file);
   std::error_code error;
   if (!std::filesystem::exists(file, error)) fail(file, "no such file");
   if (std::filesystem::is_directory(file, error)) fail(file, "is a folder, not a mesh file");
+  if (!std::filesystem::is_regular_file(file, error)) fail(file, "is not a regular file");
   if (loaded.format.empty())
     fail(file, "unknown mesh format '" + file.extension().string() +
                    "' (expected .obj, .stl, .ply or .off, optionally gzipped as .gz)");
@@ -331,4 +346,5 @@ LoadedMesh load_mesh(const std::filesystem::path& file, const LoadOptions& optio
   return loaded;
 }
 
+}  // namespace
 }  // namespace origamic

@@ -108,12 +108,15 @@ Placement place(const TriangleMesh& mesh, const Sheet& sheet, const PlacementOpt
   placement.min_plan = {placed.lo.x, placed.lo_Y};
   placement.max_plan = {placed.hi.x, placed.hi_Y};
 
-  const bool inside = placed.lo.x >= sheet.min_X() && placed.hi.x <= sheet.max_X() &&
-                      placed.lo_Y >= sheet.min_Y() && placed.hi_Y <= sheet.max_Y();
+  // Auto-fit lands exactly on the margin up to rounding (1e-9 mm is far below a pixel).
+  constexpr double slack = 1e-9;
+  const bool inside = placed.lo.x >= sheet.min_X() - slack && placed.hi.x <= sheet.max_X() + slack &&
+                      placed.lo_Y >= sheet.min_Y() - slack && placed.hi_Y <= sheet.max_Y() + slack;
   if (!inside) {
     const std::string option = options.offset_mm && options.scale ? "--scale/--offset"
                                : options.offset_mm                ? "--offset"
-                                                                  : "--scale";
+                               : options.scale                    ? "--scale"
+                                                                  : "--card/--margin";
     throw InputError(option + ": the model's 45-degree projection (X " + mm(placed.lo.x) + " to " +
                      mm(placed.hi.x) + ", Y " + mm(placed.lo_Y) + " to " + mm(placed.hi_Y) +
                      " mm) leaves the " + mm(sheet.width_mm) + " x " + mm(sheet.height_mm) +

@@ -2,6 +2,7 @@
 #include "origamic/raster_images.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "atomic_file.hpp"
@@ -35,7 +36,72 @@ std::vector<std::uint8_t> kind_rgb(const Grid<HitKind>& kinds) {
   return pixels;
 }
 
+// A colour per id that neighbours rarely share; -1 black, back and floor as in kind.png.
+std::array<std::uint8_t, 3> id_colour(std::int32_t id, bool card_ids) {
+  if (id < 0) return {0, 0, 0};
+  if (card_ids && id == 0) return {200, 200, 200};
+  if (card_ids && id == 1) return {222, 196, 150};
+  const std::uint32_t hash = static_cast<std::uint32_t>(id) * 2654435761u;
+  return {static_cast<std::uint8_t>(60 + (hash >> 8) % 180), static_cast<std::uint8_t>(60 + (hash >> 16) % 180),
+          static_cast<std::uint8_t>(60 + (hash >> 24) % 180)};
+}
+
+std::vector<std::uint8_t> id_rgb(const Grid<std::int32_t>& ids, bool card_ids) {
+  std::vector<std::uint8_t> pixels(3 * ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) std::ranges::copy(id_colour(ids.values[i], card_ids), &pixels[3 * i]);
+  return pixels;
+}
+
+// Is the boundary between a pixel (upper) and the one below it (lower) a fold? It is when one is
+// V(d) and the other H(h) and the boundary lies within a pixel of the fold line Y = h - d.
+bool is_fold(const RasterFace& upper, const RasterFace& lower, double boundary_Y, double pixel_mm) {
+  if (upper.orientation == lower.orientation) return false;
+  const RasterFace& v = upper.orientation == Orientation::V ? upper : lower;
+  const RasterFace& h = upper.orientation == Orientation::H ? upper : lower;
+  return std::abs(h.depth_mm - v.depth_mm - boundary_Y) <= pixel_mm;
+}
+
+std::vector<std::uint8_t> plan_preview_rgb(const RasterMaps& maps, const SliceResult& slices) {
+  const Grid<std::int32_t>& face = slices.face;
+  std::vector<std::uint8_t> pixels(3 * face.size(), 255);
+  auto paint = [&](int col, int row, std::array<std::uint8_t, 3> rgb) {
+    std::ranges::copy(rgb, &pixels[3 * face.index(col, row)]);
+  };
+  const double pixel_mm = 1 / maps.grid.px_per_mm;
+  for (int row = 0; row < face.rows; ++row)
+    for (int col = 0; col < face.cols; ++col) {
+      const std::int32_t f = face(col, row);
+      if (f < 0) continue;
+      if (col + 1 < face.cols && face(col + 1, row) >= 0 && face(col + 1, row) != f) paint(col, row, {220, 0, 0});
+      if (row + 1 < face.rows && face(col, row + 1) >= 0 && face(col, row + 1) != f) {
+        const double boundary_Y = maps.grid.Y(row) - pixel_mm / 2;
+        const bool fold = is_fold(slices.faces[static_cast<std::size_t>(f)],
+                                  slices.faces[static_cast<std::size_t>(face(col, row + 1))], boundary_Y, pixel_mm);
+        paint(col, row, fold ? std::array<std::uint8_t, 3>{0, 160, 0} : std::array<std::uint8_t, 3>{220, 0, 0});
+      }
+    }
+  return pixels;
+}
+
 }  // namespace
+
+std::vector<std::filesystem::path> write_slice_images(const RasterMaps& maps, const Segmentation& segmentation,
+                                                      const SliceResult& slices, const std::filesystem::path& dir) {
+  make_directory(dir);
+  const int w = maps.grid.cols, h = maps.grid.rows;
+  const std::vector<std::pair<std::string, std::vector<std::uint8_t>>> images = {
+      {"S.png", id_rgb(segmentation.segment, true)},
+      {"SS.png", id_rgb(slices.subsegment, false)},
+      {"faces.png", id_rgb(slices.face, true)},
+      {"plan_preview.png", plan_preview_rgb(maps, slices)},
+  };
+  std::vector<std::filesystem::path> written;
+  for (const auto& [name, pixels] : images) {
+    write_png(dir / name, w, h, PngFormat::Rgb8, pixels);
+    written.push_back(dir / name);
+  }
+  return written;
+}
 
 std::vector<std::filesystem::path> write_raster_images(const RasterMaps& maps, const std::filesystem::path& dir) {
   make_directory(dir);

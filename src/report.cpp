@@ -31,6 +31,30 @@ nlohmann::json placement_json(const Placement& p, const PlacementOptions& option
   };
 }
 
+nlohmann::json slices_json(const DesignResult& result, const DesignOptions& options) {
+  const SliceResult& slices = result.slices;
+  const double pixel_area_mm2 = 1 / (result.maps.grid.px_per_mm * result.maps.grid.px_per_mm);
+  nlohmann::json faces = nlohmann::json::array();
+  for (std::size_t i = 0; i < slices.faces.size(); ++i) {
+    const RasterFace& f = slices.faces[i];
+    const bool v = f.orientation == Orientation::V;
+    faces.push_back({{"id", i},
+                     {"orientation", v ? "V" : "H"},
+                     {v ? "d_mm" : "h_mm", f.depth_mm},
+                     {"segment", f.segment},
+                     {"area_mm2", static_cast<double>(f.pixels) * pixel_area_mm2}});
+  }
+  const ShapeError& e = slices.error;
+  return {{"min_strip_mm", options.slice.min_strip_mm},
+          {"block_px", slices.block_px},
+          {"segments", result.segmentation.count},
+          {"subsegments", slices.subsegments},
+          {"removed_thin_faces", slices.removed_thin},
+          {"face_count", slices.faces.size()},
+          {"shape_error", {{"mean_mm", e.mean_mm}, {"p95_mm", e.p95_mm}, {"mean_W", e.mean_W}, {"p95_W", e.p95_W}}},
+          {"faces", faces}};
+}
+
 }  // namespace
 
 std::string report_json(const DesignResult& result, const DesignOptions& options) {
@@ -53,9 +77,11 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
                   {"model_pixels", maps.model_pixels},
                   {"front_d_mm", maps.reference.front_d_mm},
                   {"top_h_mm", maps.reference.top_h_mm}}},
+      {"raster_plan", slices_json(result, options)},
       {"time_ms", times},
   };
-  return report.dump(2) + "\n";
+  // File names need not be UTF-8: replace bytes JSON cannot carry rather than fail.
+  return report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 std::string summary_line(const DesignResult& result) {
@@ -63,15 +89,17 @@ std::string summary_line(const DesignResult& result) {
   for (const auto& t : result.times) total_ms += t.ms;
   char line[512];
   std::snprintf(line, sizeof line,
-                "%s: %zu triangles placed at %.4g mm/unit; raster %dx%d px, %zu model pixels (%.1f%%); %.0f ms",
-                result.model_file.filename().c_str(), result.triangles, result.placement.scale, result.maps.grid.cols,
-                result.maps.grid.rows, result.maps.model_pixels,
-                100.0 * static_cast<double>(result.maps.model_pixels) / static_cast<double>(result.maps.kind.size()),
-                total_ms);
+                "%s: %zu triangles at %.4g mm/unit; %d segments -> %zu faces (W %.3g mm); shape error mean %.2f "
+                "mm, p95 %.2f mm (%.2f W); %.0f ms",
+                result.model_file.filename().c_str(), result.triangles, result.placement.scale,
+                result.segmentation.count, result.slices.faces.size(),
+                result.slices.block_px / result.maps.grid.px_per_mm, result.slices.error.mean_mm,
+                result.slices.error.p95_mm, result.slices.error.p95_W, total_ms);
   return line;
 }
 
 void write_report(const DesignResult& result, const DesignOptions& options, const std::filesystem::path& file) {
+  make_directory(file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path());
   write_file_atomically(file, report_json(result, options));
 }
 

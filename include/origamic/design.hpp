@@ -10,6 +10,8 @@
 #include "origamic/oa.hpp"
 #include "origamic/placement.hpp"
 #include "origamic/raster.hpp"
+#include "origamic/segment.hpp"
+#include "origamic/slice.hpp"
 
 namespace origamic {
 
@@ -18,6 +20,8 @@ struct DesignOptions {
   LoadOptions load;
   PlacementOptions placement;
   RasterOptions raster;
+  SegmentOptions segment;
+  SliceOptions slice;
 };
 
 struct StageTime {
@@ -33,10 +37,13 @@ struct DesignResult {
   bool file_normals = false;
   Placement placement;
   RasterMaps maps;
+  Segmentation segmentation;
+  SliceResult slices;
   std::vector<StageTime> times;
 };
 
-/// Runs the pipeline on a model file. It currently ends after raster extraction.
+/// Runs the pipeline on a model file. It currently ends with the raster plan
+/// (slicing); the exact stages come next.
 /// \throws InputError for a bad file or absurd options.
 DesignResult design(const std::filesystem::path& model_file, const DesignOptions& options);
 

@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "origamic/raster.hpp"
+#include "origamic/segment.hpp"
+#include "origamic/slice.hpp"
 
 namespace origamic {
 
@@ -17,5 +19,11 @@ namespace origamic {
 /// \throws OutputError if dir or a file cannot be written.
 std::vector<std::filesystem::path> write_raster_images(const RasterMaps& maps,
                                                        const std::filesystem::path& dir);
+
+/// Writes the segmentation map S, the subsegment map SS and the face map as colour PNGs (one colour
+/// per id; back plane grey, floor tan) and plan_preview.png: the raster plan in the seed's style
+/// (§4.6), cuts red, folds green, on white. \returns the paths written. \throws OutputError.
+std::vector<std::filesystem::path> write_slice_images(const RasterMaps& maps, const Segmentation& segmentation,
+                                                      const SliceResult& slices, const std::filesystem::path& dir);
 
 }  // namespace origamic

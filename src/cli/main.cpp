@@ -67,6 +67,7 @@ struct DesignArgs {
   std::string offset;
   double margin_mm = 10;
   double px_per_mm = 4;
+  double min_strip_mm = 3;
   std::string out_dir;
   std::string maps_dir;
 };
@@ -86,8 +87,9 @@ void add_design_options(CLI::App& design, DesignArgs& args) {
   design.add_option("--margin", args.margin_mm, "auto-fit keeps the plan this far inside the sheet, mm")
       ->capture_default_str();
   design.add_option("--px-per-mm", args.px_per_mm, "raster resolution, pixels per mm")->capture_default_str();
+  design.add_option("--min-strip", args.min_strip_mm, "W: minimum strip width in mm")->capture_default_str();
   design.add_option("--out", args.out_dir, "write the report (MODEL.json) into this folder");
-  design.add_option("--dump-maps", args.maps_dir, "write the raster maps D, F, T, N and hit kind as PNGs here");
+  design.add_option("--dump-maps", args.maps_dir, "write the maps (D, F, T, N, hit kind, segments S, subsegments SS, faces) and a plan preview as PNGs here");
 }
 
 int run_design(const DesignArgs& args) {
@@ -99,19 +101,26 @@ int run_design(const DesignArgs& args) {
   if (!args.offset.empty()) options.placement.offset_mm = parse_offset(args.offset);
   options.placement.margin_mm = args.margin_mm;
   options.raster.px_per_mm = args.px_per_mm;
+  options.slice.min_strip_mm = args.min_strip_mm;
+
+  // A folder that cannot be made is reported before any work and before any file is written.
+  for (const std::string& dir : {args.out_dir, args.maps_dir})
+    if (!dir.empty() && std::filesystem::exists(dir) && !std::filesystem::is_directory(dir))
+      throw origamic::OutputError(dir + ": cannot create folder (a file is in the way)");
 
   const origamic::DesignResult result = origamic::design(args.model, options);
-  std::printf("%s\n", origamic::summary_line(result).c_str());
+  std::string written;
   if (!args.out_dir.empty()) {
     const std::filesystem::path report = std::filesystem::path(args.out_dir) / (model_name(args.model) + ".json");
-    std::filesystem::create_directories(args.out_dir);
     origamic::write_report(result, options, report);
-    std::printf("report: %s\n", report.c_str());
+    written += "report: " + report.string() + "\n";
   }
   if (!args.maps_dir.empty()) {
     origamic::write_raster_images(result.maps, args.maps_dir);
-    std::printf("maps: %s/{D,F,T,N,kind}.png\n", args.maps_dir.c_str());
+    origamic::write_slice_images(result.maps, result.segmentation, result.slices, args.maps_dir);
+    written += "maps: " + args.maps_dir + "/{D,F,T,N,kind,S,SS,faces,plan_preview}.png\n";
   }
+  std::printf("%s\n%s", origamic::summary_line(result).c_str(), written.c_str());
   return 0;
 }
 
@@ -151,6 +160,9 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "origamic: out of memory\n");
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "origamic: internal error: %s\n", e.what());
     return 2;
   }
 }

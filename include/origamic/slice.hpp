@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Surface slicing (seed §4.3): each segment becomes vertical or horizontal slices no narrower than
+// the minimum strip width W, whose boundaries follow the model's contours.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "origamic/grid.hpp"
+#include "origamic/raster.hpp"
+#include "origamic/segment.hpp"
+
+namespace origamic {
+
+enum class Orientation : std::uint8_t {
+  V,  // parallel to the back plane, at constant depth d
+  H,  // parallel to the floor, at constant height h
+};
+
+/// A face of the raster plan.
+struct RasterFace {
+  Orientation orientation = Orientation::V;
+  double depth_mm = 0;          // d of a V face, h of an H face
+  std::int32_t segment = 0;     // the segment it was sliced from
+  std::int64_t pixels = 0;
+};
+
+inline constexpr std::int32_t kBackFace = 0;   // V(0)
+inline constexpr std::int32_t kFloorFace = 1;  // H(0)
+inline constexpr std::int32_t kNoFace = -1;    // outside the sheet
+
+struct SliceOptions {
+  double min_strip_mm = 3.0;  // W: no strip narrower than this
+  // Blocks of one segment join a slice while their depth stays within this fraction of W of the
+  // slice's mean, so a slice's depth is never more than W/2 from the surface it stands for.
+  double depth_tol_fraction_of_W = 0.5;
+};
+
+/// |pop-up face depth - model depth| over model pixels, measured along the 45-degree ray as a depth.
+struct ShapeError {
+  double mean_mm = 0;
+  double p95_mm = 0;
+  double mean_W = 0;
+  double p95_W = 0;
+};
+
+struct SliceResult {
+  int block_px = 0;                          // W in pixels: the downsampling block
+  std::vector<Orientation> segment_orientation;  // per segment (back V, floor H)
+  Grid<std::int32_t> block_subsegment;       // SDS: subsegment per block, -1 for none
+  Grid<std::int32_t> subsegment;             // SS: full-resolution subsegments, -1 back/floor/outside
+  Grid<std::int32_t> face;                   // the raster plan: face id per pixel, kNoFace outside
+  std::vector<RasterFace> faces;             // faces[kBackFace] is V(0), faces[kFloorFace] is H(0)
+  int subsegments = 0;
+  int removed_thin = 0;                      // faces whose oriented box had a side under W
+  ShapeError error;
+};
+
+/// Slices every segment. Deterministic: the same maps and options give the same face map.
+/// \throws InputError naming --min-strip if W is not positive and finite or is below one pixel.
+SliceResult slice(const RasterMaps& maps, const Segmentation& segmentation, const SliceOptions& options);
+
+/// The smaller side, in pixels, of the oriented bounding box (principal axes) of a pixel set.
+double oriented_box_min_side_px(const std::vector<std::pair<int, int>>& pixels);
+
+}  // namespace origamic

@@ -1,0 +1,335 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "origamic/slice.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <string>
+
+#include "origamic/error.hpp"
+
+namespace origamic {
+namespace {
+
+constexpr int kStep[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
+constexpr std::int32_t kUnassigned = -2;
+
+// §4.3.1: per column of the image, the segment's vertical (h) and horizontal (d) spans; the larger
+// of the two maxima over all columns decides. Ties go to V: a 45-degree slope stays vertical.
+std::vector<Orientation> choose_orientations(const RasterMaps& maps, const Segmentation& seg) {
+  const auto n = static_cast<std::size_t>(seg.count);
+  std::vector<double> max_h_span(n, 0), max_d_span(n, 0);
+  std::vector<double> lo_h(n), hi_h(n), lo_d(n), hi_d(n);
+  std::vector<int> seen_in(n, -1);
+  std::vector<std::int32_t> touched;
+  for (int col = 0; col < maps.grid.cols; ++col) {
+    touched.clear();
+    for (int row = 0; row < maps.grid.rows; ++row) {
+      const std::int32_t s = seg.segment(col, row);
+      if (s < 2) continue;
+      const double h = maps.h_mm(col, row), d = maps.d_mm(col, row);
+      if (seen_in[s] != col) {
+        seen_in[s] = col;
+        touched.push_back(s);
+        lo_h[s] = hi_h[s] = h;
+        lo_d[s] = hi_d[s] = d;
+      }
+      lo_h[s] = std::min(lo_h[s], h), hi_h[s] = std::max(hi_h[s], h);
+      lo_d[s] = std::min(lo_d[s], d), hi_d[s] = std::max(hi_d[s], d);
+    }
+    for (const std::int32_t s : touched) {
+      max_h_span[s] = std::max(max_h_span[s], hi_h[s] - lo_h[s]);
+      max_d_span[s] = std::max(max_d_span[s], hi_d[s] - lo_d[s]);
+    }
+  }
+  std::vector<Orientation> orientation(n, Orientation::V);
+  orientation[kFloorSegment] = Orientation::H;
+  for (std::size_t s = 2; s < n; ++s)
+    orientation[s] = max_d_span[s] > max_h_span[s] ? Orientation::H : Orientation::V;
+  return orientation;
+}
+
+// The block lattice: W x W pixel blocks, one block row boundary on the main fold.
+struct Blocks {
+  int size = 1;
+  int first_row = 0;  // image row of block row 0's top (may be negative)
+  int cols = 0;
+  int rows = 0;
+
+  Blocks(const PixelGrid& grid, int block) : size(block) {
+    first_row = grid.rows_above_fold % block - (grid.rows_above_fold % block ? block : 0);
+    cols = (grid.cols + block - 1) / block;
+    rows = (grid.rows - first_row + block - 1) / block;
+  }
+  int block_col(int col) const { return col / size; }
+  int block_row(int row) const { return (row - first_row) / size; }
+  int centre_col(int bc) const { return bc * size + size / 2; }
+  int centre_row(int br) const { return first_row + br * size + size / 2; }
+};
+
+struct Subsegment {
+  std::int32_t segment = 0;
+  double depth_mm = 0;
+};
+
+// §4.3.2: point-sample the centre pixel of each block, then group 4-connected blocks of one segment
+// whose depth (d for V, h for H) stays within tol of the group's running mean.
+std::vector<Subsegment> downsample(const RasterMaps& maps, const Segmentation& seg,
+                                   const std::vector<Orientation>& orientation, const Blocks& blocks,
+                                   double tol_mm, Grid<std::int32_t>& block_subsegment) {
+  Grid<std::int32_t> sampled_segment(blocks.cols, blocks.rows, -1);
+  Grid<double> sampled_depth(blocks.cols, blocks.rows, 0.0);
+  for (int br = 0; br < blocks.rows; ++br)
+    for (int bc = 0; bc < blocks.cols; ++bc) {
+      const int col = blocks.centre_col(bc), row = blocks.centre_row(br);
+      if (!seg.segment.contains(col, row) || seg.segment(col, row) < 2) continue;
+      const std::int32_t s = seg.segment(col, row);
+      sampled_segment(bc, br) = s;
+      sampled_depth(bc, br) = orientation[s] == Orientation::V ? maps.d_mm(col, row) : maps.h_mm(col, row);
+    }
+
+  block_subsegment = Grid<std::int32_t>(blocks.cols, blocks.rows, -1);
+  std::vector<Subsegment> subsegments;
+  std::vector<std::pair<int, int>> queue;
+  for (int br0 = 0; br0 < blocks.rows; ++br0)
+    for (int bc0 = 0; bc0 < blocks.cols; ++bc0) {
+      if (sampled_segment(bc0, br0) < 0 || block_subsegment(bc0, br0) >= 0) continue;
+      const auto id = static_cast<std::int32_t>(subsegments.size());
+      const std::int32_t s = sampled_segment(bc0, br0);
+      // Mean as base + mean offset, so equal depths give exactly that depth.
+      const double base = sampled_depth(bc0, br0);
+      double offset_sum = 0;
+      int count = 0;
+      queue.assign(1, {bc0, br0});
+      block_subsegment(bc0, br0) = id;
+      for (std::size_t head = 0; head < queue.size(); ++head) {
+        const auto [bc, br] = queue[head];
+        offset_sum += sampled_depth(bc, br) - base;
+        ++count;
+        for (const auto& step : kStep) {
+          const int c = bc + step[0], r = br + step[1];
+          if (!sampled_segment.contains(c, r) || sampled_segment(c, r) != s || block_subsegment(c, r) >= 0) continue;
+          if (std::abs(sampled_depth(c, r) - (base + offset_sum / count)) > tol_mm) continue;
+          block_subsegment(c, r) = id;
+          queue.emplace_back(c, r);
+        }
+      }
+      subsegments.push_back({s, base + offset_sum / count});
+    }
+  return subsegments;
+}
+
+// §4.3.3: each model pixel joins, among the subsegments of its own segment sampled in the 3 x 3
+// blocks around it, the one whose depth is nearest its own. Boundaries between neighbouring slices
+// thus lie on the model's iso-depth contour halfway between their depths, not on the block grid.
+Grid<std::int32_t> upsample(const RasterMaps& maps, const Segmentation& seg, const std::vector<Orientation>& orientation,
+                            const Blocks& blocks, const Grid<std::int32_t>& block_subsegment,
+                            const std::vector<Subsegment>& subsegments) {
+  Grid<std::int32_t> result(maps.grid.cols, maps.grid.rows, -1);
+  for (int row = 0; row < maps.grid.rows; ++row)
+    for (int col = 0; col < maps.grid.cols; ++col) {
+      const std::int32_t s = seg.segment(col, row);
+      if (s < 2) continue;
+      const double depth = orientation[s] == Orientation::V ? maps.d_mm(col, row) : maps.h_mm(col, row);
+      const int bc = blocks.block_col(col), br = blocks.block_row(row);
+      std::int32_t best = kUnassigned;
+      double best_gap = std::numeric_limits<double>::infinity();
+      for (int r = br - 1; r <= br + 1; ++r)
+        for (int c = bc - 1; c <= bc + 1; ++c) {
+          if (!block_subsegment.contains(c, r)) continue;
+          const std::int32_t k = block_subsegment(c, r);
+          if (k < 0 || subsegments[k].segment != s) continue;
+          const double gap = std::abs(depth - subsegments[k].depth_mm);
+          if (gap < best_gap || (gap == best_gap && k < best)) best = k, best_gap = gap;
+        }
+      result(col, row) = best;
+    }
+  return result;
+}
+
+// Pixels the slicing left without a face (removed thin faces, segments the sampling missed) take a
+// neighbour's face, one ring at a time so no direction is favoured. The back plane fills only
+// Y > 0 and the floor only Y < 0: they are the card itself.
+void fill_holes(const PixelGrid& grid, Grid<std::int32_t>& face) {
+  std::vector<std::pair<int, int>> holes, next, filled;
+  for (int row = 0; row < face.rows; ++row)
+    for (int col = 0; col < face.cols; ++col)
+      if (face(col, row) == kUnassigned) holes.emplace_back(col, row);
+  std::vector<std::int32_t> labels;
+  while (!holes.empty()) {
+    next.clear();
+    filled.clear();
+    labels.clear();
+    for (const auto& [col, row] : holes) {
+      std::int32_t label = kUnassigned;
+      for (const auto& step : kStep) {
+        const int c = col + step[0], r = row + step[1];
+        if (face.contains(c, r) && face(c, r) >= 0) {
+          label = face(c, r);
+          break;
+        }
+      }
+      if (label == kUnassigned) {
+        next.emplace_back(col, row);
+        continue;
+      }
+      if (label == kBackFace || label == kFloorFace) label = grid.Y(row) > 0 ? kBackFace : kFloorFace;
+      filled.emplace_back(col, row);
+      labels.push_back(label);
+    }
+    if (filled.empty()) {  // nothing left to grow from: the card itself
+      for (const auto& [col, row] : next) face(col, row) = grid.Y(row) > 0 ? kBackFace : kFloorFace;
+      return;
+    }
+    for (std::size_t i = 0; i < filled.size(); ++i) face(filled[i].first, filled[i].second) = labels[i];
+    holes.swap(next);
+  }
+}
+
+// Touching faces of one orientation and one depth lie in one plane: one face. They arise where a
+// removed thin face (a pole before a wall) had parted a surface. Ids are renumbered in order.
+void merge_touching_pieces(SliceResult& result) {
+  std::vector<std::int32_t> parent(result.faces.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&](std::int32_t f) {
+    while (parent[f] != f) f = parent[f] = parent[parent[f]];
+    return f;
+  };
+  Grid<std::int32_t>& face = result.face;
+  for (int row = 0; row < face.rows; ++row)
+    for (int col = 0; col < face.cols; ++col) {
+      const std::int32_t f = face(col, row);
+      if (f < 2) continue;
+      for (const auto& [c, r] : {std::pair{col + 1, row}, {col, row + 1}}) {
+        if (!face.contains(c, r) || face(c, r) < 2 || face(c, r) == f) continue;
+        const RasterFace &a_face = result.faces[f], &b_face = result.faces[face(c, r)];
+        if (a_face.orientation != b_face.orientation || a_face.depth_mm != b_face.depth_mm) continue;
+        const std::int32_t a = root(f), b = root(face(c, r));
+        parent[std::max(a, b)] = std::min(a, b);
+      }
+    }
+  std::vector<std::int32_t> new_id(result.faces.size(), -1);
+  std::vector<RasterFace> faces;
+  for (std::size_t f = 0; f < result.faces.size(); ++f)
+    if (root(static_cast<std::int32_t>(f)) == static_cast<std::int32_t>(f)) {
+      new_id[f] = static_cast<std::int32_t>(faces.size());
+      faces.push_back(result.faces[f]);
+    }
+  for (auto& f : face.values)
+    if (f >= 0) f = new_id[root(f)];
+  result.faces = std::move(faces);
+}
+
+ShapeError shape_error(const RasterMaps& maps, const Grid<std::int32_t>& face, const std::vector<RasterFace>& faces,
+                       double W) {
+  std::vector<double> errors;
+  errors.reserve(maps.model_pixels);
+  for (int row = 0; row < maps.grid.rows; ++row)
+    for (int col = 0; col < maps.grid.cols; ++col) {
+      if (maps.kind(col, row) != HitKind::Model) continue;
+      const RasterFace& f = faces[static_cast<std::size_t>(face(col, row))];
+      const double face_d = f.orientation == Orientation::V ? f.depth_mm : f.depth_mm - maps.grid.Y(row);
+      errors.push_back(std::abs(face_d - maps.d_mm(col, row)));
+    }
+  ShapeError e;
+  if (errors.empty()) return e;
+  double sum = 0;
+  for (const double v : errors) sum += v;
+  e.mean_mm = sum / static_cast<double>(errors.size());
+  const auto p95 = errors.begin() + static_cast<std::ptrdiff_t>(0.95 * static_cast<double>(errors.size() - 1));
+  std::nth_element(errors.begin(), p95, errors.end());
+  e.p95_mm = *p95;
+  e.mean_W = e.mean_mm / W;
+  e.p95_W = e.p95_mm / W;
+  return e;
+}
+
+// Connected pieces of each full-resolution subsegment become faces; pieces whose oriented box has a
+// side under W are removed and their holes filled from the neighbours (§4.3.3, last paragraph).
+void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vector<Subsegment>& subsegments,
+                 double W, SliceResult& result) {
+  const int cols = maps.grid.cols, rows = maps.grid.rows;
+  result.face = Grid<std::int32_t>(cols, rows, kNoFace);
+  result.faces = {{Orientation::V, 0.0, kBackSegment, 0}, {Orientation::H, 0.0, kFloorSegment, 0}};
+  for (std::size_t i = 0; i < result.face.size(); ++i) {
+    const std::int32_t s = seg.segment.values[i];
+    result.face.values[i] = s == kBackSegment ? kBackFace : s == kFloorSegment ? kFloorFace : s < 0 ? kNoFace : kUnassigned;
+  }
+  const double min_side_px = W * maps.grid.px_per_mm;
+  Grid<std::uint8_t> visited(cols, rows, 0);
+  std::vector<std::pair<int, int>> piece;
+  for (int row0 = 0; row0 < rows; ++row0)
+    for (int col0 = 0; col0 < cols; ++col0) {
+      const std::int32_t k = result.subsegment(col0, row0);
+      if (k < 0 || visited(col0, row0)) continue;
+      piece.assign(1, {col0, row0});
+      visited(col0, row0) = 1;
+      for (std::size_t head = 0; head < piece.size(); ++head) {
+        const auto [col, row] = piece[head];
+        for (const auto& step : kStep) {
+          const int c = col + step[0], r = row + step[1];
+          if (!visited.contains(c, r) || visited(c, r) || result.subsegment(c, r) != k) continue;
+          visited(c, r) = 1;
+          piece.emplace_back(c, r);
+        }
+      }
+      if (oriented_box_min_side_px(piece) < min_side_px) {
+        ++result.removed_thin;
+        continue;
+      }
+      const auto id = static_cast<std::int32_t>(result.faces.size());
+      const Subsegment& sub = subsegments[static_cast<std::size_t>(k)];
+      result.faces.push_back({result.segment_orientation[static_cast<std::size_t>(sub.segment)], sub.depth_mm,
+                              sub.segment, 0});
+      for (const auto& [col, row] : piece) result.face(col, row) = id;
+    }
+  fill_holes(maps.grid, result.face);
+  merge_touching_pieces(result);
+  for (const std::int32_t f : result.face.values)
+    if (f >= 0) ++result.faces[static_cast<std::size_t>(f)].pixels;
+  result.error = shape_error(maps, result.face, result.faces, W);
+}
+
+}  // namespace
+
+double oriented_box_min_side_px(const std::vector<std::pair<int, int>>& pixels) {
+  if (pixels.empty()) return 0;
+  double mx = 0, my = 0;
+  for (const auto& [x, y] : pixels) mx += x, my += y;
+  const double n = static_cast<double>(pixels.size());
+  mx /= n, my /= n;
+  double sxx = 0, syy = 0, sxy = 0;
+  for (const auto& [x, y] : pixels) {
+    sxx += (x - mx) * (x - mx), syy += (y - my) * (y - my), sxy += (x - mx) * (y - my);
+  }
+  const double angle = 0.5 * std::atan2(2 * sxy, sxx - syy);  // principal axis
+  const double ux = std::cos(angle), uy = std::sin(angle);
+  double lo_u = 1e300, hi_u = -1e300, lo_v = 1e300, hi_v = -1e300;
+  for (const auto& [x, y] : pixels) {
+    const double u = x * ux + y * uy, v = -x * uy + y * ux;
+    lo_u = std::min(lo_u, u), hi_u = std::max(hi_u, u), lo_v = std::min(lo_v, v), hi_v = std::max(hi_v, v);
+  }
+  // Pixels are unit squares: a run of k pixels is k long.
+  return std::min(hi_u - lo_u, hi_v - lo_v) + 1;
+}
+
+SliceResult slice(const RasterMaps& maps, const Segmentation& seg, const SliceOptions& options) {
+  const double W = options.min_strip_mm;
+  if (!(std::isfinite(W) && W * maps.grid.px_per_mm >= 1))
+    throw InputError("--min-strip: must be a finite width of at least one pixel (" +
+                     std::to_string(1 / maps.grid.px_per_mm) + " mm at this resolution)");
+  SliceResult result;
+  result.block_px = static_cast<int>(std::ceil(W * maps.grid.px_per_mm - 1e-9));
+  result.segment_orientation = choose_orientations(maps, seg);
+  const Blocks blocks(maps.grid, result.block_px);
+  const std::vector<Subsegment> subsegments =
+      downsample(maps, seg, result.segment_orientation, blocks, options.depth_tol_fraction_of_W * W,
+                 result.block_subsegment);
+  result.subsegments = static_cast<int>(subsegments.size());
+  result.subsegment = upsample(maps, seg, result.segment_orientation, blocks, result.block_subsegment, subsegments);
+  build_faces(maps, seg, subsegments, W, result);
+  return result;
+}
+
+}  // namespace origamic

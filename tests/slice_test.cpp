@@ -1,0 +1,163 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "origamic/slice.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <set>
+
+#include "helpers.hpp"
+#include "origamic/design.hpp"
+#include "origamic/placement.hpp"
+
+namespace origamic {
+namespace {
+
+struct Planned {
+  RasterMaps maps;
+  Segmentation segmentation;
+  SliceResult slices;
+};
+
+Planned plan_of_oa_mesh(TriangleMesh oa_mesh, double W = 3.0) {
+  Planned p;
+  const RayScene scene(std::move(oa_mesh));
+  p.maps = raster(scene, Sheet{}, RasterOptions{});
+  p.segmentation = segment(p.maps, SegmentOptions{});
+  p.slices = slice(p.maps, p.segmentation, SliceOptions{.min_strip_mm = W});
+  return p;
+}
+
+TriangleMesh merged(const TriangleMesh& a, const TriangleMesh& b) {
+  TriangleMesh m = a;
+  const auto offset = static_cast<std::uint32_t>(a.positions.size());
+  m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
+  for (auto t : b.triangles) m.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  return m;
+}
+
+TEST(Slice, BoxBecomesOneVFaceAndOneHFaceAtItsDepthAndHeight) {
+  const double depth = 37.3, height = 61.7;
+  const Planned p = plan_of_oa_mesh(test::box({40.2, 0, 0}, {151.9, height, depth}));
+  ASSERT_EQ(p.slices.faces.size(), 4u);  // back, floor, front, top
+  int v = 0, h = 0;
+  for (std::size_t i = 2; i < p.slices.faces.size(); ++i) {
+    const RasterFace& f = p.slices.faces[i];
+    if (f.orientation == Orientation::V) {
+      ++v;
+      EXPECT_NEAR(f.depth_mm, depth, 1e-6);
+    } else {
+      ++h;
+      EXPECT_NEAR(f.depth_mm, height, 1e-6);
+    }
+  }
+  EXPECT_EQ(v, 1);
+  EXPECT_EQ(h, 1);
+  EXPECT_NEAR(p.slices.error.p95_mm, 0.0, 1e-6);
+}
+
+// Faces' widths along X and Y, in pixels: (max col - min col + 1), (max row - min row + 1).
+std::map<std::int32_t, std::pair<int, int>> face_extents(const Grid<std::int32_t>& face) {
+  std::map<std::int32_t, std::array<int, 4>> box;
+  for (int row = 0; row < face.rows; ++row)
+    for (int col = 0; col < face.cols; ++col) {
+      auto [it, fresh] = box.try_emplace(face(col, row), std::array<int, 4>{col, col, row, row});
+      auto& b = it->second;
+      b = {std::min(b[0], col), std::max(b[1], col), std::min(b[2], row), std::max(b[3], row)};
+    }
+  std::map<std::int32_t, std::pair<int, int>> extents;
+  for (const auto& [id, b] : box) extents[id] = {b[1] - b[0] + 1, b[3] - b[2] + 1};
+  return extents;
+}
+
+TEST(Slice, HalfCylinderBecomesVerticalSlicesNoNarrowerThanW) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  DesignOptions options;
+  options.placement.up = UpAxis::Z;
+  const DesignResult r = design(test::models_dir() / "seedlike/half_cylinder.stl", options);
+  const double W = options.slice.min_strip_mm, W_px = W * r.maps.grid.px_per_mm;
+  const auto extents = face_extents(r.slices.face);
+  // Curved-side faces: V, each of one constant depth, at least W wide; d falls from the centre out.
+  std::vector<std::pair<double, double>> centre_and_depth;
+  const double mid_X = (r.placement.min_oa.x + r.placement.max_oa.x) / 2;
+  for (std::size_t i = 2; i < r.slices.faces.size(); ++i) {
+    const RasterFace& f = r.slices.faces[i];
+    if (f.orientation == Orientation::H) continue;  // the flat top
+    const auto [w_px, h_px] = extents.at(static_cast<std::int32_t>(i));
+    EXPECT_GE(w_px, W_px - 1) << "face " << i;
+    double sum_X = 0;
+    std::int64_t n = 0;
+    for (int row = 0; row < r.slices.face.rows; ++row)
+      for (int col = 0; col < r.slices.face.cols; ++col)
+        if (r.slices.face(col, row) == static_cast<std::int32_t>(i)) sum_X += r.maps.grid.X(col), ++n;
+    centre_and_depth.emplace_back(std::abs(sum_X / static_cast<double>(n) - mid_X), f.depth_mm);
+  }
+  ASSERT_GE(centre_and_depth.size(), 8u);
+  std::ranges::sort(centre_and_depth);
+  for (std::size_t i = 1; i < centre_and_depth.size(); ++i)
+    EXPECT_LE(centre_and_depth[i].second, centre_and_depth[i - 1].second + W / 2)
+        << "depth must fall away from the centre";
+  EXPECT_GT(centre_and_depth.front().second, centre_and_depth.back().second + 2 * W);
+  EXPECT_LE(r.slices.error.p95_mm, W);  // the pop-up stays within W of the model
+}
+
+TEST(Slice, FaceCountFallsAsWGrows) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  for (const char* model : {"seedlike/half_cylinder.stl", "seedlike/wedge.stl"}) {
+    SCOPED_TRACE(model);
+    std::size_t previous = SIZE_MAX;
+    for (const double W : {2.0, 4.0, 8.0}) {
+      DesignOptions options;
+      options.placement.up = UpAxis::Z;
+      options.slice.min_strip_mm = W;
+      const DesignResult r = design(test::models_dir() / model, options);
+      EXPECT_LT(r.slices.faces.size(), previous) << "W = " << W;
+      previous = r.slices.faces.size();
+      for (const auto& [id, extent] : face_extents(r.slices.face))
+        if (id >= 2) {
+          EXPECT_GE(std::min(extent.first, extent.second), W * 4 - 1) << "face " << id << " W " << W;
+        }
+    }
+  }
+}
+
+TEST(Slice, ThinPoleIsRemovedAndItsHoleFilled) {
+  // A box with a 1 mm pole standing in front of it; W = 3 mm.
+  const TriangleMesh house = test::box({60, 0, 0}, {150, 50, 30});
+  const TriangleMesh pole = test::box({100, 0, 50}, {101, 80, 51});
+  const Planned p = plan_of_oa_mesh(merged(house, pole));
+  for (int row = 0; row < p.maps.grid.rows; ++row)
+    for (int col = 0; col < p.maps.grid.cols; ++col) {
+      const std::int32_t f = p.slices.face(col, row);
+      ASSERT_GE(f, 0);
+      // No face stands at the pole's depth (50 .. 51 mm) or on its top (80 mm).
+      const RasterFace& face = p.slices.faces[static_cast<std::size_t>(f)];
+      EXPECT_LT(face.depth_mm, face.orientation == Orientation::V ? 49.0 : 79.0);
+    }
+  EXPECT_GE(p.slices.removed_thin, 1);
+  EXPECT_EQ(p.slices.faces.size(), 4u);  // back, floor, and the house's front and top
+}
+
+TEST(Slice, SameInputGivesByteIdenticalFaceMaps) {
+  const TriangleMesh shape = test::sphere({105, 40, 40}, 38, 96, 48);
+  const Planned a = plan_of_oa_mesh(shape), b = plan_of_oa_mesh(shape);
+  EXPECT_EQ(a.slices.face.values, b.slices.face.values);
+  EXPECT_EQ(a.segmentation.segment.values, b.segmentation.segment.values);
+  ASSERT_EQ(a.slices.faces.size(), b.slices.faces.size());
+  for (std::size_t i = 0; i < a.slices.faces.size(); ++i) EXPECT_EQ(a.slices.faces[i].depth_mm, b.slices.faces[i].depth_mm);
+}
+
+TEST(Slice, OrientedBoxOfADiagonalLineIsOnePixelThin) {
+  std::vector<std::pair<int, int>> line;
+  for (int i = 0; i < 50; ++i) line.emplace_back(i, i);
+  EXPECT_LT(oriented_box_min_side_px(line), 2.5);
+  std::vector<std::pair<int, int>> square;
+  for (int i = 0; i < 12; ++i)
+    for (int j = 0; j < 12; ++j) square.emplace_back(i, j);
+  EXPECT_NEAR(oriented_box_min_side_px(square), 12.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace origamic
