@@ -302,7 +302,8 @@ LoadedMesh load_mesh_unguarded(const std::filesystem::path& file, const LoadOpti
   if (bytes.empty()) fail(file, "empty file");
 
   OpenMesh::IO::Options read_options;
-  read_options += OpenMesh::IO::Options::VertexNormal;
+  // STL stores only facet normals, which OpenMesh would smear onto shared vertices.
+  if (loaded.format != "stl") read_options += OpenMesh::IO::Options::VertexNormal;
   if (loaded.format == "stl" && is_binary_stl(file, bytes)) read_options += OpenMesh::IO::Options::Binary;
   const Promised promised = promised_counts(loaded.format, bytes);
   if (promised.data_found < promised.data_needed)

@@ -123,6 +123,10 @@ Placement place(const TriangleMesh& mesh, const Sheet& sheet, const PlacementOpt
                      " mm sheet (X 0 to " + mm(sheet.max_X()) + ", Y " + mm(sheet.min_Y()) + " to " +
                      mm(sheet.max_Y()) + ")");
   }
+  if (placed.lo.y < -slack || placed.lo.z < -slack)
+    throw InputError((options.offset_mm ? std::string("--offset") : std::string("--scale")) +
+                     ": the model reaches below the floor (min h " + mm(placed.lo.y) +
+                     " mm) or behind the back plane (min d " + mm(placed.lo.z) + " mm); both must be >= 0");
   return placement;
 }
 

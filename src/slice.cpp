@@ -149,42 +149,44 @@ Grid<std::int32_t> upsample(const RasterMaps& maps, const Segmentation& seg, con
 }
 
 // Pixels the slicing left without a face (removed thin faces, segments the sampling missed) take a
-// neighbour's face, one ring at a time so no direction is favoured. The back plane fills only
-// Y > 0 and the floor only Y < 0: they are the card itself.
-void fill_holes(const PixelGrid& grid, Grid<std::int32_t>& face) {
+// neighbour's face, one ring at a time so no direction is favoured. First only faces sliced from the
+// pixel's own segment may grow (a removed sliver of a dome joins the next ring of the dome, not the
+// back plane behind it); then any face. The back plane fills only Y > 0 and the floor only Y < 0.
+void fill_holes(const PixelGrid& grid, const Grid<std::int32_t>& segment, const std::vector<RasterFace>& faces,
+                Grid<std::int32_t>& face) {
   std::vector<std::pair<int, int>> holes, next, filled;
   for (int row = 0; row < face.rows; ++row)
     for (int col = 0; col < face.cols; ++col)
       if (face(col, row) == kUnassigned) holes.emplace_back(col, row);
   std::vector<std::int32_t> labels;
-  while (!holes.empty()) {
-    next.clear();
-    filled.clear();
-    labels.clear();
-    for (const auto& [col, row] : holes) {
-      std::int32_t label = kUnassigned;
-      for (const auto& step : kStep) {
-        const int c = col + step[0], r = row + step[1];
-        if (face.contains(c, r) && face(c, r) >= 0) {
+  for (const bool same_segment_only : {true, false}) {
+    while (!holes.empty()) {
+      next.clear();
+      filled.clear();
+      labels.clear();
+      for (const auto& [col, row] : holes) {
+        std::int32_t label = kUnassigned;
+        for (const auto& step : kStep) {
+          const int c = col + step[0], r = row + step[1];
+          if (!face.contains(c, r) || face(c, r) < 0) continue;
+          if (same_segment_only && faces[static_cast<std::size_t>(face(c, r))].segment != segment(col, row)) continue;
           label = face(c, r);
           break;
         }
+        if (label == kUnassigned) {
+          next.emplace_back(col, row);
+          continue;
+        }
+        if (label == kBackFace || label == kFloorFace) label = grid.Y(row) > 0 ? kBackFace : kFloorFace;
+        filled.emplace_back(col, row);
+        labels.push_back(label);
       }
-      if (label == kUnassigned) {
-        next.emplace_back(col, row);
-        continue;
-      }
-      if (label == kBackFace || label == kFloorFace) label = grid.Y(row) > 0 ? kBackFace : kFloorFace;
-      filled.emplace_back(col, row);
-      labels.push_back(label);
+      for (std::size_t i = 0; i < filled.size(); ++i) face(filled[i].first, filled[i].second) = labels[i];
+      holes.swap(next);
+      if (filled.empty()) break;
     }
-    if (filled.empty()) {  // nothing left to grow from: the card itself
-      for (const auto& [col, row] : next) face(col, row) = grid.Y(row) > 0 ? kBackFace : kFloorFace;
-      return;
-    }
-    for (std::size_t i = 0; i < filled.size(); ++i) face(filled[i].first, filled[i].second) = labels[i];
-    holes.swap(next);
   }
+  for (const auto& [col, row] : holes) face(col, row) = grid.Y(row) > 0 ? kBackFace : kFloorFace;
 }
 
 // Touching faces of one orientation and one depth lie in one plane: one face. They arise where a
@@ -284,7 +286,7 @@ void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vec
                               sub.segment, 0});
       for (const auto& [col, row] : piece) result.face(col, row) = id;
     }
-  fill_holes(maps.grid, result.face);
+  fill_holes(maps.grid, seg.segment, result.faces, result.face);
   merge_touching_pieces(result);
   for (const std::int32_t f : result.face.values)
     if (f >= 0) ++result.faces[static_cast<std::size_t>(f)].pixels;

@@ -103,6 +103,23 @@ TEST(Placement, ProjectionLeavingTheSheetIsAnErrorNamingTheOption) {
   EXPECT_THROW(place(test::box({0, 0, 0}, {20, 20, 20}), Sheet{}, options), InputError);
 }
 
+TEST(Placement, ModelBelowTheFloorOrBehindTheBackPlaneIsAnError) {
+  PlacementOptions options;
+  options.scale = 1.0;
+  options.offset_mm = glm::dvec3(100, -5, 10);
+  EXPECT_THROW(place(test::box({0, 0, 0}, {20, 20, 20}), Sheet{}, options), InputError);
+  options.offset_mm = glm::dvec3(100, 5, -1);
+  EXPECT_THROW(place(test::box({0, 0, 0}, {20, 20, 20}), Sheet{}, options), InputError);
+  options.offset_mm = glm::dvec3(100, 0, 0);
+  EXPECT_NO_THROW(place(test::box({0, 0, 0}, {20, 20, 20}), Sheet{}, options));
+}
+
+TEST(Placement, AutoFitWithoutMarginTouchesTheSheetEdge) {
+  PlacementOptions options;
+  options.margin_mm = 0;
+  expect_auto_fit(test::sphere({0, 0, 0}, 1, 32, 16), Sheet{}, options);
+}
+
 TEST(Placement, AbsurdOptionsAreRejected) {
   const TriangleMesh box = test::box({0, 0, 0}, {1, 1, 1});
   PlacementOptions options;
