@@ -57,7 +57,8 @@ TEST(Cli, DesignWritesTheReportAndTheMaps) {
   const CommandRun r = run("design " + quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") + " --out " +
                     quoted(dir / "out") + " --dump-maps " + quoted(dir / "maps"));
   ASSERT_EQ(r.status, 0) << r.output;
-  for (const char* name : {"D.png", "F.png", "T.png", "N.png", "kind.png"}) {
+  for (const char* name : {"D.png", "F.png", "T.png", "N.png", "kind.png", "S.png", "SS.png", "faces.png",
+                           "plan_preview.png"}) {
     std::ifstream png(dir / "maps" / name, std::ios::binary);
     std::array<char, 8> magic{};
     png.read(magic.data(), 8);
@@ -72,6 +73,18 @@ TEST(Cli, DesignWritesTheReportAndTheMaps) {
   EXPECT_EQ(report["placement"]["oa_bbox_mm"]["min_xhd"][1], 0.0);  // standing on the floor
   EXPECT_EQ(report["placement"]["oa_bbox_mm"]["min_xhd"][2], 0.0);  // against the back plane
   EXPECT_TRUE(report["time_ms"].contains("raster"));
+  EXPECT_TRUE(report["time_ms"].contains("slice"));
+  // The house: back, floor and at least its wall and roof slices; every model face at least W wide.
+  const auto& plan = report["raster_plan"];
+  EXPECT_EQ(plan["min_strip_mm"], 3.0);
+  EXPECT_GE(plan["face_count"].get<int>(), 4);
+  EXPECT_EQ(plan["faces"].size(), plan["face_count"].get<std::size_t>());
+  EXPECT_EQ(plan["faces"][0]["orientation"], "V");
+  EXPECT_EQ(plan["faces"][1]["orientation"], "H");
+  double area = 0;
+  for (const auto& face : plan["faces"]) area += face["area_mm2"].get<double>();
+  EXPECT_NEAR(area, 210.0 * 297.0, 1e-6);  // the faces tile the sheet
+  EXPECT_LE(plan["shape_error"]["p95_W"].get<double>(), 1.0);
 }
 
 // Every bad input: one line naming the file or option and the problem, status 2, no output file.
@@ -120,6 +133,8 @@ TEST(Cli, AbsurdOptionsExitWithStatusTwo) {
   expect_rejected(house + " --scale 10 --offset 300,0,0", "--scale/--offset", "leaves the");
   expect_rejected(house + " --offset 1,2", "--offset", "X,H,D");
   expect_rejected(house + " --margin 200", "--margin", "no room");
+  expect_rejected(house + " --min-strip 0", "--min-strip", "at least one pixel");
+  expect_rejected(house + " --min-strip nan", "--min-strip", "");
   expect_rejected(house + " --up x", "--up", "");
   expect_rejected(house + " --rotate abc", "--rotate", "");
   expect_rejected(house + " --bogus", "--bogus", "");
