@@ -83,6 +83,21 @@ std::vector<std::uint8_t> plan_preview_rgb(const RasterMaps& maps, const SliceRe
   return pixels;
 }
 
+// Shape error: black where the pop-up meets the model, white at 2 W and beyond; not model: blue.
+std::vector<std::uint8_t> error_rgb(const Grid<float>& error, double W) {
+  std::vector<std::uint8_t> pixels(3 * error.size());
+  for (std::size_t i = 0; i < error.size(); ++i) {
+    const float e = error.values[i];
+    if (e < 0) {
+      std::ranges::copy(std::array<std::uint8_t, 3>{40, 60, 110}, &pixels[3 * i]);
+      continue;
+    }
+    const auto v = static_cast<std::uint8_t>(std::lround(std::clamp(e / (2 * W), 0.0, 1.0) * 255));
+    std::ranges::fill_n(&pixels[3 * i], 3, v);
+  }
+  return pixels;
+}
+
 }  // namespace
 
 std::vector<std::filesystem::path> write_slice_images(const RasterMaps& maps, const Segmentation& segmentation,
@@ -94,6 +109,7 @@ std::vector<std::filesystem::path> write_slice_images(const RasterMaps& maps, co
       {"SS.png", id_rgb(slices.subsegment, false)},
       {"faces.png", id_rgb(slices.face, true)},
       {"plan_preview.png", plan_preview_rgb(maps, slices)},
+      {"E.png", error_rgb(shape_error_map(maps, slices.face, slices.faces), slices.min_strip_mm)},
   };
   std::vector<std::filesystem::path> written;
   for (const auto& [name, pixels] : images) {

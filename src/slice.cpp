@@ -120,31 +120,59 @@ std::vector<Subsegment> downsample(const RasterMaps& maps, const Segmentation& s
   return subsegments;
 }
 
-// §4.3.3: each model pixel joins, among the subsegments of its own segment sampled in the 3 x 3
-// blocks around it, the one whose depth is nearest its own. Boundaries between neighbouring slices
-// thus lie on the model's iso-depth contour halfway between their depths, not on the block grid.
+// §4.3.3: each subsegment grows over its mother segment from the centre pixels of its blocks, a
+// pixel at a time, always extending next the front whose depth gap (|pixel depth - subsegment
+// depth|, the largest met on the way) is smallest: a seeded priority flood. A pixel thus joins the
+// subsegment that reaches it through pixels of the closest depth: slices stay connected, and where
+// two meet, the boundary lies on the model's iso-depth contour halfway between their depths, not on
+// the block grid. (Choosing the nearest depth pixel by pixel instead scatters slivers wherever many
+// subsegments of nearly equal depth sample a dome.) Gaps are bucketed in W/64 steps, first in first
+// out within a bucket, which keeps the flood linear in the pixels and deterministic.
 Grid<std::int32_t> upsample(const RasterMaps& maps, const Segmentation& seg, const std::vector<Orientation>& orientation,
                             const Blocks& blocks, const Grid<std::int32_t>& block_subsegment,
-                            const std::vector<Subsegment>& subsegments) {
-  Grid<std::int32_t> result(maps.grid.cols, maps.grid.rows, -1);
-  for (int row = 0; row < maps.grid.rows; ++row)
-    for (int col = 0; col < maps.grid.cols; ++col) {
-      const std::int32_t s = seg.segment(col, row);
-      if (s < 2) continue;
-      const double depth = orientation[s] == Orientation::V ? maps.d_mm(col, row) : maps.h_mm(col, row);
-      const int bc = blocks.block_col(col), br = blocks.block_row(row);
-      std::int32_t best = kUnassigned;
-      double best_gap = std::numeric_limits<double>::infinity();
-      for (int r = br - 1; r <= br + 1; ++r)
-        for (int c = bc - 1; c <= bc + 1; ++c) {
-          if (!block_subsegment.contains(c, r)) continue;
-          const std::int32_t k = block_subsegment(c, r);
-          if (k < 0 || subsegments[k].segment != s) continue;
-          const double gap = std::abs(depth - subsegments[k].depth_mm);
-          if (gap < best_gap || (gap == best_gap && k < best)) best = k, best_gap = gap;
-        }
-      result(col, row) = best;
+                            const std::vector<Subsegment>& subsegments, double W) {
+  const int cols = maps.grid.cols;
+  Grid<std::int32_t> result(cols, maps.grid.rows, -1);
+  constexpr std::size_t kBuckets = 64 * 16;  // gaps of 16 W and more share the last bucket
+  const double buckets_per_mm = 64 / W;
+  struct Entry {
+    std::uint32_t pixel;
+    std::int32_t subsegment;
+  };
+  std::vector<std::vector<Entry>> bucket(kBuckets);
+  auto bucket_of = [&](std::size_t i, std::int32_t k) {
+    const std::int32_t s = seg.segment.values[i];
+    const double depth = orientation[static_cast<std::size_t>(s)] == Orientation::V ? maps.d_mm.values[i] : maps.h_mm.values[i];
+    const double gap = std::abs(depth - subsegments[static_cast<std::size_t>(k)].depth_mm) * buckets_per_mm;
+    return std::min(static_cast<std::size_t>(gap), kBuckets - 1);
+  };
+  for (int br = 0; br < blocks.rows; ++br)
+    for (int bc = 0; bc < blocks.cols; ++bc)
+      if (const std::int32_t k = block_subsegment(bc, br); k >= 0) {
+        const std::size_t i = result.index(blocks.centre_col(bc), blocks.centre_row(br));
+        bucket[bucket_of(i, k)].push_back({static_cast<std::uint32_t>(i), k});
+      }
+  for (std::size_t level = 0; level < kBuckets; ++level) {
+    std::vector<Entry>& front = bucket[level];
+    for (std::size_t head = 0; head < front.size(); ++head) {
+      const Entry e = front[head];
+      if (result.values[e.pixel] >= 0) continue;
+      result.values[e.pixel] = e.subsegment;
+      const std::int32_t s = seg.segment.values[e.pixel];
+      const int col = static_cast<int>(e.pixel % static_cast<std::uint32_t>(cols));
+      const int row = static_cast<int>(e.pixel / static_cast<std::uint32_t>(cols));
+      for (const auto& step : kStep) {
+        const int c = col + step[0], r = row + step[1];
+        if (!result.contains(c, r)) continue;
+        const std::size_t j = result.index(c, r);
+        if (result.values[j] >= 0 || seg.segment.values[j] != s) continue;
+        bucket[std::max(level, bucket_of(j, e.subsegment))].push_back({static_cast<std::uint32_t>(j), e.subsegment});
+      }
     }
+    std::vector<Entry>().swap(front);
+  }
+  for (std::size_t i = 0; i < result.size(); ++i)
+    if (result.values[i] < 0 && seg.segment.values[i] >= 2) result.values[i] = kUnassigned;
   return result;
 }
 
@@ -154,39 +182,51 @@ Grid<std::int32_t> upsample(const RasterMaps& maps, const Segmentation& seg, con
 // back plane behind it); then any face. The back plane fills only Y > 0 and the floor only Y < 0.
 void fill_holes(const PixelGrid& grid, const Grid<std::int32_t>& segment, const std::vector<RasterFace>& faces,
                 Grid<std::int32_t>& face) {
-  std::vector<std::pair<int, int>> holes, next, filled;
-  for (int row = 0; row < face.rows; ++row)
-    for (int col = 0; col < face.cols; ++col)
-      if (face(col, row) == kUnassigned) holes.emplace_back(col, row);
+  Grid<std::uint8_t> queued(face.cols, face.rows, 0);
+  std::vector<std::pair<int, int>> ring, next;
   std::vector<std::int32_t> labels;
   for (const bool same_segment_only : {true, false}) {
-    while (!holes.empty()) {
-      next.clear();
-      filled.clear();
-      labels.clear();
-      for (const auto& [col, row] : holes) {
-        std::int32_t label = kUnassigned;
-        for (const auto& step : kStep) {
-          const int c = col + step[0], r = row + step[1];
-          if (!face.contains(c, r) || face(c, r) < 0) continue;
-          if (same_segment_only && faces[static_cast<std::size_t>(face(c, r))].segment != segment(col, row)) continue;
-          label = face(c, r);
-          break;
-        }
-        if (label == kUnassigned) {
-          next.emplace_back(col, row);
-          continue;
-        }
-        if (label == kBackFace || label == kFloorFace) label = grid.Y(row) > 0 ? kBackFace : kFloorFace;
-        filled.emplace_back(col, row);
-        labels.push_back(label);
+    auto label_of = [&](int col, int row) {
+      for (const auto& step : kStep) {
+        const int c = col + step[0], r = row + step[1];
+        if (!face.contains(c, r) || face(c, r) < 0) continue;
+        if (same_segment_only && faces[static_cast<std::size_t>(face(c, r))].segment != segment(col, row)) continue;
+        const std::int32_t label = face(c, r);
+        if (label == kBackFace || label == kFloorFace) return grid.Y(row) > 0 ? kBackFace : kFloorFace;
+        return label;
       }
-      for (std::size_t i = 0; i < filled.size(); ++i) face(filled[i].first, filled[i].second) = labels[i];
-      holes.swap(next);
-      if (filled.empty()) break;
+      return kUnassigned;
+    };
+    ring.clear();
+    for (int row = 0; row < face.rows; ++row)
+      for (int col = 0; col < face.cols; ++col)
+        if (face(col, row) == kUnassigned) ring.emplace_back(col, row), queued(col, row) = 1;
+    // Rings are filled all at once, so no direction is favoured.
+    while (!ring.empty()) {
+      labels.resize(ring.size());
+      for (std::size_t i = 0; i < ring.size(); ++i) labels[i] = label_of(ring[i].first, ring[i].second);
+      next.clear();
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        const auto [col, row] = ring[i];
+        queued(col, row) = 0;
+        if (labels[i] == kUnassigned) continue;
+        face(col, row) = labels[i];
+      }
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        if (labels[i] == kUnassigned) continue;
+        for (const auto& step : kStep) {
+          const int c = ring[i].first + step[0], r = ring[i].second + step[1];
+          if (!face.contains(c, r) || face(c, r) != kUnassigned || queued(c, r)) continue;
+          queued(c, r) = 1;
+          next.emplace_back(c, r);
+        }
+      }
+      ring.swap(next);
     }
   }
-  for (const auto& [col, row] : holes) face(col, row) = grid.Y(row) > 0 ? kBackFace : kFloorFace;
+  for (int row = 0; row < face.rows; ++row)
+    for (int col = 0; col < face.cols; ++col)
+      if (face(col, row) == kUnassigned) face(col, row) = grid.Y(row) > 0 ? kBackFace : kFloorFace;
 }
 
 // Touching faces of one orientation and one depth lie in one plane: one face. They arise where a
@@ -225,19 +265,15 @@ void merge_touching_pieces(SliceResult& result) {
 
 ShapeError shape_error(const RasterMaps& maps, const Grid<std::int32_t>& face, const std::vector<RasterFace>& faces,
                        double W) {
-  std::vector<double> errors;
+  const Grid<float> error = shape_error_map(maps, face, faces);
+  std::vector<float> errors;
   errors.reserve(maps.model_pixels);
-  for (int row = 0; row < maps.grid.rows; ++row)
-    for (int col = 0; col < maps.grid.cols; ++col) {
-      if (maps.kind(col, row) != HitKind::Model) continue;
-      const RasterFace& f = faces[static_cast<std::size_t>(face(col, row))];
-      const double face_d = f.orientation == Orientation::V ? f.depth_mm : f.depth_mm - maps.grid.Y(row);
-      errors.push_back(std::abs(face_d - maps.d_mm(col, row)));
-    }
+  for (const float e : error.values)
+    if (e >= 0) errors.push_back(e);
   ShapeError e;
   if (errors.empty()) return e;
   double sum = 0;
-  for (const double v : errors) sum += v;
+  for (const float v : errors) sum += v;
   e.mean_mm = sum / static_cast<double>(errors.size());
   const auto p95 = errors.begin() + static_cast<std::ptrdiff_t>(0.95 * static_cast<double>(errors.size() - 1));
   std::nth_element(errors.begin(), p95, errors.end());
@@ -295,6 +331,18 @@ void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vec
 
 }  // namespace
 
+Grid<float> shape_error_map(const RasterMaps& maps, const Grid<std::int32_t>& face, const std::vector<RasterFace>& faces) {
+  Grid<float> error(maps.grid.cols, maps.grid.rows, -1.0f);
+  for (int row = 0; row < maps.grid.rows; ++row)
+    for (int col = 0; col < maps.grid.cols; ++col) {
+      if (maps.kind(col, row) != HitKind::Model) continue;
+      const RasterFace& f = faces[static_cast<std::size_t>(face(col, row))];
+      const double face_d = f.orientation == Orientation::V ? f.depth_mm : f.depth_mm - maps.grid.Y(row);
+      error(col, row) = static_cast<float>(std::abs(face_d - maps.d_mm(col, row)));
+    }
+  return error;
+}
+
 double oriented_box_min_side_px(const std::vector<std::pair<int, int>>& pixels) {
   if (pixels.empty()) return 0;
   double mx = 0, my = 0;
@@ -322,6 +370,7 @@ SliceResult slice(const RasterMaps& maps, const Segmentation& seg, const SliceOp
     throw InputError("--min-strip: must be a finite width of at least one pixel (" +
                      std::to_string(1 / maps.grid.px_per_mm) + " mm at this resolution)");
   SliceResult result;
+  result.min_strip_mm = W;
   result.block_px = static_cast<int>(std::ceil(W * maps.grid.px_per_mm - 1e-9));
   result.segment_orientation = choose_orientations(maps, seg);
   const Blocks blocks(maps.grid, result.block_px);
@@ -329,7 +378,8 @@ SliceResult slice(const RasterMaps& maps, const Segmentation& seg, const SliceOp
       downsample(maps, seg, result.segment_orientation, blocks, options.depth_tol_fraction_of_W * W,
                  result.block_subsegment);
   result.subsegments = static_cast<int>(subsegments.size());
-  result.subsegment = upsample(maps, seg, result.segment_orientation, blocks, result.block_subsegment, subsegments);
+  result.subsegment =
+      upsample(maps, seg, result.segment_orientation, blocks, result.block_subsegment, subsegments, W);
   build_faces(maps, seg, subsegments, W, result);
   return result;
 }

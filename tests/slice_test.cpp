@@ -103,9 +103,9 @@ TEST(Slice, HalfCylinderBecomesVerticalSlicesNoNarrowerThanW) {
   EXPECT_LE(r.slices.error.p95_mm, W);  // the pop-up stays within W of the model
 }
 
-TEST(Slice, FaceCountFallsAsWGrows) {
+TEST(Slice, FaceCountFallsAsWGrowsAndNoFaceIsNarrowerThanW) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
-  for (const char* model : {"seedlike/half_cylinder.stl", "seedlike/wedge.stl"}) {
+  for (const char* model : {"seedlike/half_cylinder.stl", "seedlike/wedge.stl", "seedlike/quarter_sphere.stl"}) {
     SCOPED_TRACE(model);
     std::size_t previous = SIZE_MAX;
     for (const double W : {2.0, 4.0, 8.0}) {
@@ -115,10 +115,15 @@ TEST(Slice, FaceCountFallsAsWGrows) {
       const DesignResult r = design(test::models_dir() / model, options);
       EXPECT_LT(r.slices.faces.size(), previous) << "W = " << W;
       previous = r.slices.faces.size();
-      for (const auto& [id, extent] : face_extents(r.slices.face))
-        if (id >= 2) {
-          EXPECT_GE(std::min(extent.first, extent.second), W * 4 - 1) << "face " << id << " W " << W;
-        }
+      for (std::size_t f = 2; f < r.slices.faces.size(); ++f)  // one orientation per segment
+        EXPECT_EQ(r.slices.faces[f].orientation,
+                  r.slices.segment_orientation[static_cast<std::size_t>(r.slices.faces[f].segment)]);
+      std::map<std::int32_t, std::vector<std::pair<int, int>>> pixels_of;
+      for (int row = 0; row < r.slices.face.rows; ++row)
+        for (int col = 0; col < r.slices.face.cols; ++col)
+          if (r.slices.face(col, row) >= 2) pixels_of[r.slices.face(col, row)].emplace_back(col, row);
+      for (const auto& [id, pixels] : pixels_of)
+        EXPECT_GE(oriented_box_min_side_px(pixels), W * r.maps.grid.px_per_mm - 1) << "face " << id << " W " << W;
     }
   }
 }

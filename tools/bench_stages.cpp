@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Stage benchmark: bench_stages MODEL [--up y|z] [Google Benchmark flags]
-// Times load, placement + BVH build and raster of the default sheet (210 x 297 mm at 4 px/mm) for
-// one model, then prints the process's peak resident memory.
+// Times load, placement + BVH build, raster, segmentation and slicing of the default sheet
+// (210 x 297 mm at 4 px/mm, W = 3 mm) for one model, then prints the process's peak resident memory.
 #include <sys/resource.h>
 
 #include <cstdio>
@@ -14,6 +14,8 @@
 #include "origamic/mesh_io.hpp"
 #include "origamic/placement.hpp"
 #include "origamic/raster.hpp"
+#include "origamic/segment.hpp"
+#include "origamic/slice.hpp"
 
 namespace {
 
@@ -64,6 +66,21 @@ int main(int argc, char** argv) {
     state.counters["Mpx"] = static_cast<double>(origamic::PixelGrid::covering(sheet, 4).cols) *
                             origamic::PixelGrid::covering(sheet, 4).rows / 1e6;
   })->Unit(benchmark::kMillisecond)->MinTime(2.0);
+
+  const origamic::RasterMaps maps = origamic::raster(scene, sheet, origamic::RasterOptions{});
+  const origamic::Segmentation segmentation = origamic::segment(maps, origamic::SegmentOptions{});
+  benchmark::RegisterBenchmark("segment", [&](benchmark::State& state) {
+    for (auto _ : state) benchmark::DoNotOptimize(origamic::segment(maps, origamic::SegmentOptions{}));
+    state.counters["segments"] = segmentation.count;
+  })->Unit(benchmark::kMillisecond)->MinTime(1.0);
+  benchmark::RegisterBenchmark("slice", [&](benchmark::State& state) {
+    std::size_t faces = 0;
+    for (auto _ : state) {
+      const origamic::SliceResult slices = origamic::slice(maps, segmentation, origamic::SliceOptions{});
+      faces = slices.faces.size();
+    }
+    state.counters["faces"] = static_cast<double>(faces);
+  })->Unit(benchmark::kMillisecond)->MinTime(1.0);
 
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

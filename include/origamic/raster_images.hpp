@@ -22,7 +22,8 @@ std::vector<std::filesystem::path> write_raster_images(const RasterMaps& maps,
 
 /// Writes the segmentation map S, the subsegment map SS and the face map as colour PNGs (one colour
 /// per id; back plane grey, floor tan) and plan_preview.png: the raster plan in the seed's style
-/// (§4.6), cuts red, folds green, on white. \returns the paths written. \throws OutputError.
+/// (§4.6), cuts red, folds green, on white; and E.png, the shape error map (black where the pop-up
+/// meets the model, white at 2 W or more off). \returns the paths written. \throws OutputError.
 std::vector<std::filesystem::path> write_slice_images(const RasterMaps& maps, const Segmentation& segmentation,
                                                       const SliceResult& slices, const std::filesystem::path& dir);
 

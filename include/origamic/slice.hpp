@@ -45,6 +45,7 @@ struct ShapeError {
 };
 
 struct SliceResult {
+  double min_strip_mm = 0;                   // W
   int block_px = 0;                          // W in pixels: the downsampling block
   std::vector<Orientation> segment_orientation;  // per segment (back V, floor H)
   Grid<std::int32_t> block_subsegment;       // SDS: subsegment per block, -1 for none
@@ -59,6 +60,10 @@ struct SliceResult {
 /// Slices every segment. Deterministic: the same maps and options give the same face map.
 /// \throws InputError naming --min-strip if W is not positive and finite or is below one pixel.
 SliceResult slice(const RasterMaps& maps, const Segmentation& segmentation, const SliceOptions& options);
+
+/// Per pixel |depth of its pop-up face - depth of the model| in mm along the 45-degree ray, for
+/// model pixels; -1 elsewhere. ShapeError summarises it.
+Grid<float> shape_error_map(const RasterMaps& maps, const Grid<std::int32_t>& face, const std::vector<RasterFace>& faces);
 
 /// The smaller side, in pixels, of the oriented bounding box (principal axes) of a pixel set.
 double oriented_box_min_side_px(const std::vector<std::pair<int, int>>& pixels);

@@ -118,7 +118,7 @@ int run_design(const DesignArgs& args) {
   if (!args.maps_dir.empty()) {
     origamic::write_raster_images(result.maps, args.maps_dir);
     origamic::write_slice_images(result.maps, result.segmentation, result.slices, args.maps_dir);
-    written += "maps: " + args.maps_dir + "/{D,F,T,N,kind,S,SS,faces,plan_preview}.png\n";
+    written += "maps: " + args.maps_dir + "/{D,F,T,N,kind,S,SS,faces,E,plan_preview}.png\n";
   }
   std::printf("%s\n%s", origamic::summary_line(result).c_str(), written.c_str());
   return 0;
