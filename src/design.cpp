@@ -45,6 +45,8 @@ DesignResult design(const std::filesystem::path& model_file, const DesignOptions
   clock.lap("segment");
   result.slices = slice(result.maps, result.segmentation, options.slice);
   clock.lap("slice");
+  result.plan = build_plan(result.maps, result.slices, options.sheet, options.plan);
+  clock.lap("plan");
   return result;
 }
 

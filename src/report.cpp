@@ -55,6 +55,37 @@ nlohmann::json slices_json(const DesignResult& result, const DesignOptions& opti
           {"faces", faces}};
 }
 
+nlohmann::json plan_json(const Plan& plan) {
+  nlohmann::json faces = nlohmann::json::array();
+  for (std::size_t i = 0; i < plan.faces.size(); ++i) {
+    const PlanFace& f = plan.faces[i];
+    const bool v = f.orientation == Orientation::V;
+    faces.push_back({{"id", i},
+                     {"orientation", v ? "V" : "H"},
+                     {v ? "d_mm" : "h_mm", f.depth_mm},
+                     {"area_mm2", f.area_mm2},
+                     {"status", to_string(f.status)},
+                     {"fold_lines", plan.validity.fold_lines[i]},
+                     {"at_XY", {f.inside.X, f.inside.Y}}});
+  }
+  const Validity& v = plan.validity;
+  return {{"verdict", v.ok() ? "valid" : "invalid"},
+          {"counts", {{"faces", plan.faces.size() - 2},
+                      {"valid", v.valid},
+                      {"indirect", v.indirect},
+                      {"floating", v.floating},
+                      {"dangling", v.dangling},
+                      {"invalid", v.invalid}}},
+          {"length_mm", {{"cut", plan.cut_mm}, {"mountain", plan.mountain_mm}, {"valley", plan.valley_mm}}},
+          {"exact_checks", {{"arrangement_valid", plan.arrangement_valid},
+                            {"faces_tile_sheet", plan.faces_tile_sheet},
+                            {"arrangement_faces", plan.arrangement_faces},
+                            {"label_conflicts", plan.label_conflicts},
+                            {"folds_snapped", plan.folds_snapped},
+                            {"raw_chains", plan.raw_chains}}},
+          {"faces", faces}};
+}
+
 }  // namespace
 
 std::string report_json(const DesignResult& result, const DesignOptions& options) {
@@ -78,6 +109,7 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
                   {"front_d_mm", maps.reference.front_d_mm},
                   {"top_h_mm", maps.reference.top_h_mm}}},
       {"raster_plan", slices_json(result, options)},
+      {"plan", plan_json(result.plan)},
       {"time_ms", times},
   };
   // File names need not be UTF-8: replace bytes JSON cannot carry rather than fail.
@@ -87,14 +119,17 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
 std::string summary_line(const DesignResult& result) {
   double total_ms = 0;
   for (const auto& t : result.times) total_ms += t.ms;
-  char line[512];
+  const Validity& v = result.plan.validity;
+  char line[768];
   std::snprintf(line, sizeof line,
                 "%s: %zu triangles at %.4g mm/unit; %d segments -> %zu faces (W %.3g mm); shape error mean %.2f "
-                "mm, p95 %.2f mm (%.2f W); %.0f ms",
+                "mm, p95 %.2f mm (%.2f W); plan %s: %d valid, %d indirect, %d floating, %d dangling, %d invalid; "
+                "%.0f ms",
                 result.model_file.filename().c_str(), result.triangles, result.placement.scale,
-                result.segmentation.count, result.slices.faces.size(),
-                result.slices.block_px / result.maps.grid.px_per_mm, result.slices.error.mean_mm,
-                result.slices.error.p95_mm, result.slices.error.p95_W, total_ms);
+                result.segmentation.count, result.slices.faces.size() - 2,
+                result.slices.min_strip_mm, result.slices.error.mean_mm,
+                result.slices.error.p95_mm, result.slices.error.p95_W, v.ok() ? "VALID" : "INVALID", v.valid,
+                v.indirect, v.floating, v.dangling, v.invalid, total_ms);
   return line;
 }
 

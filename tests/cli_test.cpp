@@ -85,6 +85,34 @@ TEST(Cli, DesignWritesTheReportAndTheMaps) {
   for (const auto& face : plan["faces"]) area += face["area_mm2"].get<double>();
   EXPECT_NEAR(area, 210.0 * 297.0, 1e-6);  // the faces tile the sheet
   EXPECT_LE(plan["shape_error"]["p95_W"].get<double>(), 1.0);
+  // The exact plan: files beside the report, and the verdict with every face's status.
+  for (const char* name : {"house.dxf", "house.svg", "house.png"})
+    EXPECT_GT(std::filesystem::file_size(dir / "out" / name), 100u) << name;
+  const auto& exact = report["plan"];
+  EXPECT_TRUE(exact["exact_checks"]["arrangement_valid"].get<bool>());
+  EXPECT_TRUE(exact["exact_checks"]["faces_tile_sheet"].get<bool>());
+  EXPECT_EQ(exact["faces"].size(), plan["faces"].size());
+  int statuses = 0;
+  for (const char* status : {"valid", "indirect", "floating", "dangling", "invalid"})
+    statuses += exact["counts"][status].get<int>();
+  EXPECT_EQ(statuses, exact["counts"]["faces"].get<int>());
+  EXPECT_NE(r.output.find("plan "), std::string::npos) << "the one-line verdict";
+}
+
+TEST(Cli, StrictExitsThreeForAnInvalidPlanAfterWritingIt) {
+  const test::TempDir dir;
+  test::write_obj(dir / "floating.obj", test::box({0, 1, -1}, {2, 2, 0}));  // Y-up: in mid-air
+  const CommandRun r = run("design " + quoted(dir / "floating.obj") + " --scale 30 --offset 60,0,50 --strict --out " +
+                           quoted(dir / "out"));
+  EXPECT_EQ(r.status, 3) << r.output;
+  EXPECT_NE(r.output.find("INVALID"), std::string::npos) << r.output;
+  for (const char* name : {"floating.json", "floating.dxf", "floating.svg", "floating.png"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / name)) << name;
+
+  test::write_obj(dir / "box.obj", test::box({0, 0, -1}, {2, 1, 0}));  // on the floor, against the back
+  const CommandRun valid = run("design " + quoted(dir / "box.obj") + " --strict --out " + quoted(dir / "out"));
+  EXPECT_EQ(valid.status, 0) << valid.output;
+  EXPECT_NE(valid.output.find("VALID"), std::string::npos) << valid.output;
 }
 
 // Every bad input: one line naming the file or option and the problem, status 2, no output file.

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Stage benchmark: bench_stages MODEL [--up y|z] [Google Benchmark flags]
-// Times load, placement + BVH build, raster, segmentation and slicing of the default sheet
+// Times load, placement + BVH build, raster, segmentation, slicing and the exact plan (vectorization,
+// folds, validity) of the default sheet
 // (210 x 297 mm at 4 px/mm, W = 3 mm) for one model, then prints the process's peak resident memory.
 #include <sys/resource.h>
 
@@ -13,6 +14,7 @@
 
 #include "origamic/mesh_io.hpp"
 #include "origamic/placement.hpp"
+#include "origamic/plan.hpp"
 #include "origamic/raster.hpp"
 #include "origamic/segment.hpp"
 #include "origamic/slice.hpp"
@@ -80,6 +82,14 @@ int main(int argc, char** argv) {
       faces = slices.faces.size();
     }
     state.counters["faces"] = static_cast<double>(faces);
+  })->Unit(benchmark::kMillisecond)->MinTime(1.0);
+
+  const origamic::SliceResult slices = origamic::slice(maps, segmentation, origamic::SliceOptions{});
+  benchmark::RegisterBenchmark("plan", [&](benchmark::State& state) {
+    origamic::Plan plan;
+    for (auto _ : state) plan = origamic::build_plan(maps, slices, sheet, origamic::PlanOptions{});
+    state.counters["arr_faces"] = plan.arrangement_faces;
+    state.counters["simplified"] = plan.simplified;
   })->Unit(benchmark::kMillisecond)->MinTime(1.0);
 
   benchmark::RunSpecifiedBenchmarks();

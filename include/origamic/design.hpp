@@ -9,6 +9,7 @@
 #include "origamic/mesh_io.hpp"
 #include "origamic/oa.hpp"
 #include "origamic/placement.hpp"
+#include "origamic/plan.hpp"
 #include "origamic/raster.hpp"
 #include "origamic/segment.hpp"
 #include "origamic/slice.hpp"
@@ -22,6 +23,7 @@ struct DesignOptions {
   RasterOptions raster;
   SegmentOptions segment;
   SliceOptions slice;
+  PlanOptions plan;
 };
 
 struct StageTime {
@@ -39,11 +41,11 @@ struct DesignResult {
   RasterMaps maps;
   Segmentation segmentation;
   SliceResult slices;
+  Plan plan;
   std::vector<StageTime> times;
 };
 
-/// Runs the pipeline on a model file. It currently ends with the raster plan
-/// (slicing); the exact stages come next.
+/// Runs the pipeline on a model file, up to the exact plan with its validity verdict.
 /// \throws InputError for a bad file or absurd options.
 DesignResult design(const std::filesystem::path& model_file, const DesignOptions& options);
 

@@ -11,6 +11,7 @@
 
 #include "origamic/design.hpp"
 #include "origamic/error.hpp"
+#include "origamic/plan_export.hpp"
 #include "origamic/raster_images.hpp"
 #include "origamic/report.hpp"
 #include "origamic/version.hpp"
@@ -70,6 +71,9 @@ struct DesignArgs {
   double min_strip_mm = 3;
   std::string out_dir;
   std::string maps_dir;
+  bool strict = false;
+  std::string colours = "laser";
+  std::string dxf = "r12";
 };
 
 void add_design_options(CLI::App& design, DesignArgs& args) {
@@ -88,7 +92,17 @@ void add_design_options(CLI::App& design, DesignArgs& args) {
       ->capture_default_str();
   design.add_option("--px-per-mm", args.px_per_mm, "raster resolution, pixels per mm")->capture_default_str();
   design.add_option("--min-strip", args.min_strip_mm, "W: minimum strip width in mm")->capture_default_str();
-  design.add_option("--out", args.out_dir, "write the report (MODEL.json) into this folder");
+  design.add_option("--out", args.out_dir,
+                    "write the plan (MODEL.dxf, MODEL.svg, MODEL.png) and the report (MODEL.json) into this folder");
+  design.add_flag("--strict", args.strict, "exit with status 3 when the plan is invalid (after writing it)");
+  design.add_option("--colours", args.colours,
+                    "layer colours: laser (cut black, mountain red, valley blue, outline green) or craft (cut "
+                    "blue, mountain green, valley red, outline black)")
+      ->check(CLI::IsMember({"laser", "craft"}))
+      ->capture_default_str();
+  design.add_option("--dxf", args.dxf, "DXF flavour: r12 (read by everything) or r2000 (LWPOLYLINE)")
+      ->check(CLI::IsMember({"r12", "r2000"}))
+      ->capture_default_str();
   design.add_option("--dump-maps", args.maps_dir, "write the maps (D, F, T, N, hit kind, segments S, subsegments SS, faces) and a plan preview as PNGs here");
 }
 
@@ -111,9 +125,18 @@ int run_design(const DesignArgs& args) {
   const origamic::DesignResult result = origamic::design(args.model, options);
   std::string written;
   if (!args.out_dir.empty()) {
-    const std::filesystem::path report = std::filesystem::path(args.out_dir) / (model_name(args.model) + ".json");
-    origamic::write_report(result, options, report);
-    written += "report: " + report.string() + "\n";
+    const std::filesystem::path base = std::filesystem::path(args.out_dir) / model_name(args.model);
+    origamic::ExportOptions exports;
+    exports.model = std::filesystem::path(args.model).filename().string();
+    exports.settings = "card " + args.card + " mm, W " + std::to_string(args.min_strip_mm) + " mm, " +
+                       std::to_string(args.px_per_mm) + " px/mm, up " + args.up;
+    exports.colours = args.colours == "craft" ? origamic::ColourPreset::Craft : origamic::ColourPreset::Laser;
+    exports.dxf_version = args.dxf == "r2000" ? origamic::DxfVersion::R2000 : origamic::DxfVersion::R12;
+    origamic::write_report(result, options, base.string() + ".json");
+    origamic::write_plan_dxf(result.plan, base.string() + ".dxf", exports);
+    origamic::write_plan_svg(result.plan, base.string() + ".svg", exports);
+    origamic::write_plan_png(result.plan, base.string() + ".png", exports);
+    written += "plan: " + base.string() + ".{dxf,svg,png}\nreport: " + base.string() + ".json\n";
   }
   if (!args.maps_dir.empty()) {
     origamic::write_raster_images(result.maps, args.maps_dir);
@@ -121,7 +144,7 @@ int run_design(const DesignArgs& args) {
     written += "maps: " + args.maps_dir + "/{D,F,T,N,kind,S,SS,faces,E,plan_preview}.png\n";
   }
   std::printf("%s\n%s", origamic::summary_line(result).c_str(), written.c_str());
-  return 0;
+  return args.strict && !result.plan.validity.ok() ? 3 : 0;
 }
 
 }  // namespace

@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The exact core (seed §4.4 validity, §4.5, §4.6): the raster plan's face boundaries become a CGAL
+// arrangement over an exact kernel; folds are placed on their exact lines Y = h - d and every edge is
+// classified exactly. This header is CGAL-free: it hands out the result in plan millimetres.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "origamic/oa.hpp"
+#include "origamic/raster.hpp"
+#include "origamic/slice.hpp"
+#include "origamic/validity.hpp"
+
+namespace origamic {
+
+enum class LineKind : std::uint8_t { Cut, Mountain, Valley, Outline };
+
+/// A chain of plan segments of one kind; closed chains repeat their first point at the end.
+struct PlanPolyline {
+  LineKind kind = LineKind::Cut;
+  std::vector<PlanPoint> points;
+};
+
+struct PlanFace {
+  Orientation orientation = Orientation::V;
+  double depth_mm = 0;     // d of a V face, h of an H face, exactly as the arrangement holds it
+  double area_mm2 = 0;     // in the plan
+  PlanPoint inside;        // a plan point inside the face, to name where it is
+  FaceStatus status = FaceStatus::Valid;
+};
+
+struct PlanOptions {
+  // Cut contours are simplified within this distance (and never more than one pixel) of the raster
+  // contour; folds and junctions are not moved by it.
+  double simplify_mm = 0.1;
+  // A V/H boundary within this fraction of W (plus one pixel) of its fold line Y = h - d becomes
+  // that fold (§4.5: the faces are extended or trimmed to meet on it); farther off it is a cut.
+  double fold_snap_fraction_of_W = 0.5;
+};
+
+struct Plan {
+  Sheet sheet;
+  std::vector<PlanFace> faces;          // indexed like the raster plan's faces: 0 back, 1 floor
+  std::vector<PlanPolyline> lines;      // cuts, mountain and valley folds, and the sheet outline
+  Validity validity;
+  double cut_mm = 0, mountain_mm = 0, valley_mm = 0;
+  // Checks of the exact construction, for the report and the tests.
+  bool arrangement_valid = false;       // CGAL's is_valid
+  bool faces_tile_sheet = false;        // exact sum of face areas == sheet area
+  int arrangement_faces = 0;
+  int label_conflicts = 0;              // arrangement faces without a clear majority label
+  int raw_chains = 0;                   // boundaries kept as pixel contours to avoid a crossing
+  int folds_snapped = 0;                // V/H boundaries moved onto their fold line
+  bool simplified = false;              // every cut simplified, every fold candidate snapped
+};
+
+/// Builds the exact plan from the raster plan. Deterministic.
+Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& sheet, const PlanOptions& options);
+
+}  // namespace origamic

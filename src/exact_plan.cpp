@@ -1,0 +1,521 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The one translation unit that builds the exact arrangement (CGAL is heavy to compile: keep it here).
+
+// Exact numbers here are never shared between threads; without this, every lazily evaluated number
+// pays for a std::call_once (a futex system call on completion), which tripled the plan's time.
+#define CGAL_HAS_NO_THREADS 1
+
+#include "origamic/plan.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <map>
+#include <type_traits>
+#include <utility>
+
+#include <CGAL/Arr_consolidated_curve_data_traits_2.h>
+#include <CGAL/Arr_extended_dcel.h>
+#include <CGAL/Arr_segment_traits_2.h>
+#include <CGAL/Arrangement_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+
+namespace origamic {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
+using FT = Kernel::FT;
+using Point = Kernel::Point_2;
+using SegmentTraits = CGAL::Arr_segment_traits_2<Kernel>;
+// Each inserted segment carries the index of its side labels; overlapping pieces keep every index.
+using Traits = CGAL::Arr_consolidated_curve_data_traits_2<SegmentTraits, std::int32_t>;
+using Dcel = CGAL::Arr_face_extended_dcel<Traits, std::int32_t>;
+using Arrangement = CGAL::Arrangement_2<Traits, Dcel>;
+
+constexpr std::int32_t kNoLabel = -1;
+
+/// The faces on either side of a segment inserted from its lexicographically smaller end.
+struct Sides {
+  std::int32_t left = kNoLabel;
+  std::int32_t right = kNoLabel;
+  std::int32_t chain = kNoLabel;  // the raster boundary it comes from; none for the sheet outline
+};
+
+// Plan points on the pixel lattice in half-pixel units: u = 2 col, v = 2 row for pixel corners, odd
+// for edge midpoints. Exact coordinates clamp to the sheet, whose edge the last pixels may overhang.
+struct Lattice {
+  FT two_ppm, width, half;
+  int rows_above_fold;
+  double px_mm;
+
+  Lattice(const PixelGrid& grid, const Sheet& sheet)
+      : two_ppm(FT(2) * FT(grid.px_per_mm)), width(sheet.width_mm), half(sheet.half_height_mm()),
+        rows_above_fold(grid.rows_above_fold), px_mm(1 / grid.px_per_mm) {}
+
+  Point exact(int u, int v) const {
+    const FT X = CGAL::min(FT(u) / two_ppm, width);
+    const FT Y = CGAL::max(CGAL::min(FT(2 * rows_above_fold - v) / two_ppm, half), -half);
+    return {X, Y};
+  }
+  double X(int u) const { return u * px_mm / 2; }
+  double Y(int v) const { return (2 * rows_above_fold - v) * px_mm / 2; }
+};
+
+struct LatticePoint {
+  int u, v;
+};
+
+// One boundary between two faces of the raster plan, traced corner to corner with `left` on its
+// left; it ends at junctions (three or more faces meet, or the sheet edge) or closes on itself.
+struct Chain {
+  std::int32_t left, right;
+  std::vector<LatticePoint> corners;
+};
+
+// The face map, with pixels whose centre fell outside the sheet given their inner neighbour's face.
+Grid<std::int32_t> labels_inside_sheet(const Grid<std::int32_t>& face) {
+  Grid<std::int32_t> labels = face;
+  for (int row = 0; row < labels.rows; ++row)
+    for (int col = 0; col < labels.cols; ++col)
+      if (labels(col, row) < 0) labels(col, row) = labels(std::max(0, col - 1), std::max(0, row - 1));
+  return labels;
+}
+
+std::vector<Chain> trace_chains(const Grid<std::int32_t>& labels) {
+  const int cols = labels.cols, rows = labels.rows, corner_cols = cols + 1;
+  auto corner = [&](int c, int r) { return static_cast<std::size_t>(r) * corner_cols + c; };
+  struct Edge {
+    std::size_t from, to;
+    std::int32_t left, right;
+  };
+  std::vector<Edge> edges;
+  // Directed so that the smaller label lies on the left: then each chain runs one way throughout.
+  auto add = [&](std::size_t a, std::size_t b, std::int32_t left, std::int32_t right) {
+    if (left < right) edges.push_back({a, b, left, right});
+    else edges.push_back({b, a, right, left});
+  };
+  for (int r = 1; r < rows; ++r)  // between pixel rows r - 1 (above) and r: walking +X, above is left
+    for (int c = 0; c < cols; ++c)
+      if (labels(c, r - 1) != labels(c, r)) add(corner(c, r), corner(c + 1, r), labels(c, r - 1), labels(c, r));
+  for (int c = 1; c < cols; ++c)  // between pixel columns c - 1 and c: walking +Y (up), c - 1 is left
+    for (int r = 0; r < rows; ++r)
+      if (labels(c - 1, r) != labels(c, r)) add(corner(c, r + 1), corner(c, r), labels(c - 1, r), labels(c, r));
+
+  const std::size_t corners = static_cast<std::size_t>(corner_cols) * (rows + 1);
+  std::vector<std::uint8_t> degree(corners, 0);
+  std::vector<std::uint32_t> first_out(corners + 1, 0);
+  for (const Edge& e : edges) ++degree[e.from], ++degree[e.to], ++first_out[e.from + 1];
+  for (std::size_t i = 0; i < corners; ++i) first_out[i + 1] += first_out[i];
+  std::vector<std::uint32_t> out(edges.size());
+  {
+    std::vector<std::uint32_t> fill(first_out.begin(), first_out.end() - 1);
+    for (std::uint32_t i = 0; i < edges.size(); ++i) out[fill[edges[i].from]++] = i;
+  }
+  auto is_junction = [&](std::size_t k) {
+    const int c = static_cast<int>(k % corner_cols), r = static_cast<int>(k / corner_cols);
+    return degree[k] != 2 || c == 0 || c == cols || r == 0 || r == rows;
+  };
+  auto lattice = [&](std::size_t k) {
+    return LatticePoint{2 * static_cast<int>(k % corner_cols), 2 * static_cast<int>(k / corner_cols)};
+  };
+
+  std::vector<bool> used(edges.size(), false);
+  std::vector<Chain> chains;
+  auto follow = [&](std::uint32_t first) {
+    Chain chain{edges[first].left, edges[first].right, {lattice(edges[first].from)}};
+    std::uint32_t e = first;
+    for (;;) {
+      used[e] = true;
+      const std::size_t at = edges[e].to;
+      chain.corners.push_back(lattice(at));
+      if (is_junction(at)) break;
+      std::uint32_t next = UINT32_MAX;
+      for (std::uint32_t i = first_out[at]; i < first_out[at + 1]; ++i)
+        if (!used[out[i]]) next = out[i];
+      if (next == UINT32_MAX) break;  // a closed loop is back at its start
+      e = next;
+    }
+    chains.push_back(std::move(chain));
+  };
+  for (std::size_t k = 0; k < corners; ++k)
+    if (degree[k] > 0 && is_junction(k))
+      for (std::uint32_t i = first_out[k]; i < first_out[k + 1]; ++i)
+        if (!used[out[i]]) follow(out[i]);
+  for (std::uint32_t i = 0; i < edges.size(); ++i)
+    if (!used[i]) follow(i);
+  return chains;
+}
+
+// Douglas-Peucker over the chain's edge midpoints between its two fixed end corners.
+std::vector<LatticePoint> simplified(const Chain& chain, const Lattice& lattice, double tolerance_mm) {
+  std::vector<LatticePoint> points = {chain.corners.front()};
+  for (std::size_t i = 1; i < chain.corners.size(); ++i) {
+    const LatticePoint a = chain.corners[i - 1], b = chain.corners[i];
+    points.push_back({(a.u + b.u) / 2, (a.v + b.v) / 2});
+  }
+  points.push_back(chain.corners.back());
+  if (tolerance_mm <= 0) return chain.corners;
+  std::vector<bool> keep(points.size(), false);
+  keep.front() = keep.back() = true;
+  std::vector<std::pair<std::size_t, std::size_t>> stack = {{0, points.size() - 1}};
+  while (!stack.empty()) {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    if (j <= i + 1) continue;
+    const double ax = lattice.X(points[i].u), ay = lattice.Y(points[i].v);
+    const double bx = lattice.X(points[j].u), by = lattice.Y(points[j].v);
+    const double dx = bx - ax, dy = by - ay, length = std::hypot(dx, dy);
+    double worst = -1;
+    std::size_t worst_k = i;
+    for (std::size_t k = i + 1; k < j; ++k) {
+      const double px = lattice.X(points[k].u) - ax, py = lattice.Y(points[k].v) - ay;
+      const double distance = length > 0 ? std::abs(dx * py - dy * px) / length : std::hypot(px, py);
+      if (distance > worst) worst = distance, worst_k = k;
+    }
+    if (worst > tolerance_mm) {
+      keep[worst_k] = true;
+      stack.emplace_back(i, worst_k);
+      stack.emplace_back(worst_k, j);
+    }
+  }
+  std::vector<LatticePoint> result;
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (keep[k]) result.push_back(points[k]);
+  return result;
+}
+
+struct Curves {
+  std::vector<Traits::Curve_2> curves;
+  std::vector<Sides> sides;
+  std::vector<Point> endpoints;
+  std::int32_t chain = kNoLabel;  // the chain whose segments are being added
+  int folds_snapped = 0;
+
+  // A segment with `left` on its left walking p -> q; stored from its lexicographically smaller end.
+  void add(const Point& p, const Point& q, std::int32_t left, std::int32_t right) {
+    const CGAL::Comparison_result order = CGAL::compare_xy(p, q);
+    if (order == CGAL::EQUAL) return;
+    const auto data = static_cast<std::int32_t>(sides.size());
+    endpoints.push_back(p);
+    endpoints.push_back(q);
+    if (order == CGAL::SMALLER) {
+      sides.push_back({left, right, chain});
+      curves.emplace_back(Kernel::Segment_2(p, q), data);
+    } else {
+      sides.push_back({right, left, chain});
+      curves.emplace_back(Kernel::Segment_2(q, p), data);
+    }
+  }
+};
+
+void add_cut(const Chain& chain, std::size_t from, std::size_t to, const Lattice& lattice, double simplify_mm,
+             Curves& curves) {
+  if (to <= from) return;
+  const Chain piece{chain.left, chain.right, {chain.corners.begin() + from, chain.corners.begin() + to + 1}};
+  const std::vector<LatticePoint> points = simplified(piece, lattice, simplify_mm);
+  for (std::size_t k = 1; k < points.size(); ++k)
+    curves.add(lattice.exact(points[k - 1].u, points[k - 1].v), lattice.exact(points[k].u, points[k].v), chain.left,
+               chain.right);
+}
+
+// §4.5: where a boundary between V(d) and H(h) runs within `tolerance` of the fold line Y = h - d,
+// monotonically along X, that run becomes one exact segment on the line: the faces are extended or
+// trimmed to meet on it. Short vertical cuts join its ends to the corners the run had (they name no
+// face; the arrangement finds their sides). The rest of the boundary is a cut.
+void add_chain(const Chain& chain, bool raw, const std::vector<RasterFace>& faces, const Lattice& lattice,
+               double simplify_mm, double tolerance, Curves& curves) {
+  const std::size_t last = chain.corners.size() - 1;
+  const RasterFace &a = faces[static_cast<std::size_t>(chain.left)], &b = faces[static_cast<std::size_t>(chain.right)];
+  if (raw || a.orientation == b.orientation) return add_cut(chain, 0, last, lattice, raw ? 0 : simplify_mm, curves);
+  const RasterFace& v = a.orientation == Orientation::V ? a : b;
+  const RasterFace& h = a.orientation == Orientation::H ? a : b;
+  const double fold_Y = h.depth_mm - v.depth_mm;
+  const FT exact_Y = FT(h.depth_mm) - FT(v.depth_mm);
+  auto near = [&](std::size_t i) { return std::abs(lattice.Y(chain.corners[i].v) - fold_Y) <= tolerance; };
+  std::size_t cut_from = 0, i = 0;
+  while (i <= last) {
+    if (!near(i)) {
+      ++i;
+      continue;
+    }
+    // The longest X-monotone run of near corners from i.
+    std::size_t j = i;
+    int direction = 0;
+    while (j < last && near(j + 1)) {
+      const int du = chain.corners[j + 1].u - chain.corners[j].u;
+      if (du * direction < 0) break;
+      if (du != 0) direction = du > 0 ? 1 : -1;
+      ++j;
+    }
+    if (chain.corners[i].u == chain.corners[j].u) {
+      i = j + 1;
+      continue;
+    }
+    add_cut(chain, cut_from, i, lattice, simplify_mm, curves);
+    const LatticePoint start = chain.corners[i], end = chain.corners[j];
+    const Point s = lattice.exact(start.u, start.v), e = lattice.exact(end.u, end.v);
+    const Point s_on(s.x(), exact_Y), e_on(e.x(), exact_Y);
+    curves.add(s_on, e_on, chain.left, chain.right);
+    curves.add(s, s_on, kNoLabel, kNoLabel);
+    curves.add(e, e_on, kNoLabel, kNoLabel);
+    ++curves.folds_snapped;
+    cut_from = j;
+    i = j + 1;
+  }
+  add_cut(chain, cut_from, last, lattice, simplify_mm, curves);
+}
+
+// Sums of many terms are kept as plain exact rationals: a lazy number would grow a DAG as deep as
+// the sum is long, and evaluating it recursively can overflow the stack.
+using Rational = std::remove_cvref_t<decltype(std::declval<FT>().exact())>;
+
+// The double nearest an exact number (ties to even), so a fold at Y = h - d reads back as the
+// IEEE difference h - d. CGAL's to_double may return any double within its interval instead.
+double nearest_double(const FT& x) {
+  const Rational& exact = x.exact();
+  const auto [lo, hi] = CGAL::to_interval(exact);
+  if (lo == hi) return lo;
+  const Rational mid = (Rational(lo) + Rational(hi)) / 2;  // typed: gmpxx expressions must not outlive their operands
+  if (exact < mid) return lo;
+  if (exact > mid) return hi;
+  return (std::bit_cast<std::uint64_t>(lo) & 1) == 0 ? lo : hi;
+}
+
+Rational ccb_area(Arrangement::Ccb_halfedge_const_circulator first) {
+  Rational twice = 0;
+  auto he = first;
+  do {
+    const Point &p = he->source()->point(), &q = he->target()->point();
+    twice += p.x().exact() * q.y().exact() - q.x().exact() * p.y().exact();
+  } while (++he != first);
+  return twice / 2;
+}
+
+struct Built {
+  Arrangement arrangement;
+  std::vector<Sides> sides;
+  std::vector<bool> crossed;  // per chain: its segments cross another's (a new vertex appeared)
+  int conflicts = 0;
+  int folds_snapped = 0;
+};
+
+double length_of(Arrangement::Halfedge_const_handle he) {
+  const Point &p = he->source()->point(), &q = he->target()->point();
+  return std::hypot(CGAL::to_double(p.x()) - CGAL::to_double(q.x()), CGAL::to_double(p.y()) - CGAL::to_double(q.y()));
+}
+
+// Chains listed in `raw` keep their pixel contour as it is: neither simplified nor snapped to a fold.
+void build_arrangement(const std::vector<Chain>& chains, const std::vector<bool>& raw,
+                       const std::vector<RasterFace>& faces, const Lattice& lattice, const Sheet& sheet,
+                       double simplify_mm, double fold_tolerance, Built& built) {
+  Curves curves;
+  for (std::size_t i = 0; i < chains.size(); ++i) {
+    curves.chain = static_cast<std::int32_t>(i);
+    add_chain(chains[i], raw[i], faces, lattice, simplify_mm, fold_tolerance, curves);
+  }
+  curves.chain = kNoLabel;
+  const FT W(sheet.width_mm), H(sheet.half_height_mm());
+  const Point corners[4] = {{0, -H}, {W, -H}, {W, H}, {0, H}};
+  for (int i = 0; i < 4; ++i) curves.add(corners[i], corners[(i + 1) % 4], kNoLabel, kNoLabel);
+  built.folds_snapped = curves.folds_snapped;
+  built.sides = std::move(curves.sides);
+  CGAL::insert(built.arrangement, curves.curves.begin(), curves.curves.end());
+
+  // Topology check, exact: a vertex that is no segment's end is where two segments cross.
+  std::sort(curves.endpoints.begin(), curves.endpoints.end(),
+            [](const Point& a, const Point& b) { return CGAL::compare_xy(a, b) == CGAL::SMALLER; });
+  built.crossed.assign(chains.size(), false);
+  for (auto v = built.arrangement.vertices_begin(); v != built.arrangement.vertices_end(); ++v) {
+    const bool an_end = std::binary_search(
+        curves.endpoints.begin(), curves.endpoints.end(), v->point(),
+        [](const Point& a, const Point& b) { return CGAL::compare_xy(a, b) == CGAL::SMALLER; });
+    if (an_end || v->is_isolated()) continue;
+    auto he = v->incident_halfedges(), first = he;
+    do {
+      for (const std::int32_t d : he->curve().data())
+        if (const std::int32_t chain = built.sides[static_cast<std::size_t>(d)].chain; chain >= 0)
+          built.crossed[static_cast<std::size_t>(chain)] = true;
+    } while (++he != first);
+  }
+
+  // Each face takes the label that most of its boundary length names. Sides moved by a snapped fold
+  // still name the face that was there before: a short minority, outvoted.
+  built.conflicts = 0;
+  std::map<std::int32_t, double> votes;
+  for (auto f = built.arrangement.faces_begin(); f != built.arrangement.faces_end(); ++f) {
+    f->set_data(kNoLabel);
+    if (f->is_unbounded()) continue;
+    votes.clear();
+    double total = 0;
+    auto vote = [&](Arrangement::Ccb_halfedge_circulator first) {
+      auto he = first;
+      do {
+        const double length = length_of(he);
+        for (const std::int32_t d : he->curve().data()) {
+          const Sides& s = built.sides[static_cast<std::size_t>(d)];
+          const std::int32_t label = he->direction() == CGAL::ARR_LEFT_TO_RIGHT ? s.left : s.right;
+          if (label >= 0) votes[label] += length, total += length;
+        }
+      } while (++he != first);
+    };
+    for (auto ccb = f->outer_ccbs_begin(); ccb != f->outer_ccbs_end(); ++ccb) vote(*ccb);
+    for (auto ccb = f->inner_ccbs_begin(); ccb != f->inner_ccbs_end(); ++ccb) vote(*ccb);
+    std::int32_t best = kNoLabel;
+    double best_votes = 0;
+    for (const auto& [label, weight] : votes)
+      if (weight > best_votes) best = label, best_votes = weight;
+    if (best == kNoLabel || best_votes * 2 <= total) ++built.conflicts;
+    f->set_data(best);
+  }
+}
+
+// Joins segments of one kind that meet end to end (at vertices where exactly two of them meet).
+std::vector<PlanPolyline> chain_segments(LineKind kind, const std::vector<std::pair<std::size_t, std::size_t>>& segments,
+                                         const std::vector<PlanPoint>& vertex_points) {
+  std::map<std::size_t, std::vector<std::size_t>> incident;
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    incident[segments[i].first].push_back(i);
+    incident[segments[i].second].push_back(i);
+  }
+  std::vector<bool> used(segments.size(), false);
+  std::vector<PlanPolyline> lines;
+  auto walk = [&](std::size_t start_vertex, std::size_t first) {
+    PlanPolyline line{kind, {vertex_points[start_vertex]}};
+    std::size_t at = start_vertex, s = first;
+    for (;;) {
+      used[s] = true;
+      at = segments[s].first == at ? segments[s].second : segments[s].first;
+      line.points.push_back(vertex_points[at]);
+      const auto& next = incident[at];
+      if (next.size() != 2) break;
+      const std::size_t n = next[0] == s ? next[1] : next[0];
+      if (used[n]) break;
+      s = n;
+    }
+    lines.push_back(std::move(line));
+  };
+  for (const auto& [vertex, list] : incident)
+    if (list.size() != 2)
+      for (const std::size_t s : list)
+        if (!used[s]) walk(vertex, s);
+  for (std::size_t s = 0; s < segments.size(); ++s)
+    if (!used[s]) walk(segments[s].first, s);
+  return lines;
+}
+
+}  // namespace
+
+Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& sheet, const PlanOptions& options) {
+  const Lattice lattice(maps.grid, sheet);
+  const Grid<std::int32_t> labels = labels_inside_sheet(slices.face);
+  const std::vector<Chain> chains = trace_chains(labels);
+  const double px_mm = 1 / maps.grid.px_per_mm;
+  const double simplify_mm = std::min(options.simplify_mm, px_mm);
+  const double fold_tolerance = options.fold_snap_fraction_of_W * slices.min_strip_mm + px_mm;
+
+  Plan plan;
+  plan.sheet = sheet;
+  // Simplification or snapping that makes two boundaries cross would change the plan's topology:
+  // the chains involved are rebuilt from their pixel contours, until no crossing is left.
+  std::vector<bool> raw(chains.size(), false);
+  Built built;
+  for (int attempt = 0;; ++attempt) {
+    built = Built{};
+    build_arrangement(chains, raw, slices.faces, lattice, sheet, simplify_mm, fold_tolerance, built);
+    bool again = false;
+    for (std::size_t i = 0; i < chains.size(); ++i)
+      if (built.crossed[i] && !raw[i]) raw[i] = true, again = true;
+    if (!again || attempt == 3) break;
+  }
+  plan.raw_chains = static_cast<int>(std::ranges::count(raw, true));
+  plan.simplified = plan.raw_chains == 0;
+  const Arrangement& arr = built.arrangement;
+  plan.arrangement_valid = arr.is_valid();
+  plan.label_conflicts = built.conflicts;
+  plan.folds_snapped = built.folds_snapped;
+
+  // Faces: exact areas per label, and the tiling check.
+  const std::size_t n = slices.faces.size();
+  std::vector<Rational> area(n, Rational(0));
+  Rational total = 0;
+  for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
+    if (f->is_unbounded()) continue;
+    ++plan.arrangement_faces;
+    Rational a = 0;
+    for (auto ccb = f->outer_ccbs_begin(); ccb != f->outer_ccbs_end(); ++ccb) a += ccb_area(*ccb);
+    for (auto ccb = f->inner_ccbs_begin(); ccb != f->inner_ccbs_end(); ++ccb) a += ccb_area(*ccb);  // clockwise: negative
+    total += a;
+    if (f->data() >= 0) area[static_cast<std::size_t>(f->data())] += a;
+  }
+  plan.faces_tile_sheet = total == Rational(sheet.width_mm) * Rational(sheet.height_mm);
+
+  // Edges: vanish inside a face, folds on their exact line, cuts elsewhere.
+  std::map<Arrangement::Vertex_const_handle, std::size_t> vertex_index;
+  std::vector<PlanPoint> vertex_points;
+  auto index_of = [&](Arrangement::Vertex_const_handle v) {
+    auto [it, fresh] = vertex_index.try_emplace(v, vertex_points.size());
+    if (fresh) vertex_points.push_back({nearest_double(v->point().x()), nearest_double(v->point().y())});
+    return it->second;
+  };
+  std::vector<std::pair<std::size_t, std::size_t>> by_kind[3];
+  std::map<FT, std::int32_t> fold_line_ids;
+  FaceGraph graph;
+  graph.faces = static_cast<std::int32_t>(n);
+  for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
+    Arrangement::Halfedge_const_handle he = e;
+    if (he->direction() != CGAL::ARR_LEFT_TO_RIGHT) he = he->twin();  // he->face() is above or left
+    if (he->face()->is_unbounded() || he->twin()->face()->is_unbounded()) continue;
+    const std::int32_t upper = he->face()->data(), lower = he->twin()->face()->data();
+    if (upper == lower || upper < 0 || lower < 0) continue;
+    const Point &p = he->source()->point(), &q = he->target()->point();
+    const RasterFace &fu = slices.faces[static_cast<std::size_t>(upper)], &fl = slices.faces[static_cast<std::size_t>(lower)];
+    LineKind kind = LineKind::Cut;
+    if (p.y() == q.y() && fu.orientation != fl.orientation) {
+      const RasterFace& v = fu.orientation == Orientation::V ? fu : fl;
+      const RasterFace& h = fu.orientation == Orientation::H ? fu : fl;
+      if (p.y() == FT(h.depth_mm) - FT(v.depth_mm)) {
+        // Going up the plan: V then H is a mountain fold, H then V a valley fold.
+        kind = fu.orientation == Orientation::H ? LineKind::Mountain : LineKind::Valley;
+        const auto [it, fresh] = fold_line_ids.try_emplace(p.y(), static_cast<std::int32_t>(fold_line_ids.size()));
+        graph.folds.push_back({upper, lower, it->second});
+      }
+    }
+    const double length = length_of(he);
+    (kind == LineKind::Cut ? plan.cut_mm : kind == LineKind::Mountain ? plan.mountain_mm : plan.valley_mm) += length;
+    by_kind[static_cast<int>(kind)].emplace_back(index_of(he->source()), index_of(he->target()));
+  }
+  for (const LineKind kind : {LineKind::Cut, LineKind::Mountain, LineKind::Valley}) {
+    std::vector<PlanPolyline> lines = chain_segments(kind, by_kind[static_cast<int>(kind)], vertex_points);
+    plan.lines.insert(plan.lines.end(), std::make_move_iterator(lines.begin()), std::make_move_iterator(lines.end()));
+  }
+  plan.lines.push_back({LineKind::Outline,
+                        {{0, sheet.min_Y()}, {sheet.width_mm, sheet.min_Y()}, {sheet.width_mm, sheet.max_Y()},
+                         {0, sheet.max_Y()}, {0, sheet.min_Y()}}});
+
+  plan.validity = validate(graph);
+  // A point inside each face: its pixel nearest the centroid of its pixels.
+  std::vector<double> sum_col(n, 0), sum_row(n, 0), count(n, 0);
+  for (int row = 0; row < labels.rows; ++row)
+    for (int col = 0; col < labels.cols; ++col) {
+      const auto f = static_cast<std::size_t>(labels(col, row));
+      sum_col[f] += col, sum_row[f] += row, count[f] += 1;
+    }
+  std::vector<double> best(n, 1e300);
+  plan.faces.resize(n);
+  for (int row = 0; row < labels.rows; ++row)
+    for (int col = 0; col < labels.cols; ++col) {
+      const auto f = static_cast<std::size_t>(labels(col, row));
+      const double dc = col - sum_col[f] / count[f], dr = row - sum_row[f] / count[f], d2 = dc * dc + dr * dr;
+      if (d2 < best[f]) best[f] = d2, plan.faces[f].inside = {maps.grid.X(col), maps.grid.Y(row)};
+    }
+  for (std::size_t f = 0; f < n; ++f) {
+    PlanFace& face = plan.faces[f];
+    face.orientation = slices.faces[f].orientation;
+    face.depth_mm = slices.faces[f].depth_mm;
+    face.area_mm2 = CGAL::to_double(area[f]);  // areas are reported, never compared
+    face.status = plan.validity.status[f];
+  }
+  return plan;
+}
+
+}  // namespace origamic

@@ -1,0 +1,138 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "origamic/validity.hpp"
+
+#include <algorithm>
+#include <set>
+#include <utility>
+
+#include <boost/graph/adjacency_list.hpp>
+#include <boost/graph/biconnected_components.hpp>
+
+namespace origamic {
+namespace {
+
+using Adjacency = std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>>;  // (neighbour, line)
+
+std::vector<bool> grow(const Adjacency& adjacency, std::int32_t from, std::int32_t never) {
+  std::vector<bool> reached(adjacency.size(), false);
+  std::vector<std::int32_t> stack = {from};
+  reached[static_cast<std::size_t>(from)] = true;
+  while (!stack.empty()) {
+    const std::int32_t f = stack.back();
+    stack.pop_back();
+    for (const auto& [g, line] : adjacency[static_cast<std::size_t>(f)]) {
+      if (g == never || reached[static_cast<std::size_t>(g)]) continue;
+      reached[static_cast<std::size_t>(g)] = true;
+      stack.push_back(g);
+    }
+  }
+  return reached;
+}
+
+}  // namespace
+
+std::string_view to_string(FaceStatus status) {
+  switch (status) {
+    case FaceStatus::Valid: return "valid";
+    case FaceStatus::Indirect: return "indirect";
+    case FaceStatus::Floating: return "floating";
+    case FaceStatus::Dangling: return "dangling";
+    case FaceStatus::Invalid: return "invalid";
+  }
+  return "?";
+}
+
+Validity validate(const FaceGraph& graph) {
+  const auto n = static_cast<std::size_t>(graph.faces);
+  Adjacency adjacency(n);
+  for (const Fold& fold : graph.folds) {
+    if (fold.a == fold.b) continue;
+    adjacency[static_cast<std::size_t>(fold.a)].emplace_back(fold.b, fold.line);
+    adjacency[static_cast<std::size_t>(fold.b)].emplace_back(fold.a, fold.line);
+  }
+  Validity v;
+  v.fold_lines.assign(n, 0);
+  for (std::size_t f = 0; f < n; ++f) {
+    std::set<std::int32_t> lines;
+    for (const auto& [g, line] : adjacency[f]) lines.insert(line);
+    v.fold_lines[f] = static_cast<int>(lines.size());
+  }
+  v.in_X = grow(adjacency, 0, 1);
+  v.in_Y = grow(adjacency, 1, 0);
+
+  // Set hinges aside: a face whose folds to faces still standing lie on at most one line.
+  std::vector<bool> standing(n, true);
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (std::size_t f = 2; f < n; ++f) {
+      if (!standing[f]) continue;
+      std::set<std::int32_t> lines;
+      for (const auto& [g, line] : adjacency[f])
+        if (standing[static_cast<std::size_t>(g)]) lines.insert(line);
+      if (lines.size() <= 1) standing[f] = false, changed = true;
+    }
+  }
+
+  // Blocks of the standing faces plus a node T joined to the back plane and the floor.
+  using Graph = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, boost::no_property,
+                                      boost::property<boost::edge_index_t, std::size_t>>;
+  const std::size_t T = n;
+  Graph g(n + 1);
+  std::size_t edges = 0;
+  std::set<std::pair<std::int32_t, std::int32_t>> joined;
+  auto join = [&](std::size_t a, std::size_t b) { boost::add_edge(a, b, edges++, g); };
+  join(0, T);
+  join(1, T);
+  for (const Fold& fold : graph.folds) {
+    const auto a = std::min(fold.a, fold.b), b = std::max(fold.a, fold.b);
+    if (a == b || !standing[static_cast<std::size_t>(a)] || !standing[static_cast<std::size_t>(b)]) continue;
+    if (joined.emplace(a, b).second) join(static_cast<std::size_t>(a), static_cast<std::size_t>(b));
+  }
+  std::vector<std::size_t> block(edges);
+  boost::biconnected_components(g, boost::make_iterator_property_map(block.begin(), boost::get(boost::edge_index, g)));
+  std::set<std::size_t> blocks_of_T;
+  for (auto [e, end] = boost::out_edges(T, g); e != end; ++e) blocks_of_T.insert(block[boost::get(boost::edge_index, g, *e)]);
+  std::vector<bool> held(n, false);
+  held[0] = held[1] = true;
+  for (auto [e, end] = boost::edges(g); e != end; ++e)
+    if (blocks_of_T.contains(block[boost::get(boost::edge_index, g, *e)]))
+      for (const std::size_t node : {boost::source(*e, g), boost::target(*e, g)})
+        if (node != T) held[node] = true;
+
+  v.status.assign(n, FaceStatus::Valid);
+  for (std::size_t f = 2; f < n; ++f) {
+    FaceStatus& s = v.status[f];
+    if (held[f] && v.fold_lines[f] >= 2) continue;
+    if (!v.in_X[f] && !v.in_Y[f]) {  // no chain of folds reaches the card
+      s = FaceStatus::Floating;
+      continue;
+    }
+    if (v.fold_lines[f] == 1) {
+      s = FaceStatus::Dangling;
+      continue;
+    }
+    // Seed §4.4: attached to the valid set by a fold, and by a connective face outside it that is
+    // itself attached to the valid set.
+    bool to_valid = false, via_connective = false;
+    for (const auto& [g2, line] : adjacency[f]) {
+      const auto c = static_cast<std::size_t>(g2);
+      if (held[c]) {
+        to_valid = true;
+        continue;
+      }
+      for (const auto& [h2, line2] : adjacency[c])
+        if (static_cast<std::size_t>(h2) != f && held[static_cast<std::size_t>(h2)]) via_connective = true;
+    }
+    s = to_valid && via_connective ? FaceStatus::Indirect : FaceStatus::Invalid;
+  }
+  for (std::size_t f = 2; f < n; ++f) switch (v.status[f]) {
+      case FaceStatus::Valid: ++v.valid; break;
+      case FaceStatus::Indirect: ++v.indirect; break;
+      case FaceStatus::Floating: ++v.floating; break;
+      case FaceStatus::Dangling: ++v.dangling; break;
+      case FaceStatus::Invalid: ++v.invalid; break;
+    }
+  return v;
+}
+
+}  // namespace origamic

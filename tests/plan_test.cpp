@@ -1,0 +1,201 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "origamic/plan.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <map>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "helpers.hpp"
+#include "origamic/design.hpp"
+#include "origamic/plan_export.hpp"
+
+namespace origamic {
+namespace {
+
+Plan plan_of_oa_mesh(TriangleMesh oa_mesh) {
+  const RayScene scene(std::move(oa_mesh));
+  const Sheet sheet;
+  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
+  const Segmentation segmentation = segment(maps, SegmentOptions{});
+  const SliceResult slices = slice(maps, segmentation, SliceOptions{});
+  return build_plan(maps, slices, sheet, PlanOptions{});
+}
+
+TriangleMesh merged(const TriangleMesh& a, const TriangleMesh& b) {
+  TriangleMesh m = a;
+  const auto offset = static_cast<std::uint32_t>(a.positions.size());
+  m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
+  for (auto t : b.triangles) m.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  return m;
+}
+
+struct FoldAt {
+  LineKind kind;
+  double Y, X_lo, X_hi;
+};
+
+// Every fold polyline, which must be one horizontal run.
+std::vector<FoldAt> folds_of(const Plan& plan) {
+  std::vector<FoldAt> folds;
+  for (const PlanPolyline& line : plan.lines) {
+    if (line.kind != LineKind::Mountain && line.kind != LineKind::Valley) continue;
+    double lo = 1e300, hi = -1e300;
+    for (const PlanPoint& p : line.points) {
+      EXPECT_EQ(p.Y, line.points.front().Y) << "a fold must be horizontal";
+      lo = std::min(lo, p.X), hi = std::max(hi, p.X);
+    }
+    folds.push_back({line.kind, line.points.front().Y, lo, hi});
+  }
+  return folds;
+}
+
+int count_folds(const std::vector<FoldAt>& folds, LineKind kind, double Y) {
+  return static_cast<int>(std::ranges::count_if(folds, [&](const FoldAt& f) { return f.kind == kind && f.Y == Y; }));
+}
+
+void expect_exact_construction(const Plan& plan) {
+  EXPECT_TRUE(plan.arrangement_valid);
+  EXPECT_TRUE(plan.faces_tile_sheet) << "faces overlap or leave a gap";
+  EXPECT_EQ(plan.label_conflicts, 0);
+}
+
+TEST(Plan, BoxAgainstTheBackPlaneFoldsExactlyOnItsLines) {
+  const double d = 37.3, h = 61.7, x0 = 40.2, x1 = 151.9;  // off the pixel lattice on purpose
+  const Plan plan = plan_of_oa_mesh(test::box({x0, 0, 0}, {x1, h, d}));
+  expect_exact_construction(plan);
+  ASSERT_EQ(plan.faces.size(), 4u);
+  EXPECT_TRUE(plan.validity.ok());
+  EXPECT_EQ(plan.validity.valid, 2);
+  const std::vector<FoldAt> folds = folds_of(plan);
+  // The exact line of each fold, rounded once to double: IEEE subtraction rounds h - d correctly.
+  EXPECT_EQ(count_folds(folds, LineKind::Valley, -d), 1);     // floor, then the front
+  EXPECT_EQ(count_folds(folds, LineKind::Mountain, h - d), 1);  // front, then the top
+  EXPECT_EQ(count_folds(folds, LineKind::Valley, h), 1);      // top, then the back plane
+  EXPECT_EQ(count_folds(folds, LineKind::Valley, 0.0), 2);    // the main fold, left and right of the box
+  EXPECT_EQ(folds.size(), 5u);
+  for (const FoldAt& f : folds) {
+    if (f.Y == 0) {
+      EXPECT_TRUE(f.X_hi <= x0 + 0.5 || f.X_lo >= x1 - 0.5) << "main fold only beside the box";
+    } else {
+      EXPECT_NEAR(f.X_lo, x0, 0.25);  // the box's sides, to a pixel
+      EXPECT_NEAR(f.X_hi, x1, 0.25);
+    }
+  }
+  EXPECT_NEAR(plan.mountain_mm, x1 - x0, 0.5);
+}
+
+TEST(Plan, BoxFloatingInMidAirIsFloating) {
+  const Plan plan = plan_of_oa_mesh(test::box({60, 40, 20}, {150, 80, 50}));
+  expect_exact_construction(plan);
+  ASSERT_EQ(plan.faces.size(), 4u);
+  EXPECT_FALSE(plan.validity.ok());
+  EXPECT_EQ(plan.validity.floating, 2);
+  EXPECT_EQ(count_folds(folds_of(plan), LineKind::Mountain, 80.0 - 50.0), 1);  // its own front-top fold
+}
+
+TEST(Plan, ShelfOnTheBackPlaneOnlyIsDangling) {
+  // 1 mm thick: its front is thinner than W and is removed; its top folds to the back plane.
+  const Plan plan = plan_of_oa_mesh(test::box({60, 99, 0}, {150, 100, 40}));
+  expect_exact_construction(plan);
+  ASSERT_EQ(plan.faces.size(), 3u);
+  EXPECT_EQ(plan.faces[2].orientation, Orientation::H);
+  EXPECT_EQ(plan.faces[2].status, FaceStatus::Dangling);
+  EXPECT_EQ(count_folds(folds_of(plan), LineKind::Valley, 100.0), 1);
+}
+
+TEST(Plan, TwoStepStaircaseIsValid) {
+  const Plan plan = plan_of_oa_mesh(merged(test::box({40, 0, 0}, {170, 30, 60}), test::box({40, 30, 0}, {170, 60, 30})));
+  expect_exact_construction(plan);
+  ASSERT_EQ(plan.faces.size(), 6u);
+  EXPECT_TRUE(plan.validity.ok());
+  EXPECT_EQ(plan.validity.valid, 4);
+  const std::vector<FoldAt> folds = folds_of(plan);
+  EXPECT_EQ(count_folds(folds, LineKind::Valley, -60.0), 1);
+  EXPECT_EQ(count_folds(folds, LineKind::Mountain, -30.0), 1);
+  EXPECT_EQ(count_folds(folds, LineKind::Mountain, 30.0), 1);
+  EXPECT_EQ(count_folds(folds, LineKind::Valley, 60.0), 1);
+}
+
+// Runs the independent reader on a DXF and an SVG.
+nlohmann::json read_back(const std::filesystem::path& dxf, const std::filesystem::path& svg) {
+  const std::string command = "/usr/bin/python3 " + std::string(ORIGAMIC_TESTS_DIR) + "/read_plan.py '" + dxf.string() +
+                              "' '" + svg.string() + "'";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  std::array<char, 65536> buffer{};
+  while (pipe && std::fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
+  if (!pipe || pclose(pipe) != 0) return nullptr;
+  return nlohmann::json::parse(output);
+}
+
+using SegmentKey = std::array<long long, 4>;  // endpoints in nanometres, smaller end first
+
+std::multiset<SegmentKey> keys_of(const nlohmann::json& segments) {
+  std::multiset<SegmentKey> keys;
+  for (const auto& s : segments) {
+    std::array<long long, 4> k;
+    for (int i = 0; i < 4; ++i) k[i] = std::llround(s[i].get<double>() * 1e6);
+    if (std::pair(k[2], k[3]) < std::pair(k[0], k[1])) k = {k[2], k[3], k[0], k[1]};
+    keys.insert(k);
+  }
+  return keys;
+}
+
+std::multiset<SegmentKey> keys_of(const Plan& plan, LineKind kind) {
+  nlohmann::json segments = nlohmann::json::array();
+  for (const PlanPolyline& line : plan.lines)
+    if (line.kind == kind)
+      for (std::size_t i = 1; i < line.points.size(); ++i)
+        segments.push_back({line.points[i - 1].X, line.points[i - 1].Y, line.points[i].X, line.points[i].Y});
+  return keys_of(segments);
+}
+
+TEST(Plan, EverySeedlikeModelGivesAnExactPlanAndItsFilesCarryTheSameSegments) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  const test::TempDir dir;
+  for (const auto& entry : std::filesystem::directory_iterator(test::models_dir() / "seedlike")) {
+    if (entry.path().extension() != ".stl") continue;
+    SCOPED_TRACE(entry.path().filename().string());
+    DesignOptions options;
+    options.placement.up = UpAxis::Z;
+    const DesignResult r = design(entry.path(), options);
+    const Plan& plan = r.plan;
+    expect_exact_construction(plan);
+    // Every fold lies on the line Y = h - d of some V face and some H face of the plan.
+    std::set<double> fold_lines;
+    for (const PlanFace& v : plan.faces)
+      if (v.orientation == Orientation::V)
+        for (const PlanFace& h : plan.faces)
+          if (h.orientation == Orientation::H) fold_lines.insert(h.depth_mm - v.depth_mm);
+    for (const FoldAt& f : folds_of(plan)) EXPECT_TRUE(fold_lines.contains(f.Y)) << "fold at Y " << f.Y;
+
+    ExportOptions exports;
+    exports.model = entry.path().filename().string();
+    write_plan_dxf(plan, dir / "plan.dxf", exports);
+    write_plan_svg(plan, dir / "plan.svg", exports);
+    const nlohmann::json back = read_back(dir / "plan.dxf", dir / "plan.svg");
+    ASSERT_FALSE(back.is_null()) << "the reader rejected the files";
+    EXPECT_EQ(back["insunits"], 4);
+    EXPECT_EQ(back["measurement"], 1);
+    for (const LineKind kind : {LineKind::Cut, LineKind::Mountain, LineKind::Valley, LineKind::Outline}) {
+      const std::string layer = layer_style(kind, ColourPreset::Laser).name;
+      const std::multiset<SegmentKey> expected = keys_of(plan, kind);
+      EXPECT_EQ(keys_of(back["dxf"].value(layer, nlohmann::json::array())), expected) << layer << " in the DXF";
+      EXPECT_EQ(keys_of(back["svg"].value(layer, nlohmann::json::array())), expected) << layer << " in the SVG";
+      if (!expected.empty()) {
+        EXPECT_EQ(back["dxf_colours"][layer], nlohmann::json::array({layer_style(kind, ColourPreset::Laser).aci}));
+      }
+    }
+    for (const auto& [layer, segments] : back["dxf"].items())
+      for (const auto& s : segments) EXPECT_FALSE(s[0] == s[2] && s[1] == s[3]) << "zero-length segment in " << layer;
+  }
+}
+
+}  // namespace
+}  // namespace origamic

@@ -1,0 +1,61 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Independent reader for origamic's plan files: ezdxf for DXF, the standard library for SVG.
+
+usage: /usr/bin/python3 read_plan.py PLAN.dxf PLAN.svg
+prints JSON: {"insunits", "measurement", "dxf": {layer: [[x1, y1, x2, y2], ...]},
+"svg": {layer: [...]}, "dxf_colours": {layer: aci}} with SVG converted back to plan Y (up)."""
+import json
+import sys
+import xml.etree.ElementTree as ET
+
+import ezdxf
+
+
+def dxf_segments(path):
+    doc = ezdxf.readfile(path)
+    layers = {}
+    colours = {}
+    for entity in doc.modelspace():
+        kind = entity.dxftype()
+        if kind == "LWPOLYLINE":
+            points = [(p[0], p[1]) for p in entity.get_points("xy")]
+            closed = entity.closed
+        elif kind == "POLYLINE":
+            points = [(v.dxf.location[0], v.dxf.location[1]) for v in entity.vertices]
+            closed = entity.is_closed
+        elif kind == "LINE":
+            points = [tuple(entity.dxf.start)[:2], tuple(entity.dxf.end)[:2]]
+            closed = False
+        else:
+            raise SystemExit("unexpected entity " + kind)
+        if closed:
+            points.append(points[0])
+        layer = entity.dxf.layer
+        colours.setdefault(layer, set()).add(entity.dxf.color)
+        layers.setdefault(layer, []).extend(
+            [a[0], a[1], b[0], b[1]] for a, b in zip(points, points[1:]))
+    header = doc.header
+    return layers, header.get("$INSUNITS"), header.get("$MEASUREMENT"), {k: sorted(v) for k, v in colours.items()}
+
+
+def svg_segments(path):
+    root = ET.parse(path).getroot()
+    ns = {"svg": "http://www.w3.org/2000/svg"}
+    view = [float(v) for v in root.get("viewBox").split()]
+    desc = root.find("svg:desc", ns).text
+    # SVG y = top - plan Y, with top named in the description.
+    top = float(desc.split("SVG y = ")[1].split(" ")[0])
+    layers = {}
+    for group in root.findall("svg:g", ns):
+        segments = layers.setdefault(group.get("id"), [])
+        for polyline in group.findall("svg:polyline", ns):
+            pts = [tuple(float(c) for c in p.split(",")) for p in polyline.get("points").split()]
+            pts = [(x, top - y) for x, y in pts]
+            segments.extend([a[0], a[1], b[0], b[1]] for a, b in zip(pts, pts[1:]))
+    return layers, {"width": root.get("width"), "height": root.get("height"), "viewBox": view}
+
+
+dxf, insunits, measurement, colours = dxf_segments(sys.argv[1])
+svg, size = svg_segments(sys.argv[2])
+print(json.dumps({"insunits": insunits, "measurement": measurement, "dxf": dxf, "dxf_colours": colours,
+                  "svg": svg, "svg_size": size}))
