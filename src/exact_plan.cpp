@@ -265,13 +265,14 @@ void add_chain(const Chain& chain, bool raw, const std::vector<RasterFace>& face
   add_cut(chain, cut_from, last, lattice, simplify_mm, curves);
 }
 
-// Sums of many terms are kept as plain exact rationals: a lazy number would grow a DAG as deep as
-// the sum is long, and evaluating it recursively can overflow the stack.
+// Exact rationals without laziness: a lazy number built by a long sum would be a DAG as deep as
+// the sum is long, and gmpxx expressions must be stored in a typed variable before use.
 using Rational = std::remove_cvref_t<decltype(std::declval<FT>().exact())>;
 
 // The double nearest an exact number (ties to even), so a fold at Y = h - d reads back as the
 // IEEE difference h - d. CGAL's to_double may return any double within its interval instead.
 double nearest_double(const FT& x) {
+  if (const auto [lo, hi] = CGAL::to_interval(x); lo == hi) return lo;  // pixel corners, most often
   const Rational& exact = x.exact();
   const auto [lo, hi] = CGAL::to_interval(exact);
   if (lo == hi) return lo;
@@ -281,12 +282,14 @@ double nearest_double(const FT& x) {
   return (std::bit_cast<std::uint64_t>(lo) & 1) == 0 ? lo : hi;
 }
 
-Rational ccb_area(Arrangement::Ccb_halfedge_const_circulator first) {
-  Rational twice = 0;
+// Signed area of a boundary cycle from its vertices' nearest doubles: areas are reported, never
+// compared to decide anything.
+double ccb_area(Arrangement::Ccb_halfedge_const_circulator first) {
+  double twice = 0;
   auto he = first;
   do {
     const Point &p = he->source()->point(), &q = he->target()->point();
-    twice += p.x().exact() * q.y().exact() - q.x().exact() * p.y().exact();
+    twice += CGAL::to_double(p.x()) * CGAL::to_double(q.y()) - CGAL::to_double(q.x()) * CGAL::to_double(p.y());
   } while (++he != first);
   return twice / 2;
 }
@@ -436,18 +439,20 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& 
 
   // Faces: exact areas per label, and the tiling check.
   const std::size_t n = slices.faces.size();
-  std::vector<Rational> area(n, Rational(0));
-  Rational total = 0;
+  std::vector<double> area(n, 0.0);
+  double total = 0;
   for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
     if (f->is_unbounded()) continue;
     ++plan.arrangement_faces;
-    Rational a = 0;
+    double a = 0;
     for (auto ccb = f->outer_ccbs_begin(); ccb != f->outer_ccbs_end(); ++ccb) a += ccb_area(*ccb);
     for (auto ccb = f->inner_ccbs_begin(); ccb != f->inner_ccbs_end(); ++ccb) a += ccb_area(*ccb);  // clockwise: negative
     total += a;
     if (f->data() >= 0) area[static_cast<std::size_t>(f->data())] += a;
   }
-  plan.faces_tile_sheet = total == Rational(sheet.width_mm) * Rational(sheet.height_mm);
+  // The arrangement is a subdivision by construction; this guards the labelling and the outline.
+  const double sheet_area = sheet.width_mm * sheet.height_mm;
+  plan.faces_tile_sheet = std::abs(total - sheet_area) <= 1e-9 * sheet_area;
 
   // Edges: vanish inside a face, folds on their exact line, cuts elsewhere.
   std::map<Arrangement::Vertex_const_handle, std::size_t> vertex_index;
@@ -512,7 +517,7 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& 
     PlanFace& face = plan.faces[f];
     face.orientation = slices.faces[f].orientation;
     face.depth_mm = slices.faces[f].depth_mm;
-    face.area_mm2 = CGAL::to_double(area[f]);  // areas are reported, never compared
+    face.area_mm2 = area[f];
     face.status = plan.validity.status[f];
   }
   return plan;

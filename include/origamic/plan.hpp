@@ -47,7 +47,7 @@ struct Plan {
   double cut_mm = 0, mountain_mm = 0, valley_mm = 0;
   // Checks of the exact construction, for the report and the tests.
   bool arrangement_valid = false;       // CGAL's is_valid
-  bool faces_tile_sheet = false;        // exact sum of face areas == sheet area
+  bool faces_tile_sheet = false;        // face areas sum to the sheet's (to 1e-9 of it)
   int arrangement_faces = 0;
   int label_conflicts = 0;              // arrangement faces without a clear majority label
   int raw_chains = 0;                   // boundaries kept as pixel contours to avoid a crossing
