@@ -518,6 +518,7 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& 
     face.orientation = slices.faces[f].orientation;
     face.depth_mm = slices.faces[f].depth_mm;
     face.area_mm2 = area[f];
+    if (f >= 2 && slices.faces[f].pixels > 0 && !(area[f] > 0)) ++plan.lost_faces;
     face.status = plan.validity.status[f];
   }
   return plan;

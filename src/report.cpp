@@ -82,7 +82,8 @@ nlohmann::json plan_json(const Plan& plan) {
                             {"arrangement_faces", plan.arrangement_faces},
                             {"label_conflicts", plan.label_conflicts},
                             {"folds_snapped", plan.folds_snapped},
-                            {"raw_chains", plan.raw_chains}}},
+                            {"raw_chains", plan.raw_chains},
+                            {"lost_faces", plan.lost_faces}}},
           {"faces", faces}};
 }
 

@@ -63,6 +63,7 @@ void expect_exact_construction(const Plan& plan) {
   EXPECT_TRUE(plan.arrangement_valid);
   EXPECT_TRUE(plan.faces_tile_sheet) << "faces overlap or leave a gap";
   EXPECT_EQ(plan.label_conflicts, 0);
+  EXPECT_EQ(plan.lost_faces, 0) << "a face of the raster plan has no area in the exact plan";
 }
 
 TEST(Plan, BoxAgainstTheBackPlaneFoldsExactlyOnItsLines) {

@@ -51,6 +51,7 @@ struct Plan {
   int arrangement_faces = 0;
   int label_conflicts = 0;              // arrangement faces without a clear majority label
   int raw_chains = 0;                   // boundaries kept as pixel contours to avoid a crossing
+  int lost_faces = 0;                   // raster faces that no arrangement face carries
   int folds_snapped = 0;                // V/H boundaries moved onto their fold line
   bool simplified = false;              // every cut simplified, every fold candidate snapped
 };
