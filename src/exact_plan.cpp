@@ -8,6 +8,7 @@
 #include "origamic/plan.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <map>
@@ -46,11 +47,11 @@ struct Sides {
 struct Lattice {
   FT two_ppm, width, half;
   int rows_above_fold;
-  double px_mm;
+  double px_mm, half_mm;
 
   Lattice(const PixelGrid& grid, const Sheet& sheet)
       : two_ppm(FT(2) * FT(grid.px_per_mm)), width(sheet.width_mm), half(sheet.half_height_mm()),
-        rows_above_fold(grid.rows_above_fold), px_mm(1 / grid.px_per_mm) {}
+        rows_above_fold(grid.rows_above_fold), px_mm(1 / grid.px_per_mm), half_mm(sheet.half_height_mm()) {}
 
   Point exact(int u, int v) const {
     const FT X = CGAL::min(FT(u) / two_ppm, width);
@@ -72,12 +73,24 @@ struct Chain {
   std::vector<LatticePoint> corners;
 };
 
-// The face map, with pixels whose centre fell outside the sheet given their inner neighbour's face.
+// The face map, with pixels whose centre fell outside the sheet (the partial last row or column)
+// given the face of the nearest pixel inside, so the arrangement covers the sheet to its edge.
 Grid<std::int32_t> labels_inside_sheet(const Grid<std::int32_t>& face) {
   Grid<std::int32_t> labels = face;
+  std::vector<std::pair<int, int>> ring, next;
   for (int row = 0; row < labels.rows; ++row)
     for (int col = 0; col < labels.cols; ++col)
-      if (labels(col, row) < 0) labels(col, row) = labels(std::max(0, col - 1), std::max(0, row - 1));
+      if (labels(col, row) >= 0) ring.emplace_back(col, row);
+  while (!ring.empty()) {
+    next.clear();
+    for (const auto& [col, row] : ring)
+      for (const auto& [c, r] : {std::pair{col - 1, row}, {col + 1, row}, {col, row - 1}, {col, row + 1}})
+        if (labels.contains(c, r) && labels(c, r) < 0) {
+          labels(c, r) = labels(col, row);
+          next.emplace_back(c, r);
+        }
+    ring.swap(next);
+  }
   return labels;
 }
 
@@ -187,8 +200,9 @@ std::vector<LatticePoint> simplified(const Chain& chain, const Lattice& lattice,
 struct Curves {
   std::vector<Traits::Curve_2> curves;
   std::vector<Sides> sides;
-  std::vector<Point> endpoints;
-  std::int32_t chain = kNoLabel;  // the chain whose segments are being added
+  std::vector<std::array<Point, 2>> ends;  // per data index: the segment as inserted
+  std::vector<Point> fold_ends;            // where snapped folds end: T-contacts meant to be
+  std::int32_t chain = kNoLabel;           // the chain whose segments are being added
   int folds_snapped = 0;
 
   // A segment with `left` on its left walking p -> q; stored from its lexicographically smaller end.
@@ -196,17 +210,16 @@ struct Curves {
     const CGAL::Comparison_result order = CGAL::compare_xy(p, q);
     if (order == CGAL::EQUAL) return;
     const auto data = static_cast<std::int32_t>(sides.size());
-    endpoints.push_back(p);
-    endpoints.push_back(q);
-    if (order == CGAL::SMALLER) {
-      sides.push_back({left, right, chain});
-      curves.emplace_back(Kernel::Segment_2(p, q), data);
-    } else {
-      sides.push_back({right, left, chain});
-      curves.emplace_back(Kernel::Segment_2(q, p), data);
-    }
+    const bool forward = order == CGAL::SMALLER;
+    sides.push_back(forward ? Sides{left, right, chain} : Sides{right, left, chain});
+    ends.push_back(forward ? std::array{p, q} : std::array{q, p});
+    curves.emplace_back(forward ? Kernel::Segment_2(p, q) : Kernel::Segment_2(q, p), data);
   }
 };
+
+// How much of the vectorization a chain keeps: a chain that crossed another is first left
+// unsimplified, then also unsnapped (its pixel contour, which crosses nothing).
+enum class Fallback : std::uint8_t { None, Unsimplified, PixelContour };
 
 void add_cut(const Chain& chain, std::size_t from, std::size_t to, const Lattice& lattice, double simplify_mm,
              Curves& curves) {
@@ -222,14 +235,17 @@ void add_cut(const Chain& chain, std::size_t from, std::size_t to, const Lattice
 // monotonically along X, that run becomes one exact segment on the line: the faces are extended or
 // trimmed to meet on it. Short vertical cuts join its ends to the corners the run had (they name no
 // face; the arrangement finds their sides). The rest of the boundary is a cut.
-void add_chain(const Chain& chain, bool raw, const std::vector<RasterFace>& faces, const Lattice& lattice,
+void add_chain(const Chain& chain, Fallback fallback, const std::vector<RasterFace>& faces, const Lattice& lattice,
                double simplify_mm, double tolerance, Curves& curves) {
   const std::size_t last = chain.corners.size() - 1;
+  if (fallback != Fallback::None) simplify_mm = 0;
   const RasterFace &a = faces[static_cast<std::size_t>(chain.left)], &b = faces[static_cast<std::size_t>(chain.right)];
-  if (raw || a.orientation == b.orientation) return add_cut(chain, 0, last, lattice, raw ? 0 : simplify_mm, curves);
+  if (fallback == Fallback::PixelContour || a.orientation == b.orientation)
+    return add_cut(chain, 0, last, lattice, simplify_mm, curves);
   const RasterFace& v = a.orientation == Orientation::V ? a : b;
   const RasterFace& h = a.orientation == Orientation::H ? a : b;
   const double fold_Y = h.depth_mm - v.depth_mm;
+  if (!(std::abs(fold_Y) < lattice.half_mm)) return add_cut(chain, 0, last, lattice, simplify_mm, curves);
   const FT exact_Y = FT(h.depth_mm) - FT(v.depth_mm);
   auto near = [&](std::size_t i) { return std::abs(lattice.Y(chain.corners[i].v) - fold_Y) <= tolerance; };
   std::size_t cut_from = 0, i = 0;
@@ -256,8 +272,12 @@ void add_chain(const Chain& chain, bool raw, const std::vector<RasterFace>& face
     const Point s = lattice.exact(start.u, start.v), e = lattice.exact(end.u, end.v);
     const Point s_on(s.x(), exact_Y), e_on(e.x(), exact_Y);
     curves.add(s_on, e_on, chain.left, chain.right);
+    const std::int32_t owner = std::exchange(curves.chain, kNoLabel);  // connectors lie along other cuts
     curves.add(s, s_on, kNoLabel, kNoLabel);
     curves.add(e, e_on, kNoLabel, kNoLabel);
+    curves.chain = owner;
+    curves.fold_ends.push_back(s_on);
+    curves.fold_ends.push_back(e_on);
     ++curves.folds_snapped;
     cut_from = j;
     i = j + 1;
@@ -272,7 +292,7 @@ using Rational = std::remove_cvref_t<decltype(std::declval<FT>().exact())>;
 // The double nearest an exact number (ties to even), so a fold at Y = h - d reads back as the
 // IEEE difference h - d. CGAL's to_double may return any double within its interval instead.
 double nearest_double(const FT& x) {
-  if (const auto [lo, hi] = CGAL::to_interval(x); lo == hi) return lo;  // pixel corners, most often
+  if (const auto [lo, hi] = CGAL::to_interval(x); lo == hi) return lo + 0.0;  // pixel corners, most often; no -0
   const Rational& exact = x.exact();
   const auto [lo, hi] = CGAL::to_interval(exact);
   if (lo == hi) return lo;
@@ -297,7 +317,7 @@ double ccb_area(Arrangement::Ccb_halfedge_const_circulator first) {
 struct Built {
   Arrangement arrangement;
   std::vector<Sides> sides;
-  std::vector<bool> crossed;  // per chain: its segments cross another's (a new vertex appeared)
+  std::vector<bool> crossed;  // per chain: one of its segments runs through a vertex it does not end at
   int conflicts = 0;
   int folds_snapped = 0;
 };
@@ -307,14 +327,13 @@ double length_of(Arrangement::Halfedge_const_handle he) {
   return std::hypot(CGAL::to_double(p.x()) - CGAL::to_double(q.x()), CGAL::to_double(p.y()) - CGAL::to_double(q.y()));
 }
 
-// Chains listed in `raw` keep their pixel contour as it is: neither simplified nor snapped to a fold.
-void build_arrangement(const std::vector<Chain>& chains, const std::vector<bool>& raw,
+void build_arrangement(const std::vector<Chain>& chains, const std::vector<Fallback>& fallback,
                        const std::vector<RasterFace>& faces, const Lattice& lattice, const Sheet& sheet,
                        double simplify_mm, double fold_tolerance, Built& built) {
   Curves curves;
   for (std::size_t i = 0; i < chains.size(); ++i) {
     curves.chain = static_cast<std::int32_t>(i);
-    add_chain(chains[i], raw[i], faces, lattice, simplify_mm, fold_tolerance, curves);
+    add_chain(chains[i], fallback[i], faces, lattice, simplify_mm, fold_tolerance, curves);
   }
   curves.chain = kNoLabel;
   const FT W(sheet.width_mm), H(sheet.half_height_mm());
@@ -324,20 +343,24 @@ void build_arrangement(const std::vector<Chain>& chains, const std::vector<bool>
   built.sides = std::move(curves.sides);
   CGAL::insert(built.arrangement, curves.curves.begin(), curves.curves.end());
 
-  // Topology check, exact: a vertex that is no segment's end is where two segments cross.
-  std::sort(curves.endpoints.begin(), curves.endpoints.end(),
-            [](const Point& a, const Point& b) { return CGAL::compare_xy(a, b) == CGAL::SMALLER; });
+  // Topology check, exact: a segment that runs through a vertex it does not end at crosses or
+  // touches another boundary there, unless that vertex is the end of a snapped fold (a fold meets a
+  // cut in a T by design).
+  auto lexicographic = [](const Point& a, const Point& b) { return CGAL::compare_xy(a, b) == CGAL::SMALLER; };
+  std::sort(curves.fold_ends.begin(), curves.fold_ends.end(), lexicographic);
   built.crossed.assign(chains.size(), false);
   for (auto v = built.arrangement.vertices_begin(); v != built.arrangement.vertices_end(); ++v) {
-    const bool an_end = std::binary_search(
-        curves.endpoints.begin(), curves.endpoints.end(), v->point(),
-        [](const Point& a, const Point& b) { return CGAL::compare_xy(a, b) == CGAL::SMALLER; });
-    if (an_end || v->is_isolated()) continue;
+    if (v->is_isolated() ||
+        std::binary_search(curves.fold_ends.begin(), curves.fold_ends.end(), v->point(), lexicographic))
+      continue;
     auto he = v->incident_halfedges(), first = he;
     do {
-      for (const std::int32_t d : he->curve().data())
-        if (const std::int32_t chain = built.sides[static_cast<std::size_t>(d)].chain; chain >= 0)
+      for (const std::int32_t d : he->curve().data()) {
+        const auto i = static_cast<std::size_t>(d);
+        const std::int32_t chain = built.sides[i].chain;
+        if (chain >= 0 && v->point() != curves.ends[i][0] && v->point() != curves.ends[i][1])
           built.crossed[static_cast<std::size_t>(chain)] = true;
+      }
     } while (++he != first);
   }
 
@@ -419,19 +442,28 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& 
   Plan plan;
   plan.sheet = sheet;
   // Simplification or snapping that makes two boundaries cross would change the plan's topology:
-  // the chains involved are rebuilt from their pixel contours, until no crossing is left.
-  std::vector<bool> raw(chains.size(), false);
+  // the chains involved fall back a step (unsimplified, then their pixel contour) until none does.
+  std::vector<Fallback> fallback(chains.size(), Fallback::None);
   Built built;
-  for (int attempt = 0;; ++attempt) {
+  for (;;) {
     built = Built{};
-    build_arrangement(chains, raw, slices.faces, lattice, sheet, simplify_mm, fold_tolerance, built);
+    build_arrangement(chains, fallback, slices.faces, lattice, sheet, simplify_mm, fold_tolerance, built);
     bool again = false;
-    for (std::size_t i = 0; i < chains.size(); ++i)
-      if (built.crossed[i] && !raw[i]) raw[i] = true, again = true;
-    if (!again || attempt == 3) break;
+    plan.unresolved_crossings = 0;
+    for (std::size_t i = 0; i < chains.size(); ++i) {
+      if (!built.crossed[i]) continue;
+      if (fallback[i] == Fallback::PixelContour) {
+        ++plan.unresolved_crossings;
+        continue;
+      }
+      fallback[i] = fallback[i] == Fallback::None ? Fallback::Unsimplified : Fallback::PixelContour;
+      again = true;
+    }
+    if (!again) break;
   }
-  plan.raw_chains = static_cast<int>(std::ranges::count(raw, true));
-  plan.simplified = plan.raw_chains == 0;
+  plan.raw_chains = static_cast<int>(std::ranges::count(fallback, Fallback::Unsimplified));
+  plan.unsnapped_chains = static_cast<int>(std::ranges::count(fallback, Fallback::PixelContour));
+  plan.simplified = plan.raw_chains + plan.unsnapped_chains == 0;
   const Arrangement& arr = built.arrangement;
   plan.arrangement_valid = arr.is_valid();
   plan.label_conflicts = built.conflicts;
@@ -447,8 +479,9 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& 
     double a = 0;
     for (auto ccb = f->outer_ccbs_begin(); ccb != f->outer_ccbs_end(); ++ccb) a += ccb_area(*ccb);
     for (auto ccb = f->inner_ccbs_begin(); ccb != f->inner_ccbs_end(); ++ccb) a += ccb_area(*ccb);  // clockwise: negative
+    if (f->data() < 0) continue;  // an unlabelled face leaves a hole in the tiling
     total += a;
-    if (f->data() >= 0) area[static_cast<std::size_t>(f->data())] += a;
+    area[static_cast<std::size_t>(f->data())] += a;
   }
   // The arrangement is a subdivision by construction; this guards the labelling and the outline.
   const double sheet_area = sheet.width_mm * sheet.height_mm;

@@ -2,6 +2,7 @@
 #include "origamic/plan_export.hpp"
 
 #include <cairo.h>
+#include <unistd.h>
 #include <dxflib/dl_dxf.h>
 
 #include <cmath>
@@ -10,9 +11,8 @@
 #include <memory>
 #include <sstream>
 #include <string_view>
-#include <system_error>
+#include <iterator>
 
-#include "atomic_file.hpp"
 #include "origamic/error.hpp"
 
 namespace origamic {
@@ -31,9 +31,18 @@ std::string mm(double value) {
   return s;
 }
 
-std::filesystem::path temporary_beside(const std::filesystem::path& file) {
-  return file.parent_path() / ("." + file.filename().string() + ".part");
+std::string xml_escaped(std::string_view text) {
+  std::string out;
+  for (const char c : text) switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  return out;
 }
+
 
 }  // namespace
 
@@ -48,13 +57,21 @@ LayerStyle layer_style(LineKind kind, ColourPreset preset) {
   return {"0", 7, "#000000"};
 }
 
-void write_plan_dxf(const Plan& plan, const std::filesystem::path& file, const ExportOptions& options) {
-  const std::filesystem::path part = temporary_beside(file);
+std::string plan_dxf(const Plan& plan, const ExportOptions& options) {
+  // dxflib writes to a named file only: a private temporary one, read back and removed.
+  std::string temp = (std::filesystem::temp_directory_path() / "origamic-dxf-XXXXXX").string();
+  const int fd = ::mkstemp(temp.data());
+  if (fd < 0) throw OutputError("DXF: cannot create a temporary file in " + std::filesystem::temp_directory_path().string());
+  ::close(fd);
+  struct Remove {
+    std::string path;
+    ~Remove() { std::remove(path.c_str()); }
+  } remove_temp{temp};
   {
     const DL_Codes::version version = options.dxf_version == DxfVersion::R12 ? DL_Codes::AC1009 : DL_Codes::AC1015;
     DL_Dxf dxf;
-    std::unique_ptr<DL_WriterA> dw(dxf.out(part.c_str(), version));
-    if (!dw) throw OutputError(file.string() + ": cannot be written");
+    std::unique_ptr<DL_WriterA> dw(dxf.out(temp.c_str(), version));
+    if (!dw || dw->openFailed()) throw OutputError("DXF: cannot write the temporary file " + temp);
     dxf.writeHeader(*dw);
     dw->dxfString(9, "$INSUNITS");
     dw->dxfInt(70, 4);  // millimetres
@@ -100,6 +117,10 @@ void write_plan_dxf(const Plan& plan, const std::filesystem::path& file, const E
     dxf.writeEndBlock(*dw, "*Model_Space");
     dxf.writeBlock(*dw, DL_BlockData("*Paper_Space", 0, 0.0, 0.0, 0.0));
     dxf.writeEndBlock(*dw, "*Paper_Space");
+    if (options.dxf_version == DxfVersion::R2000) {  // dxflib's block records and layouts name it
+      dxf.writeBlock(*dw, DL_BlockData("*Paper_Space0", 0, 0.0, 0.0, 0.0));
+      dxf.writeEndBlock(*dw, "*Paper_Space0");
+    }
     dw->sectionEnd();
     dw->sectionEntities();
     for (const LineKind kind : kDrawOrder) {
@@ -124,28 +145,24 @@ void write_plan_dxf(const Plan& plan, const std::filesystem::path& file, const E
     dw->dxfEOF();
     dw->close();
   }
-  std::error_code error;
-  if (!std::filesystem::exists(part, error) || std::filesystem::file_size(part, error) == 0) {
-    std::filesystem::remove(part, error);
-    throw OutputError(file.string() + ": cannot be written");
-  }
-  std::filesystem::rename(part, file, error);
-  if (error) {
-    std::filesystem::remove(part, error);
-    throw OutputError(file.string() + ": cannot be written (" + error.message() + ")");
-  }
+  std::ifstream in(temp, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) throw OutputError("DXF: cannot read back the temporary file " + temp);
+  if (bytes.size() < 4 || bytes.compare(bytes.size() - 4, 4, "EOF\n") != 0)
+    throw OutputError("DXF: dxflib wrote an incomplete file (disk full?)");
+  return bytes;
 }
 
-void write_plan_svg(const Plan& plan, const std::filesystem::path& file, const ExportOptions& options) {
+std::string plan_svg(const Plan& plan, const ExportOptions& options) {
   const double width = plan.sheet.width_mm, height = plan.sheet.height_mm, top = plan.sheet.max_Y();
   std::ostringstream svg;
   svg << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       << "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\""
       << " width=\"" << mm(width) << "mm\" height=\"" << mm(height) << "mm\" viewBox=\"0 0 " << mm(width) << ' '
       << mm(height) << "\">\n"
-      << "<title>origamic plan: " << options.model << "</title>\n"
+      << "<title>origamic plan: " << xml_escaped(options.model) << "</title>\n"
       << "<desc>Units: mm, 1 user unit = 1 mm. Plan X along the main fold from the sheet's left edge;"
-      << " SVG y = " << mm(top) << " - plan Y (the main fold is at y = " << mm(top) << "). " << options.settings
+      << " SVG y = " << mm(top) << " - plan Y (the main fold is at y = " << mm(top) << "). " << xml_escaped(options.settings)
       << "</desc>\n";
   for (const LineKind kind : kDrawOrder) {
     const LayerStyle style = layer_style(kind, options.colours);
@@ -161,10 +178,10 @@ void write_plan_svg(const Plan& plan, const std::filesystem::path& file, const E
     svg << "</g>\n";
   }
   svg << "</svg>\n";
-  write_file_atomically(file, svg.str());
+  return svg.str();
 }
 
-void write_plan_png(const Plan& plan, const std::filesystem::path& file, const ExportOptions& options) {
+std::string plan_png(const Plan& plan, const ExportOptions& options) {
   const double scale = options.preview_px_per_mm;
   const int w = static_cast<int>(std::ceil(plan.sheet.width_mm * scale));
   const int h = static_cast<int>(std::ceil(plan.sheet.height_mm * scale));
@@ -200,8 +217,9 @@ void write_plan_png(const Plan& plan, const std::filesystem::path& file, const E
       },
       &bytes);
   cairo_surface_destroy(surface);
-  if (status != CAIRO_STATUS_SUCCESS) throw OutputError(file.string() + ": cannot encode the PNG");
-  write_file_atomically(file, bytes);
+  if (status != CAIRO_STATUS_SUCCESS) throw OutputError("plan PNG: cannot encode (" +
+                                                         std::string(cairo_status_to_string(status)) + ")");
+  return bytes;
 }
 
 }  // namespace origamic

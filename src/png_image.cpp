@@ -5,13 +5,12 @@
 
 #include <string>
 
-#include "atomic_file.hpp"
 #include "origamic/error.hpp"
 
 namespace origamic {
 namespace {
 
-void encode(const std::filesystem::path& file, int width, int height, png_uint_32 format, const void* pixels) {
+std::string encode(const std::string& file, int width, int height, png_uint_32 format, const void* pixels) {
   png_image image{};
   image.version = PNG_IMAGE_VERSION;
   image.width = static_cast<png_uint_32>(width);
@@ -19,24 +18,24 @@ void encode(const std::filesystem::path& file, int width, int height, png_uint_3
   image.format = format;
   png_alloc_size_t size = 0;
   if (!png_image_write_to_memory(&image, nullptr, &size, 0, pixels, 0, nullptr))
-    throw OutputError(file.string() + ": cannot encode PNG (" + image.message + ")");
+    throw OutputError(file + ": cannot encode PNG (" + image.message + ")");
   std::string bytes(size, '\0');
   if (!png_image_write_to_memory(&image, bytes.data(), &size, 0, pixels, 0, nullptr))
-    throw OutputError(file.string() + ": cannot encode PNG (" + image.message + ")");
+    throw OutputError(file + ": cannot encode PNG (" + image.message + ")");
   bytes.resize(size);
-  write_file_atomically(file, bytes);
+  return bytes;
 }
 
 }  // namespace
 
-void write_png(const std::filesystem::path& file, int width, int height, PngFormat format,
-               std::span<const std::uint8_t> pixels) {
-  encode(file, width, height, format == PngFormat::Rgb8 ? PNG_FORMAT_RGB : PNG_FORMAT_GRAY, pixels.data());
+std::string encode_png(const std::string& file, int width, int height, PngFormat format,
+                       std::span<const std::uint8_t> pixels) {
+  return encode(file, width, height, format == PngFormat::Rgb8 ? PNG_FORMAT_RGB : PNG_FORMAT_GRAY, pixels.data());
 }
 
-void write_png(const std::filesystem::path& file, int width, int height, std::span<const std::uint16_t> gray) {
+std::string encode_png(const std::string& file, int width, int height, std::span<const std::uint16_t> gray) {
   // libpng's simplified API takes 16-bit samples as linear; the file is written with gamma 1.
-  encode(file, width, height, PNG_FORMAT_LINEAR_Y, gray.data());
+  return encode(file, width, height, PNG_FORMAT_LINEAR_Y, gray.data());
 }
 
 }  // namespace origamic

@@ -5,16 +5,16 @@
 #include <cstdint>
 #include <filesystem>
 #include <span>
+#include <string>
 
 namespace origamic {
 
 enum class PngFormat { Gray8, Rgb8 };
 
-/// Writes width x height pixels, rows top to bottom: Gray8 takes a byte a pixel, Rgb8 three, the
-/// overload with uint16_t one 16-bit grey value. The file appears complete or not at all.
-/// \throws OutputError naming the file if it cannot be written.
-void write_png(const std::filesystem::path& file, int width, int height, PngFormat format,
-               std::span<const std::uint8_t> pixels);
-void write_png(const std::filesystem::path& file, int width, int height, std::span<const std::uint16_t> gray);
+/// PNG bytes of width x height pixels, rows top to bottom: Gray8 takes a byte a pixel, Rgb8 three,
+/// the overload with uint16_t one 16-bit grey value. \throws OutputError naming `name` on failure.
+std::string encode_png(const std::string& name, int width, int height, PngFormat format,
+                       std::span<const std::uint8_t> pixels);
+std::string encode_png(const std::string& name, int width, int height, std::span<const std::uint16_t> gray);
 
 }  // namespace origamic

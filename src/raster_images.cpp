@@ -5,7 +5,6 @@
 #include <array>
 #include <cmath>
 
-#include "atomic_file.hpp"
 #include "png_image.hpp"
 
 namespace origamic {
@@ -100,9 +99,8 @@ std::vector<std::uint8_t> error_rgb(const Grid<float>& error, double W) {
 
 }  // namespace
 
-std::vector<std::filesystem::path> write_slice_images(const RasterMaps& maps, const Segmentation& segmentation,
-                                                      const SliceResult& slices, const std::filesystem::path& dir) {
-  make_directory(dir);
+std::vector<OutputFile> slice_image_files(const RasterMaps& maps, const Segmentation& segmentation,
+                                          const SliceResult& slices, const std::filesystem::path& dir) {
   const int w = maps.grid.cols, h = maps.grid.rows;
   const std::vector<std::pair<std::string, std::vector<std::uint8_t>>> images = {
       {"S.png", id_rgb(segmentation.segment, true)},
@@ -111,27 +109,20 @@ std::vector<std::filesystem::path> write_slice_images(const RasterMaps& maps, co
       {"plan_preview.png", plan_preview_rgb(maps, slices)},
       {"E.png", error_rgb(shape_error_map(maps, slices.face, slices.faces), slices.min_strip_mm)},
   };
-  std::vector<std::filesystem::path> written;
-  for (const auto& [name, pixels] : images) {
-    write_png(dir / name, w, h, PngFormat::Rgb8, pixels);
-    written.push_back(dir / name);
-  }
-  return written;
+  std::vector<OutputFile> files;
+  for (const auto& [name, pixels] : images)
+    files.push_back({dir / name, encode_png((dir / name).string(), w, h, PngFormat::Rgb8, pixels)});
+  return files;
 }
 
-std::vector<std::filesystem::path> write_raster_images(const RasterMaps& maps, const std::filesystem::path& dir) {
-  make_directory(dir);
+std::vector<OutputFile> raster_image_files(const RasterMaps& maps, const std::filesystem::path& dir) {
   const int w = maps.grid.cols, h = maps.grid.rows;
-  std::vector<std::filesystem::path> written;
-  for (const auto& [name, map] : {std::pair{"D.png", &maps.D}, {"F.png", &maps.F}, {"T.png", &maps.T}}) {
-    write_png(dir / name, w, h, gray16(*map));
-    written.push_back(dir / name);
-  }
-  write_png(dir / "N.png", w, h, PngFormat::Rgb8, normal_rgb(maps.normal));
-  written.push_back(dir / "N.png");
-  write_png(dir / "kind.png", w, h, PngFormat::Rgb8, kind_rgb(maps.kind));
-  written.push_back(dir / "kind.png");
-  return written;
+  std::vector<OutputFile> files;
+  for (const auto& [name, map] : {std::pair{"D.png", &maps.D}, {"F.png", &maps.F}, {"T.png", &maps.T}})
+    files.push_back({dir / name, encode_png((dir / name).string(), w, h, gray16(*map))});
+  files.push_back({dir / "N.png", encode_png((dir / "N.png").string(), w, h, PngFormat::Rgb8, normal_rgb(maps.normal))});
+  files.push_back({dir / "kind.png", encode_png((dir / "kind.png").string(), w, h, PngFormat::Rgb8, kind_rgb(maps.kind))});
+  return files;
 }
 
 }  // namespace origamic

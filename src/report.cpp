@@ -5,7 +5,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "atomic_file.hpp"
 #include "origamic/version.hpp"
 
 namespace origamic {
@@ -83,6 +82,8 @@ nlohmann::json plan_json(const Plan& plan) {
                             {"label_conflicts", plan.label_conflicts},
                             {"folds_snapped", plan.folds_snapped},
                             {"raw_chains", plan.raw_chains},
+                            {"unsnapped_chains", plan.unsnapped_chains},
+                            {"unresolved_crossings", plan.unresolved_crossings},
                             {"lost_faces", plan.lost_faces}}},
           {"faces", faces}};
 }
@@ -132,11 +133,6 @@ std::string summary_line(const DesignResult& result) {
                 result.slices.error.p95_mm, result.slices.error.p95_W, v.ok() ? "VALID" : "INVALID", v.valid,
                 v.indirect, v.floating, v.dangling, v.invalid, total_ms);
   return line;
-}
-
-void write_report(const DesignResult& result, const DesignOptions& options, const std::filesystem::path& file) {
-  make_directory(file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path());
-  write_file_atomically(file, report_json(result, options));
 }
 
 }  // namespace origamic

@@ -99,6 +99,33 @@ TEST(Cli, DesignWritesTheReportAndTheMaps) {
   EXPECT_NE(r.output.find("plan "), std::string::npos) << "the one-line verdict";
 }
 
+TEST(Cli, AFailingOutputLeavesNoFileBehind) {
+  const test::TempDir dir;
+  std::filesystem::create_directories(dir / "out" / "house.png");  // a folder where the preview goes
+  const CommandRun r = run("design " + quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") +
+                           " --out " + quoted(dir / "out") + " --dump-maps " + quoted(dir / "maps"));
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_EQ(std::ranges::count(r.output, '\n'), 1) << r.output;
+  EXPECT_NE(r.output.find("house.png"), std::string::npos) << r.output;
+  for (const char* name : {"house.json", "house.dxf", "house.svg"})
+    EXPECT_FALSE(std::filesystem::exists(dir / "out" / name)) << name;
+  EXPECT_FALSE(std::filesystem::exists(dir / "maps" / "D.png"));
+  std::size_t left = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "out")) left += entry.path().filename() != "house.png";
+  EXPECT_EQ(left, 0u) << "temporary files left behind";
+}
+
+TEST(Cli, CardOffThePixelLatticeStillGivesAnExactPlan) {
+  const test::TempDir dir;
+  const CommandRun r = run("design " + quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") +
+                           " --card 210.3x297.2 --px-per-mm 3.3 --out " + quoted(dir.path));
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream in(dir / "house.json");
+  const auto report = nlohmann::json::parse(in);
+  EXPECT_TRUE(report["plan"]["exact_checks"]["faces_tile_sheet"].get<bool>());
+  EXPECT_EQ(report["plan"]["exact_checks"]["lost_faces"], 0);
+}
+
 TEST(Cli, StrictExitsThreeForAnInvalidPlanAfterWritingIt) {
   const test::TempDir dir;
   test::write_obj(dir / "floating.obj", test::box({0, 1, -1}, {2, 2, 0}));  // Y-up: in mid-air

@@ -13,6 +13,7 @@
 
 #include "helpers.hpp"
 #include "origamic/design.hpp"
+#include "origamic/output.hpp"
 #include "origamic/plan_export.hpp"
 
 namespace origamic {
@@ -64,6 +65,7 @@ void expect_exact_construction(const Plan& plan) {
   EXPECT_TRUE(plan.faces_tile_sheet) << "faces overlap or leave a gap";
   EXPECT_EQ(plan.label_conflicts, 0);
   EXPECT_EQ(plan.lost_faces, 0) << "a face of the raster plan has no area in the exact plan";
+  EXPECT_EQ(plan.unresolved_crossings, 0);
 }
 
 TEST(Plan, BoxAgainstTheBackPlaneFoldsExactlyOnItsLines) {
@@ -157,6 +159,25 @@ std::multiset<SegmentKey> keys_of(const Plan& plan, LineKind kind) {
   return keys_of(segments);
 }
 
+TEST(Plan, R2000DxfWithCraftColoursReadsBackTheSame) {
+  const Plan plan = plan_of_oa_mesh(test::box({40.2, 0, 0}, {151.9, 61.7, 37.3}));
+  const test::TempDir dir;
+  ExportOptions exports;
+  exports.model = "R&D <box>.obj";  // must be escaped in the SVG
+  exports.colours = ColourPreset::Craft;
+  exports.dxf_version = DxfVersion::R2000;
+  write_files({{dir / "plan.dxf", plan_dxf(plan, exports)}, {dir / "plan.svg", plan_svg(plan, exports)}});
+  const nlohmann::json back = read_back(dir / "plan.dxf", dir / "plan.svg");
+  ASSERT_FALSE(back.is_null()) << "the reader rejected the files";
+  EXPECT_EQ(back["insunits"], 4);
+  for (const LineKind kind : {LineKind::Cut, LineKind::Mountain, LineKind::Valley, LineKind::Outline}) {
+    const LayerStyle style = layer_style(kind, ColourPreset::Craft);
+    EXPECT_EQ(keys_of(back["dxf"][style.name]), keys_of(plan, kind)) << style.name;
+    EXPECT_EQ(keys_of(back["svg"][style.name]), keys_of(plan, kind)) << style.name;
+    EXPECT_EQ(back["dxf_colours"][style.name], nlohmann::json::array({style.aci})) << style.name;
+  }
+}
+
 TEST(Plan, EverySeedlikeModelGivesAnExactPlanAndItsFilesCarryTheSameSegments) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   const test::TempDir dir;
@@ -178,8 +199,7 @@ TEST(Plan, EverySeedlikeModelGivesAnExactPlanAndItsFilesCarryTheSameSegments) {
 
     ExportOptions exports;
     exports.model = entry.path().filename().string();
-    write_plan_dxf(plan, dir / "plan.dxf", exports);
-    write_plan_svg(plan, dir / "plan.svg", exports);
+    write_files({{dir / "plan.dxf", plan_dxf(plan, exports)}, {dir / "plan.svg", plan_svg(plan, exports)}});
     const nlohmann::json back = read_back(dir / "plan.dxf", dir / "plan.svg");
     ASSERT_FALSE(back.is_null()) << "the reader rejected the files";
     EXPECT_EQ(back["insunits"], 4);

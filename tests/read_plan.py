@@ -42,9 +42,8 @@ def svg_segments(path):
     root = ET.parse(path).getroot()
     ns = {"svg": "http://www.w3.org/2000/svg"}
     view = [float(v) for v in root.get("viewBox").split()]
-    desc = root.find("svg:desc", ns).text
-    # SVG y = top - plan Y, with top named in the description.
-    top = float(desc.split("SVG y = ")[1].split(" ")[0])
+    # SVG y runs down from the sheet's top edge, plan Y up from the main fold halfway down it.
+    top = view[3] / 2
     layers = {}
     for group in root.findall("svg:g", ns):
         segments = layers.setdefault(group.get("id"), [])

@@ -50,13 +50,16 @@ struct Plan {
   bool faces_tile_sheet = false;        // face areas sum to the sheet's (to 1e-9 of it)
   int arrangement_faces = 0;
   int label_conflicts = 0;              // arrangement faces without a clear majority label
-  int raw_chains = 0;                   // boundaries kept as pixel contours to avoid a crossing
+  int raw_chains = 0;                   // boundaries left unsimplified to avoid a crossing
+  int unsnapped_chains = 0;             // boundaries kept as pixel contours (no fold snapping) for it
+  int unresolved_crossings = 0;         // boundaries that still touch another: must be 0
   int lost_faces = 0;                   // raster faces that no arrangement face carries
   int folds_snapped = 0;                // V/H boundaries moved onto their fold line
   bool simplified = false;              // every cut simplified, every fold candidate snapped
 };
 
-/// Builds the exact plan from the raster plan. Deterministic.
+/// Builds the exact plan from the raster plan (sheet in mm). Deterministic. Not reentrant: the exact
+/// numbers are built without thread safety (see exact_plan.cpp), so one call at a time per process.
 Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& sheet, const PlanOptions& options);
 
 }  // namespace origamic

@@ -24,7 +24,7 @@ struct ExportOptions {
   std::string settings;       // the options that made the plan, one line, for the same
   ColourPreset colours = ColourPreset::Laser;
   DxfVersion dxf_version = DxfVersion::R12;  // R12 is read by every importer tried
-  double preview_px_per_mm = 4;
+  double preview_px_per_mm = 4;  // the PNG preview's resolution
 };
 
 struct LayerStyle {
@@ -36,18 +36,18 @@ struct LayerStyle {
 /// The layer of a line kind under a colour preset.
 LayerStyle layer_style(LineKind kind, ColourPreset preset);
 
-/// Writes the plan as ASCII DXF through dxflib: $INSUNITS = 4 (mm) and $MEASUREMENT = 1, layers CUT,
+/// The plan as ASCII DXF, written by dxflib: $INSUNITS = 4 (mm) and $MEASUREMENT = 1, layers CUT,
 /// MOUNTAIN, VALLEY, OUTLINE, every entity with its layer and explicit colour, one polyline per
-/// chain, folds first and the outline last (the order a laser should run them).
-/// \throws OutputError naming the file; no partial file is left.
-void write_plan_dxf(const Plan& plan, const std::filesystem::path& file, const ExportOptions& options);
+/// chain, folds first and the outline last (the order a laser should run them). Coordinates carry
+/// 16 decimals. \throws OutputError if dxflib cannot write its temporary file.
+std::string plan_dxf(const Plan& plan, const ExportOptions& options);
 
-/// Writes the plan as SVG in mm (width/height in mm, viewBox in mm, no transforms), one Inkscape
-/// layer group per line kind, hairline strokes. \throws OutputError; no partial file is left.
-void write_plan_svg(const Plan& plan, const std::filesystem::path& file, const ExportOptions& options);
+/// The plan as SVG in mm (width/height in mm, viewBox in mm, no transforms; SVG y = half the sheet
+/// height - plan Y), one Inkscape layer group per line kind, hairline strokes, 6 decimals.
+std::string plan_svg(const Plan& plan, const ExportOptions& options);
 
-/// Writes a PNG picture of the plan in the seed's style: cuts red, folds green (mountain dash-dot,
-/// valley dashed), on white. \throws OutputError; no partial file is left.
-void write_plan_png(const Plan& plan, const std::filesystem::path& file, const ExportOptions& options);
+/// A PNG picture of the plan in the seed's style (§4.6 figures): cuts red, folds green (mountain
+/// dash-dot, valley dashed), on white, at preview_px_per_mm. \throws OutputError.
+std::string plan_png(const Plan& plan, const ExportOptions& options);
 
 }  // namespace origamic

@@ -6,25 +6,23 @@
 #include <string>
 #include <vector>
 
+#include "origamic/output.hpp"
 #include "origamic/raster.hpp"
 #include "origamic/segment.hpp"
 #include "origamic/slice.hpp"
 
 namespace origamic {
 
-/// Writes D, F and T as 16-bit grey PNGs (dark = near, as in the seed's Figure 4.2), N as an RGB PNG
+/// D, F and T as 16-bit grey PNGs (dark = near, as in the seed's Figure 4.2), N as an RGB PNG
 /// (normal * 0.5 + 0.5) and the hit kind as a colour PNG (back grey, floor tan, model blue, outside
-/// black) into dir, creating it. Each file appears complete or not at all.
-/// \returns the paths written.
-/// \throws OutputError if dir or a file cannot be written.
-std::vector<std::filesystem::path> write_raster_images(const RasterMaps& maps,
-                                                       const std::filesystem::path& dir);
+/// black), named for the folder dir. \throws OutputError if one cannot be encoded.
+std::vector<OutputFile> raster_image_files(const RasterMaps& maps, const std::filesystem::path& dir);
 
-/// Writes the segmentation map S, the subsegment map SS and the face map as colour PNGs (one colour
-/// per id; back plane grey, floor tan) and plan_preview.png: the raster plan in the seed's style
-/// (§4.6), cuts red, folds green, on white; and E.png, the shape error map (black where the pop-up
-/// meets the model, white at 2 W or more off). \returns the paths written. \throws OutputError.
-std::vector<std::filesystem::path> write_slice_images(const RasterMaps& maps, const Segmentation& segmentation,
-                                                      const SliceResult& slices, const std::filesystem::path& dir);
+/// The segmentation map S, the subsegment map SS and the face map as colour PNGs (one colour per id;
+/// back plane grey, floor tan), plan_preview.png: the raster plan in the seed's style (§4.6), cuts
+/// red, folds green, on white; and E.png, the shape error map (black where the pop-up meets the
+/// model, white at 2 W or more off). Named for the folder dir. \throws OutputError.
+std::vector<OutputFile> slice_image_files(const RasterMaps& maps, const Segmentation& segmentation,
+                                          const SliceResult& slices, const std::filesystem::path& dir);
 
 }  // namespace origamic

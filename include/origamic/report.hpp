@@ -10,14 +10,10 @@
 namespace origamic {
 
 /// The report as JSON text: input, sheet, placement (model -> OA transform in mm), raster
-/// statistics and the time of each stage.
+/// statistics, the raster plan, the exact plan with its verdict, and the time of each stage.
 std::string report_json(const DesignResult& result, const DesignOptions& options);
 
 /// One line for the terminal: what was designed and how it went.
 std::string summary_line(const DesignResult& result);
-
-/// Writes the JSON report to a file, complete or not at all. \throws OutputError if it cannot.
-void write_report(const DesignResult& result, const DesignOptions& options,
-                  const std::filesystem::path& file);
 
 }  // namespace origamic

@@ -11,6 +11,7 @@
 
 #include "origamic/design.hpp"
 #include "origamic/error.hpp"
+#include "origamic/output.hpp"
 #include "origamic/plan_export.hpp"
 #include "origamic/raster_images.hpp"
 #include "origamic/report.hpp"
@@ -123,26 +124,30 @@ int run_design(const DesignArgs& args) {
       throw origamic::OutputError(dir + ": cannot create folder (a file is in the way)");
 
   const origamic::DesignResult result = origamic::design(args.model, options);
+  // Every file is rendered first, then all are written together: a failure leaves none behind.
+  std::vector<origamic::OutputFile> files;
   std::string written;
   if (!args.out_dir.empty()) {
-    const std::filesystem::path base = std::filesystem::path(args.out_dir) / model_name(args.model);
+    const std::string base = (std::filesystem::path(args.out_dir) / model_name(args.model)).string();
     origamic::ExportOptions exports;
     exports.model = std::filesystem::path(args.model).filename().string();
     exports.settings = "card " + args.card + " mm, W " + std::to_string(args.min_strip_mm) + " mm, " +
                        std::to_string(args.px_per_mm) + " px/mm, up " + args.up;
     exports.colours = args.colours == "craft" ? origamic::ColourPreset::Craft : origamic::ColourPreset::Laser;
     exports.dxf_version = args.dxf == "r2000" ? origamic::DxfVersion::R2000 : origamic::DxfVersion::R12;
-    origamic::write_report(result, options, base.string() + ".json");
-    origamic::write_plan_dxf(result.plan, base.string() + ".dxf", exports);
-    origamic::write_plan_svg(result.plan, base.string() + ".svg", exports);
-    origamic::write_plan_png(result.plan, base.string() + ".png", exports);
-    written += "plan: " + base.string() + ".{dxf,svg,png}\nreport: " + base.string() + ".json\n";
+    files.push_back({base + ".json", origamic::report_json(result, options)});
+    files.push_back({base + ".dxf", origamic::plan_dxf(result.plan, exports)});
+    files.push_back({base + ".svg", origamic::plan_svg(result.plan, exports)});
+    files.push_back({base + ".png", origamic::plan_png(result.plan, exports)});
+    written += "plan: " + base + ".{dxf,svg,png}\nreport: " + base + ".json\n";
   }
   if (!args.maps_dir.empty()) {
-    origamic::write_raster_images(result.maps, args.maps_dir);
-    origamic::write_slice_images(result.maps, result.segmentation, result.slices, args.maps_dir);
+    for (auto& file : origamic::raster_image_files(result.maps, args.maps_dir)) files.push_back(std::move(file));
+    for (auto& file : origamic::slice_image_files(result.maps, result.segmentation, result.slices, args.maps_dir))
+      files.push_back(std::move(file));
     written += "maps: " + args.maps_dir + "/{D,F,T,N,kind,S,SS,faces,E,plan_preview}.png\n";
   }
+  origamic::write_files(files);
   std::printf("%s\n%s", origamic::summary_line(result).c_str(), written.c_str());
   return args.strict && !result.plan.validity.ok() ? 3 : 0;
 }
