@@ -79,8 +79,12 @@ Grid<std::int32_t> labels_inside_sheet(const Grid<std::int32_t>& face) {
   Grid<std::int32_t> labels = face;
   std::vector<std::pair<int, int>> ring, next;
   for (int row = 0; row < labels.rows; ++row)
-    for (int col = 0; col < labels.cols; ++col)
-      if (labels(col, row) >= 0) ring.emplace_back(col, row);
+    for (int col = 0; col < labels.cols; ++col) {
+      if (labels(col, row) < 0) continue;
+      const bool borders_outside = (col > 0 && labels(col - 1, row) < 0) || (col + 1 < labels.cols && labels(col + 1, row) < 0) ||
+                                   (row > 0 && labels(col, row - 1) < 0) || (row + 1 < labels.rows && labels(col, row + 1) < 0);
+      if (borders_outside) ring.emplace_back(col, row);
+    }
   while (!ring.empty()) {
     next.clear();
     for (const auto& [col, row] : ring)
