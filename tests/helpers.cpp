@@ -25,6 +25,14 @@ TriangleMesh box(const glm::dvec3& lo, const glm::dvec3& hi) {
   return mesh;
 }
 
+TriangleMesh merged(const TriangleMesh& a, const TriangleMesh& b) {
+  TriangleMesh m = a;
+  const auto offset = static_cast<std::uint32_t>(a.positions.size());
+  m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
+  for (auto t : b.triangles) m.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  return m;
+}
+
 TriangleMesh sphere(const glm::dvec3& centre, double radius, int segments, int rings) {
   TriangleMesh mesh;
   const double pi = std::numbers::pi;

@@ -13,6 +13,9 @@ namespace origamic::test {
 /// An axis-aligned box from lo to hi, 12 triangles wound outwards.
 TriangleMesh box(const glm::dvec3& lo, const glm::dvec3& hi);
 
+/// Both meshes in one (b's vertices after a's).
+TriangleMesh merged(const TriangleMesh& a, const TriangleMesh& b);
+
 /// A UV sphere of the given segments around and rings from pole to pole.
 TriangleMesh sphere(const glm::dvec3& centre, double radius, int segments, int rings);
 

@@ -28,14 +28,6 @@ Plan plan_of_oa_mesh(TriangleMesh oa_mesh) {
   return build_plan(maps, slices, sheet, PlanOptions{});
 }
 
-TriangleMesh merged(const TriangleMesh& a, const TriangleMesh& b) {
-  TriangleMesh m = a;
-  const auto offset = static_cast<std::uint32_t>(a.positions.size());
-  m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
-  for (auto t : b.triangles) m.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
-  return m;
-}
-
 struct FoldAt {
   LineKind kind;
   double Y, X_lo, X_hi;
@@ -113,7 +105,7 @@ TEST(Plan, ShelfOnTheBackPlaneOnlyIsDangling) {
 }
 
 TEST(Plan, TwoStepStaircaseIsValid) {
-  const Plan plan = plan_of_oa_mesh(merged(test::box({40, 0, 0}, {170, 30, 60}), test::box({40, 30, 0}, {170, 60, 30})));
+  const Plan plan = plan_of_oa_mesh(test::merged(test::box({40, 0, 0}, {170, 30, 60}), test::box({40, 30, 0}, {170, 60, 30})));
   expect_exact_construction(plan);
   ASSERT_EQ(plan.faces.size(), 6u);
   EXPECT_TRUE(plan.validity.ok());

@@ -30,14 +30,6 @@ Planned plan_of_oa_mesh(TriangleMesh oa_mesh, double W = 3.0) {
   return p;
 }
 
-TriangleMesh merged(const TriangleMesh& a, const TriangleMesh& b) {
-  TriangleMesh m = a;
-  const auto offset = static_cast<std::uint32_t>(a.positions.size());
-  m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
-  for (auto t : b.triangles) m.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
-  return m;
-}
-
 TEST(Slice, BoxBecomesOneVFaceAndOneHFaceAtItsDepthAndHeight) {
   const double depth = 37.3, height = 61.7;
   const Planned p = plan_of_oa_mesh(test::box({40.2, 0, 0}, {151.9, height, depth}));
@@ -132,7 +124,7 @@ TEST(Slice, ThinPoleIsRemovedAndItsHoleFilled) {
   // A box with a 1 mm pole standing in front of it; W = 3 mm.
   const TriangleMesh house = test::box({60, 0, 0}, {150, 50, 30});
   const TriangleMesh pole = test::box({100, 0, 50}, {101, 80, 51});
-  const Planned p = plan_of_oa_mesh(merged(house, pole));
+  const Planned p = plan_of_oa_mesh(test::merged(house, pole));
   for (int row = 0; row < p.maps.grid.rows; ++row)
     for (int col = 0; col < p.maps.grid.cols; ++col) {
       const std::int32_t f = p.slices.face(col, row);
