@@ -46,7 +46,15 @@ DesignResult design(const std::filesystem::path& model_file, const DesignOptions
   result.slices = slice(result.maps, result.segmentation, options.slice);
   clock.lap("slice");
   result.plan = build_plan(result.maps, result.slices, options.sheet, options.plan);
+  result.allow_dangling = options.supports.allow_dangling;
   clock.lap("plan");
+  if (options.supports.enabled) {
+    Supported supported = add_supports(result.maps, result.slices, options.sheet, options.plan, options.supports);
+    result.slices = std::move(supported.slices);
+    result.plan = std::move(supported.plan);
+    result.supports = supported.report;
+    clock.lap("supports");
+  }
   return result;
 }
 

@@ -415,14 +415,16 @@ std::vector<PlanPolyline> chain_segments(LineKind kind, const std::vector<std::p
     for (;;) {
       used[s] = true;
       at = segments[s].first == at ? segments[s].second : segments[s].first;
-      line.points.push_back(vertex_points[at]);
+      // Distinct exact points can share their nearest double: no zero-length segment in the files.
+      if (line.points.back().X != vertex_points[at].X || line.points.back().Y != vertex_points[at].Y)
+        line.points.push_back(vertex_points[at]);
       const auto& next = incident[at];
       if (next.size() != 2) break;
       const std::size_t n = next[0] == s ? next[1] : next[0];
       if (used[n]) break;
       s = n;
     }
-    lines.push_back(std::move(line));
+    if (line.points.size() >= 2) lines.push_back(std::move(line));
   };
   for (const auto& [vertex, list] : incident)
     if (list.size() != 2)
@@ -503,6 +505,7 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& 
   std::map<FT, std::int32_t> fold_line_ids;
   FaceGraph graph;
   graph.faces = static_cast<std::int32_t>(n);
+  std::vector<bool> fold_on_top(n, false), fold_on_bottom(n, false);
   for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
     Arrangement::Halfedge_const_handle he = e;
     if (he->direction() != CGAL::ARR_LEFT_TO_RIGHT) he = he->twin();  // he->face() is above or left
@@ -520,6 +523,8 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& 
         kind = fu.orientation == Orientation::H ? LineKind::Mountain : LineKind::Valley;
         const auto [it, fresh] = fold_line_ids.try_emplace(p.y(), static_cast<std::int32_t>(fold_line_ids.size()));
         graph.folds.push_back({upper, lower, it->second});
+        fold_on_top[static_cast<std::size_t>(lower)] = true;
+        fold_on_bottom[static_cast<std::size_t>(upper)] = true;
       }
     }
     const double length = length_of(he);
@@ -555,6 +560,9 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& 
     face.orientation = slices.faces[f].orientation;
     face.depth_mm = slices.faces[f].depth_mm;
     face.area_mm2 = area[f];
+    face.fold_on_top = fold_on_top[f];
+    face.fold_on_bottom = fold_on_bottom[f];
+    face.support = slices.faces[f].support;
     if (f >= 2 && slices.faces[f].pixels > 0 && !(area[f] > 0)) ++plan.lost_faces;
     face.status = plan.validity.status[f];
   }

@@ -54,7 +54,7 @@ nlohmann::json slices_json(const DesignResult& result, const DesignOptions& opti
           {"faces", faces}};
 }
 
-nlohmann::json plan_json(const Plan& plan) {
+nlohmann::json plan_json(const Plan& plan, bool allow_dangling) {
   nlohmann::json faces = nlohmann::json::array();
   for (std::size_t i = 0; i < plan.faces.size(); ++i) {
     const PlanFace& f = plan.faces[i];
@@ -65,10 +65,11 @@ nlohmann::json plan_json(const Plan& plan) {
                      {"area_mm2", f.area_mm2},
                      {"status", to_string(f.status)},
                      {"fold_lines", plan.validity.fold_lines[i]},
+                     {"support", f.support},
                      {"at_XY", {f.inside.X, f.inside.Y}}});
   }
   const Validity& v = plan.validity;
-  return {{"verdict", v.ok() ? "valid" : "invalid"},
+  return {{"verdict", plan_stands(v, allow_dangling) ? "valid" : "invalid"},
           {"counts", {{"faces", plan.faces.size() - 2},
                       {"valid", v.valid},
                       {"indirect", v.indirect},
@@ -111,7 +112,12 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
                   {"front_d_mm", maps.reference.front_d_mm},
                   {"top_h_mm", maps.reference.top_h_mm}}},
       {"raster_plan", slices_json(result, options)},
-      {"plan", plan_json(result.plan)},
+      {"plan", plan_json(result.plan, result.allow_dangling)},
+      {"supports", {{"added", result.supports.supports},
+                    {"rounds", result.supports.rounds},
+                    {"round_bound", result.supports.round_bound},
+                    {"converged", result.supports.converged},
+                    {"stop_reason", result.supports.stop_reason}}},
       {"time_ms", times},
   };
   // File names need not be UTF-8: replace bytes JSON cannot carry rather than fail.
@@ -125,12 +131,13 @@ std::string summary_line(const DesignResult& result) {
   char line[768];
   std::snprintf(line, sizeof line,
                 "%s: %zu triangles at %.4g mm/unit; %d segments -> %zu faces (W %.3g mm); shape error mean %.2f "
-                "mm, p95 %.2f mm (%.2f W); plan %s: %d valid, %d indirect, %d floating, %d dangling, %d invalid; "
-                "%.0f ms",
+                "mm, p95 %.2f mm (%.2f W); %d supports; plan %s: %d valid, %d indirect, %d floating, %d dangling, "
+                "%d invalid; %.0f ms",
                 result.model_file.filename().c_str(), result.triangles, result.placement.scale,
                 result.segmentation.count, result.slices.faces.size() - 2,
                 result.slices.min_strip_mm, result.slices.error.mean_mm,
-                result.slices.error.p95_mm, result.slices.error.p95_W, v.ok() ? "VALID" : "INVALID", v.valid,
+                result.slices.error.p95_mm, result.slices.error.p95_W, result.supports.supports,
+                plan_stands(v, result.allow_dangling) ? "VALID" : "INVALID", v.valid,
                 v.indirect, v.floating, v.dangling, v.invalid, total_ms);
   return line;
 }

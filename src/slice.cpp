@@ -229,40 +229,6 @@ void fill_holes(const PixelGrid& grid, const Grid<std::int32_t>& segment, const 
       if (face(col, row) == kUnassigned) face(col, row) = grid.Y(row) > 0 ? kBackFace : kFloorFace;
 }
 
-// Touching faces of one orientation and one depth lie in one plane: one face. They arise where a
-// removed thin face (a pole before a wall) had parted a surface. Ids are renumbered in order.
-void merge_touching_pieces(SliceResult& result) {
-  std::vector<std::int32_t> parent(result.faces.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto root = [&](std::int32_t f) {
-    while (parent[f] != f) f = parent[f] = parent[parent[f]];
-    return f;
-  };
-  Grid<std::int32_t>& face = result.face;
-  for (int row = 0; row < face.rows; ++row)
-    for (int col = 0; col < face.cols; ++col) {
-      const std::int32_t f = face(col, row);
-      if (f < 2) continue;
-      for (const auto& [c, r] : {std::pair{col + 1, row}, {col, row + 1}}) {
-        if (!face.contains(c, r) || face(c, r) < 2 || face(c, r) == f) continue;
-        const RasterFace &a_face = result.faces[f], &b_face = result.faces[face(c, r)];
-        if (a_face.orientation != b_face.orientation || a_face.depth_mm != b_face.depth_mm) continue;
-        const std::int32_t a = root(f), b = root(face(c, r));
-        parent[std::max(a, b)] = std::min(a, b);
-      }
-    }
-  std::vector<std::int32_t> new_id(result.faces.size(), -1);
-  std::vector<RasterFace> faces;
-  for (std::size_t f = 0; f < result.faces.size(); ++f)
-    if (root(static_cast<std::int32_t>(f)) == static_cast<std::int32_t>(f)) {
-      new_id[f] = static_cast<std::int32_t>(faces.size());
-      faces.push_back(result.faces[f]);
-    }
-  for (auto& f : face.values)
-    if (f >= 0) f = new_id[root(f)];
-  result.faces = std::move(faces);
-}
-
 ShapeError shape_error(const RasterMaps& maps, const Grid<std::int32_t>& face, const std::vector<RasterFace>& faces,
                        double W) {
   const Grid<float> error = shape_error_map(maps, face, faces);
@@ -323,13 +289,47 @@ void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vec
       for (const auto& [col, row] : piece) result.face(col, row) = id;
     }
   fill_holes(maps.grid, seg.segment, result.faces, result.face);
-  merge_touching_pieces(result);
-  for (const std::int32_t f : result.face.values)
-    if (f >= 0) ++result.faces[static_cast<std::size_t>(f)].pixels;
+  merge_coplanar_faces(result);
   result.error = shape_error(maps, result.face, result.faces, W);
 }
 
 }  // namespace
+
+void merge_coplanar_faces(SliceResult& result) {
+  std::vector<std::int32_t> parent(result.faces.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&](std::int32_t f) {
+    while (parent[f] != f) f = parent[f] = parent[parent[f]];
+    return f;
+  };
+  Grid<std::int32_t>& face = result.face;
+  for (int row = 0; row < face.rows; ++row)
+    for (int col = 0; col < face.cols; ++col) {
+      const std::int32_t f = face(col, row);
+      if (f < 2) continue;
+      for (const auto& [c, r] : {std::pair{col + 1, row}, {col, row + 1}}) {
+        if (!face.contains(c, r) || face(c, r) < 2 || face(c, r) == f) continue;
+        const RasterFace &a_face = result.faces[f], &b_face = result.faces[face(c, r)];
+        if (a_face.orientation != b_face.orientation || a_face.depth_mm != b_face.depth_mm) continue;
+        const std::int32_t a = root(f), b = root(face(c, r));
+        parent[std::max(a, b)] = std::min(a, b);
+      }
+    }
+  std::vector<std::int64_t> pixels(result.faces.size(), 0);
+  for (const std::int32_t f : face.values)
+    if (f >= 0) ++pixels[static_cast<std::size_t>(root(f))];
+  std::vector<std::int32_t> new_id(result.faces.size(), -1);
+  std::vector<RasterFace> faces;
+  for (std::size_t f = 0; f < result.faces.size(); ++f)
+    if (root(static_cast<std::int32_t>(f)) == static_cast<std::int32_t>(f) && (f < 2 || pixels[f] > 0)) {
+      new_id[f] = static_cast<std::int32_t>(faces.size());
+      faces.push_back(result.faces[f]);
+      faces.back().pixels = pixels[f];
+    }
+  for (auto& f : face.values)
+    if (f >= 0) f = new_id[root(f)];
+  result.faces = std::move(faces);
+}
 
 Grid<float> shape_error_map(const RasterMaps& maps, const Grid<std::int32_t>& face, const std::vector<RasterFace>& faces) {
   Grid<float> error(maps.grid.cols, maps.grid.rows, -1.0f);

@@ -129,13 +129,17 @@ TEST(Cli, CardOffThePixelLatticeStillGivesAnExactPlan) {
 TEST(Cli, StrictExitsThreeForAnInvalidPlanAfterWritingIt) {
   const test::TempDir dir;
   test::write_obj(dir / "floating.obj", test::box({0, 1, -1}, {2, 2, 0}));  // Y-up: in mid-air
-  const CommandRun r = run("design " + quoted(dir / "floating.obj") + " --scale 30 --offset 60,0,50 --strict --out " +
+  const CommandRun r = run("design " + quoted(dir / "floating.obj") + " --scale 30 --offset 60,0,50 --no-supports --strict --out " +
                            quoted(dir / "out"));
   EXPECT_EQ(r.status, 3) << r.output;
   EXPECT_NE(r.output.find("INVALID"), std::string::npos) << r.output;
   for (const char* name : {"floating.json", "floating.dxf", "floating.svg", "floating.png"})
     EXPECT_TRUE(std::filesystem::exists(dir / "out" / name)) << name;
 
+  // The same box with its supports stands.
+  const CommandRun supported = run("design " + quoted(dir / "floating.obj") + " --scale 30 --offset 60,0,50 --strict --out " +
+                                   quoted(dir / "supported"));
+  EXPECT_EQ(supported.status, 0) << supported.output;
   test::write_obj(dir / "box.obj", test::box({0, 0, -1}, {2, 1, 0}));  // on the floor, against the back
   const CommandRun valid = run("design " + quoted(dir / "box.obj") + " --strict --out " + quoted(dir / "out"));
   EXPECT_EQ(valid.status, 0) << valid.output;

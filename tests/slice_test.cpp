@@ -68,6 +68,7 @@ TEST(Slice, HalfCylinderBecomesVerticalSlicesNoNarrowerThanW) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   DesignOptions options;
   options.placement.up = UpAxis::Z;
+  options.supports.enabled = false;  // the slices as sliced
   const DesignResult r = design(test::models_dir() / "seedlike/half_cylinder.stl", options);
   const double W = options.slice.min_strip_mm, W_px = W * r.maps.grid.px_per_mm;
   const auto extents = face_extents(r.slices.face);
@@ -104,6 +105,7 @@ TEST(Slice, FaceCountFallsAsWGrowsAndNoFaceIsNarrowerThanW) {
       DesignOptions options;
       options.placement.up = UpAxis::Z;
       options.slice.min_strip_mm = W;
+      options.supports.enabled = false;
       const DesignResult r = design(test::models_dir() / model, options);
       EXPECT_LT(r.slices.faces.size(), previous) << "W = " << W;
       previous = r.slices.faces.size();

@@ -13,6 +13,7 @@
 #include "origamic/raster.hpp"
 #include "origamic/segment.hpp"
 #include "origamic/slice.hpp"
+#include "origamic/supports.hpp"
 
 namespace origamic {
 
@@ -24,6 +25,7 @@ struct DesignOptions {
   SegmentOptions segment;
   SliceOptions slice;
   PlanOptions plan;
+  SupportOptions supports;
 };
 
 struct StageTime {
@@ -41,7 +43,9 @@ struct DesignResult {
   RasterMaps maps;
   Segmentation segmentation;
   SliceResult slices;
-  Plan plan;
+  Plan plan;                   // the final plan: with supports unless they are off
+  SupportReport supports;
+  bool allow_dangling = false;  // dangling faces do not make the plan invalid
   std::vector<StageTime> times;
 };
 

@@ -28,6 +28,9 @@ struct PlanFace {
   double area_mm2 = 0;     // in the plan
   PlanPoint inside;        // a plan point inside the face, to name where it is
   FaceStatus status = FaceStatus::Valid;
+  bool fold_on_top = false;     // some fold runs along its upper side (in the plan)
+  bool fold_on_bottom = false;  // some fold runs along its lower side
+  bool support = false;         // added by the support stage
 };
 
 struct PlanOptions {

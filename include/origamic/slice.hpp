@@ -23,6 +23,7 @@ struct RasterFace {
   double depth_mm = 0;          // d of a V face, h of an H face
   std::int32_t segment = 0;     // the segment it was sliced from
   std::int64_t pixels = 0;
+  bool support = false;         // added by the support stage (seed §4.4), not sliced from the model
 };
 
 inline constexpr std::int32_t kBackFace = 0;   // V(0)
@@ -60,6 +61,11 @@ struct SliceResult {
 /// Slices every segment. Deterministic: the same maps and options give the same face map.
 /// \throws InputError naming --min-strip if W is not positive and finite or is below one pixel.
 SliceResult slice(const RasterMaps& maps, const Segmentation& segmentation, const SliceOptions& options);
+
+/// Touching faces of one orientation and one depth lie in one plane: they become one face (a
+/// removed thin face or a support had parted them). Faces left without pixels are dropped, except
+/// the back plane and the floor; ids are renumbered in order and pixel counts recomputed.
+void merge_coplanar_faces(SliceResult& result);
 
 /// Per pixel |depth of its pop-up face - depth of the model| in mm along the 45-degree ray, for
 /// model pixels; -1 elsewhere. ShapeError summarises it.

@@ -73,6 +73,9 @@ struct DesignArgs {
   std::string out_dir;
   std::string maps_dir;
   bool strict = false;
+  bool no_supports = false;
+  bool allow_dangling = false;
+  std::uint32_t seed = 1;
   std::string colours = "laser";
   std::string dxf = "r12";
 };
@@ -96,6 +99,11 @@ void add_design_options(CLI::App& design, DesignArgs& args) {
   design.add_option("--out", args.out_dir,
                     "write the plan (MODEL.dxf, MODEL.svg, MODEL.png) and the report (MODEL.json) into this folder");
   design.add_flag("--strict", args.strict, "exit with status 3 when the plan is invalid (after writing it)");
+  design.add_flag("--no-supports", args.no_supports, "leave out the supports (seed §4.4): the plan as sliced");
+  design.add_flag("--allow-dangling", args.allow_dangling,
+                  "keep dangling faces (windows, balconies) instead of supporting them; the report lists them");
+  design.add_option("--seed", args.seed, "the order in which invalid faces choose their supports")
+      ->capture_default_str();
   design.add_option("--colours", args.colours,
                     "layer colours: laser (cut black, mountain red, valley blue, outline green) or craft (cut "
                     "blue, mountain green, valley red, outline black)")
@@ -117,6 +125,9 @@ int run_design(const DesignArgs& args) {
   options.placement.margin_mm = args.margin_mm;
   options.raster.px_per_mm = args.px_per_mm;
   options.slice.min_strip_mm = args.min_strip_mm;
+  options.supports.enabled = !args.no_supports;
+  options.supports.allow_dangling = args.allow_dangling;
+  options.supports.seed = args.seed;
 
   // A folder that cannot be made is reported before any work and before any file is written.
   for (const std::string& dir : {args.out_dir, args.maps_dir})
@@ -149,7 +160,7 @@ int run_design(const DesignArgs& args) {
   }
   origamic::write_files(files);
   std::printf("%s\n%s", origamic::summary_line(result).c_str(), written.c_str());
-  return args.strict && !result.plan.validity.ok() ? 3 : 0;
+  return args.strict && !origamic::plan_stands(result.plan.validity, args.allow_dangling) ? 3 : 0;
 }
 
 }  // namespace

@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Supports (seed §4.4, second half): strips added to the raster plan until the exact plan has no
+// floating, dangling or other invalid face. Each round proposes, for every invalid face, supports
+// from its unconnected top and bottom edges to the first face behind/above or in front/below,
+// chooses greedily in a seeded random order, widens them, and rebuilds the exact plan from scratch.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "origamic/plan.hpp"
+#include "origamic/raster.hpp"
+#include "origamic/slice.hpp"
+
+namespace origamic {
+
+struct SupportOptions {
+  bool enabled = true;
+  std::uint32_t seed = 1;        // the order in which invalid faces choose (--seed)
+  bool allow_dangling = false;   // leave dangling faces (windows, balconies) as they are
+  // c(s) = length + corner + split (seed §4.4): a support that cuts through a third face costs this
+  // much more, so it is chosen only when nothing else reaches.
+  double split_cost_mm = 1000;
+};
+
+struct SupportReport {
+  int supports = 0;      // support strips added, before widening merged any
+  int rounds = 0;        // exact plans rebuilt
+  int round_bound = 0;   // the loop's bound: one round per W-wide column of the sheet, plus one
+  bool converged = false;
+  std::string stop_reason;  // empty when converged
+};
+
+struct Supported {
+  SliceResult slices;  // the raster plan with the supports painted in (RasterFace::support)
+  Plan plan;           // the exact plan of it, validated from scratch
+  SupportReport report;
+};
+
+/// Adds supports until every face of the exact plan is valid (or, with allow_dangling, valid or
+/// dangling), or the bound is reached. Deterministic for a given seed.
+Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& sheet, const PlanOptions& plan_options,
+                       const SupportOptions& options);
+
+/// The verdict: no floating or invalid face, and no dangling one unless they are allowed.
+bool plan_stands(const Validity& validity, bool allow_dangling);
+
+}  // namespace origamic

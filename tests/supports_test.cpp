@@ -1,0 +1,106 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "origamic/supports.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <climits>
+#include <map>
+
+#include "helpers.hpp"
+#include "origamic/design.hpp"
+
+namespace origamic {
+namespace {
+
+// Column extent [min, max] in pixels of every support face of a raster plan.
+std::map<std::int32_t, std::pair<int, int>> support_columns(const SliceResult& slices) {
+  std::map<std::int32_t, std::pair<int, int>> extent;
+  for (int row = 0; row < slices.face.rows; ++row)
+    for (int col = 0; col < slices.face.cols; ++col) {
+      const std::int32_t f = slices.face(col, row);
+      if (f < 0 || !slices.faces[static_cast<std::size_t>(f)].support) continue;
+      auto [it, fresh] = extent.try_emplace(f, col, col);
+      it->second = {std::min(it->second.first, col), std::max(it->second.second, col)};
+    }
+  return extent;
+}
+
+void expect_exact_and_standing(const Plan& plan) {
+  EXPECT_TRUE(plan.arrangement_valid);
+  EXPECT_TRUE(plan.faces_tile_sheet);
+  EXPECT_EQ(plan.lost_faces, 0);
+  EXPECT_EQ(plan.unresolved_crossings, 0);
+  EXPECT_TRUE(plan_stands(plan.validity, false))
+      << plan.validity.floating << " floating, " << plan.validity.dangling << " dangling, " << plan.validity.invalid
+      << " invalid";
+}
+
+TEST(Supports, FloatingBoxIsSupportedAtTopAndBottom) {
+  const RayScene scene(test::box({60, 40, 20}, {150, 80, 50}));
+  const Sheet sheet;
+  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
+  const SliceResult slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  ASSERT_FALSE(plan_stands(build_plan(maps, slices, sheet, PlanOptions{}).validity, false));
+  const Supported s = add_supports(maps, slices, sheet, PlanOptions{}, SupportOptions{});
+  EXPECT_TRUE(s.report.converged) << s.report.stop_reason;
+  EXPECT_EQ(s.report.supports, 2);
+  expect_exact_and_standing(s.plan);
+  // The front V(50) now reaches down to the floor and the top H(80) back to the back plane: their
+  // supports lie in their planes and merged with them. Valley folds at Y = -50 and Y = 80 exactly,
+  // as wide as the box (X = 60 .. 150 mm, to a pixel).
+  int found = 0;
+  for (const PlanPolyline& line : s.plan.lines) {
+    if (line.kind != LineKind::Valley || line.points.front().Y == 0) continue;
+    const double Y = line.points.front().Y;
+    EXPECT_TRUE(Y == -50.0 || Y == 80.0) << Y;
+    double lo = 1e300, hi = -1e300;
+    for (const PlanPoint& p : line.points) lo = std::min(lo, p.X), hi = std::max(hi, p.X);
+    EXPECT_NEAR(lo, 60, 0.25);
+    EXPECT_NEAR(hi, 150, 0.25);
+    ++found;
+  }
+  EXPECT_EQ(found, 2);
+}
+
+TEST(Supports, SlopesBecomeStaircasesAsWideAsTheSlope) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  // The wedge is one slope across the model's whole width; the Mayan pyramid's tiers are boxes,
+  // and only its small top needs supports.
+  for (const auto& [model, slope_width_fraction] : {std::pair{"seedlike/wedge.stl", 0.95}, {"seedlike/mayan_pyramid.stl", 0.0}}) {
+    SCOPED_TRACE(model);
+    DesignOptions options;
+    options.placement.up = UpAxis::Z;
+    const DesignResult r = design(test::models_dir() / model, options);
+    EXPECT_TRUE(r.supports.converged) << r.supports.stop_reason;
+    EXPECT_GT(r.supports.supports, 0);
+    expect_exact_and_standing(r.plan);
+    const auto supports = support_columns(r.slices);
+    int narrowest = INT_MAX, widest = 0;
+    for (const auto& [id, columns] : supports) {
+      narrowest = std::min(narrowest, columns.second - columns.first + 1);
+      widest = std::max(widest, columns.second - columns.first + 1);
+    }
+    if (!supports.empty()) {
+      EXPECT_GE(narrowest, r.slices.block_px) << "a support narrower than W";
+    }
+    const double model_width_px = (r.placement.max_oa.x - r.placement.min_oa.x) * r.maps.grid.px_per_mm;
+    EXPECT_GE(widest, slope_width_fraction * model_width_px) << "supports widened along the slope";
+  }
+}
+
+TEST(Supports, SameSeedSamePlanAnotherSeedStillStands) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  DesignOptions options;
+  options.placement.up = UpAxis::Z;
+  const auto model = test::models_dir() / "seedlike/capitol.stl";
+  const DesignResult a = design(model, options), b = design(model, options);
+  EXPECT_EQ(a.slices.face.values, b.slices.face.values);
+  expect_exact_and_standing(a.plan);
+  options.supports.seed = 12345;
+  const DesignResult c = design(model, options);
+  expect_exact_and_standing(c.plan);
+}
+
+}  // namespace
+}  // namespace origamic
