@@ -187,22 +187,32 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
       top_joined[f] = result.plan.faces[f].fold_on_top;
       bottom_joined[f] = result.plan.faces[f].fold_on_bottom;
     }
-    for (const std::int32_t f : invalid) {
-      for (const bool up : {true, false}) {
-        if (up ? top_joined[static_cast<std::size_t>(f)] : bottom_joined[static_cast<std::size_t>(f)]) continue;
-        std::vector<Candidate> candidates = finder.from_edge(f, up);
-        std::ranges::sort(candidates, [](const Candidate& a, const Candidate& b) {
-          return a.cost != b.cost ? a.cost < b.cost : a.c0 < b.c0;
-        });
-        for (Candidate& s : candidates) {
-          if (claimed_anywhere(claimed, s.c0, s.c1, s.r0, s.r1)) continue;
-          widen(slices.face, claimed, s);
-          for (int r = s.r0; r < s.r1; ++r)
-            for (int c = s.c0; c < s.c1; ++c) claimed(c, r) = 1;
-          chosen.push_back(s);
-          (up ? top_joined[static_cast<std::size_t>(f)] : bottom_joined[static_cast<std::size_t>(f)]) = 1;
-          (up ? bottom_joined[static_cast<std::size_t>(s.target)] : top_joined[static_cast<std::size_t>(s.target)]) = 1;
-          break;
+    // First the seed's rule: unjoined edges only. If that finds nothing, faces whose every edge is
+    // folded but which hang from one plane only (a staircase standing on the floor, reaching
+    // nowhere) are supported on the side of the missing plane: up towards the back plane when no
+    // fold path reaches it, down towards the floor likewise.
+    for (const bool by_missing_plane : {false, true}) {
+      if (by_missing_plane && !chosen.empty()) break;
+      for (const std::int32_t f : invalid) {
+        const auto i = static_cast<std::size_t>(f);
+        for (const bool up : {true, false}) {
+          const bool wanted = by_missing_plane ? !(up ? result.plan.validity.in_X[i] : result.plan.validity.in_Y[i])
+                                               : !(up ? top_joined[i] : bottom_joined[i]);
+          if (!wanted) continue;
+          std::vector<Candidate> candidates = finder.from_edge(f, up);
+          std::ranges::sort(candidates, [](const Candidate& a, const Candidate& b) {
+            return a.cost != b.cost ? a.cost < b.cost : a.c0 < b.c0;
+          });
+          for (Candidate& s : candidates) {
+            if (claimed_anywhere(claimed, s.c0, s.c1, s.r0, s.r1)) continue;
+            widen(slices.face, claimed, s);
+            for (int r = s.r0; r < s.r1; ++r)
+              for (int c = s.c0; c < s.c1; ++c) claimed(c, r) = 1;
+            chosen.push_back(s);
+            (up ? top_joined[i] : bottom_joined[i]) = 1;
+            (up ? bottom_joined[static_cast<std::size_t>(s.target)] : top_joined[static_cast<std::size_t>(s.target)]) = 1;
+            break;
+          }
         }
       }
     }
