@@ -63,7 +63,8 @@ void check_options(const Sheet& sheet, const PlacementOptions& options) {
     throw InputError("--margin: leaves no room on the sheet for the model");
 }
 
-// The largest scale at which extents e (unscaled, resting at h = d = 0) fit inside the margins.
+// The largest scale at which extents e (unscaled, resting at h = d = 0) fit inside the margins, with
+// the model's height and depth each within half the sheet less the margin.
 double fit_scale(const Extents& e, const Sheet& sheet, double margin_mm) {
   const double rest_Y = e.lo.y - e.lo.z;  // h - d of the bounding box corner that goes to the fold
   const double room_X = sheet.width_mm - 2 * margin_mm;
@@ -72,6 +73,11 @@ double fit_scale(const Extents& e, const Sheet& sheet, double margin_mm) {
   if (e.hi.x > e.lo.x) scale = std::min(scale, room_X / (e.hi.x - e.lo.x));
   if (e.hi_Y > rest_Y) scale = std::min(scale, room_half / (e.hi_Y - rest_Y));
   if (e.lo_Y < rest_Y) scale = std::min(scale, room_half / (rest_Y - e.lo_Y));
+  // Room for supports: a support from height h reaches the back plane at plan Y = h, one from depth
+  // d reaches the floor at Y = -d. Models whose highest point stands forward (a ridge, a dome) or
+  // whose frontmost point is raised would otherwise fit their projection but leave no room.
+  if (e.hi.y > e.lo.y) scale = std::min(scale, room_half / (e.hi.y - e.lo.y));
+  if (e.hi.z > e.lo.z) scale = std::min(scale, room_half / (e.hi.z - e.lo.z));
   if (!std::isfinite(scale))
     throw InputError("model: its 45-degree projection has zero extent; give --scale");
   return scale;

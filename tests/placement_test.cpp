@@ -11,15 +11,19 @@ namespace {
 
 constexpr double kTol = 1e-9;
 
-// The auto-fit contract: inside the margins, resting on the floor and the back plane, centred along
+// The auto-fit contract: inside the margins, height and depth each within half the sheet less the
+// margin (room for supports), resting on the floor and the back plane, centred along
 // the fold, and touching at least one margin (it is the largest such scale).
 void expect_auto_fit(const TriangleMesh& model, const Sheet& sheet, const PlacementOptions& options) {
   const Placement p = place(model, sheet, options);
   const TriangleMesh oa = apply(p, model);
-  double lo_h = 1e300, lo_d = 1e300, lo_X = 1e300, hi_X = -1e300, lo_Y = 1e300, hi_Y = -1e300;
+  double lo_h = 1e300, lo_d = 1e300, hi_h = -1e300, hi_d = -1e300, lo_X = 1e300, hi_X = -1e300, lo_Y = 1e300,
+         hi_Y = -1e300;
   for (const auto& q : oa.positions) {
     lo_h = std::min(lo_h, q.y);
     lo_d = std::min(lo_d, q.z);
+    hi_h = std::max(hi_h, q.y);
+    hi_d = std::max(hi_d, q.z);
     lo_X = std::min(lo_X, q.x);
     hi_X = std::max(hi_X, q.x);
     lo_Y = std::min(lo_Y, q.y - q.z);
@@ -32,9 +36,12 @@ void expect_auto_fit(const TriangleMesh& model, const Sheet& sheet, const Placem
   EXPECT_LE(hi_X, sheet.width_mm - m + kTol);
   EXPECT_GE(lo_Y, -sheet.half_height_mm() + m - kTol);
   EXPECT_LE(hi_Y, sheet.half_height_mm() - m + kTol);
+  EXPECT_LE(hi_h, sheet.half_height_mm() - m + kTol);  // room for supports up to the back plane
+  EXPECT_LE(hi_d, sheet.half_height_mm() - m + kTol);  // and down to the floor
   EXPECT_NEAR((lo_X + hi_X) / 2, sheet.width_mm / 2, kTol);
   const double slack = std::min({lo_X - m, sheet.width_mm - m - hi_X, lo_Y + sheet.half_height_mm() - m,
-                                 sheet.half_height_mm() - m - hi_Y});
+                                 sheet.half_height_mm() - m - hi_Y, sheet.half_height_mm() - m - hi_h,
+                                 sheet.half_height_mm() - m - hi_d});
   EXPECT_NEAR(slack, 0.0, kTol);
   EXPECT_NEAR(p.min_plan.Y, lo_Y, kTol);
   EXPECT_NEAR(p.max_plan.X, hi_X, kTol);
