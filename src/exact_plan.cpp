@@ -40,6 +40,7 @@ struct Sides {
   std::int32_t left = kNoLabel;
   std::int32_t right = kNoLabel;
   std::int32_t chain = kNoLabel;  // the raster boundary it comes from; none for the sheet outline
+  bool fold = false;              // a fold snapped onto its line
 };
 
 // Plan points on the pixel lattice in half-pixel units: u = 2 col, v = 2 row for pixel corners, odd
@@ -276,6 +277,7 @@ void add_chain(const Chain& chain, Fallback fallback, const std::vector<RasterFa
     const Point s = lattice.exact(start.u, start.v), e = lattice.exact(end.u, end.v);
     const Point s_on(s.x(), exact_Y), e_on(e.x(), exact_Y);
     curves.add(s_on, e_on, chain.left, chain.right);
+    curves.sides.back().fold = true;
     const std::int32_t owner = std::exchange(curves.chain, kNoLabel);  // connectors lie along other cuts
     curves.add(s, s_on, kNoLabel, kNoLabel);
     curves.add(e, e_on, kNoLabel, kNoLabel);
@@ -349,23 +351,39 @@ void build_arrangement(const std::vector<Chain>& chains, const std::vector<Fallb
 
   // Topology check, exact: a segment that runs through a vertex it does not end at crosses or
   // touches another boundary there, unless that vertex is the end of a snapped fold (a fold meets a
-  // cut in a T by design).
+  // cut in a T by design), or a snapped fold crosses there a boundary that shares one of its
+  // junctions: a slanted cut leaving the fold's corner, which the fold's move trims or extends.
   auto lexicographic = [](const Point& a, const Point& b) { return CGAL::compare_xy(a, b) == CGAL::SMALLER; };
   std::sort(curves.fold_ends.begin(), curves.fold_ends.end(), lexicographic);
+  auto neighbours = [&](std::int32_t a, std::int32_t b) {
+    const Chain &x = chains[static_cast<std::size_t>(a)], &y = chains[static_cast<std::size_t>(b)];
+    auto same = [](LatticePoint p, LatticePoint q) { return p.u == q.u && p.v == q.v; };
+    return same(x.corners.front(), y.corners.front()) || same(x.corners.front(), y.corners.back()) ||
+           same(x.corners.back(), y.corners.front()) || same(x.corners.back(), y.corners.back());
+  };
   built.crossed.assign(chains.size(), false);
+  std::vector<std::int32_t> through, folds_through;
   for (auto v = built.arrangement.vertices_begin(); v != built.arrangement.vertices_end(); ++v) {
     if (v->is_isolated() ||
         std::binary_search(curves.fold_ends.begin(), curves.fold_ends.end(), v->point(), lexicographic))
       continue;
+    through.clear();
+    folds_through.clear();
     auto he = v->incident_halfedges(), first = he;
     do {
       for (const std::int32_t d : he->curve().data()) {
         const auto i = static_cast<std::size_t>(d);
         const std::int32_t chain = built.sides[i].chain;
-        if (chain >= 0 && v->point() != curves.ends[i][0] && v->point() != curves.ends[i][1])
-          built.crossed[static_cast<std::size_t>(chain)] = true;
+        if (chain < 0 || v->point() == curves.ends[i][0] || v->point() == curves.ends[i][1]) continue;
+        through.push_back(chain);
+        if (built.sides[i].fold) folds_through.push_back(chain);
       }
     } while (++he != first);
+    if (folds_through.size() == 2 && folds_through[0] == folds_through[1]) {  // one fold, seen from both sides
+      const std::int32_t fold = folds_through[0];
+      if (std::ranges::all_of(through, [&](std::int32_t c) { return c == fold || neighbours(c, fold); })) continue;
+    }
+    for (const std::int32_t chain : through) built.crossed[static_cast<std::size_t>(chain)] = true;
   }
 
   // Each face takes the label that most of its boundary length names. Sides moved by a snapped fold
