@@ -166,13 +166,13 @@ std::vector<Chain> trace_chains(const Grid<std::int32_t>& labels) {
 
 // Douglas-Peucker over the chain's edge midpoints between its two fixed end corners.
 std::vector<LatticePoint> simplified(const Chain& chain, const Lattice& lattice, double tolerance_mm) {
+  if (tolerance_mm <= 0) return chain.corners;
   std::vector<LatticePoint> points = {chain.corners.front()};
   for (std::size_t i = 1; i < chain.corners.size(); ++i) {
     const LatticePoint a = chain.corners[i - 1], b = chain.corners[i];
     points.push_back({(a.u + b.u) / 2, (a.v + b.v) / 2});
   }
   points.push_back(chain.corners.back());
-  if (tolerance_mm <= 0) return chain.corners;
   std::vector<bool> keep(points.size(), false);
   keep.front() = keep.back() = true;
   std::vector<std::pair<std::size_t, std::size_t>> stack = {{0, points.size() - 1}};
@@ -291,8 +291,7 @@ void add_chain(const Chain& chain, Fallback fallback, const std::vector<RasterFa
   add_cut(chain, cut_from, last, lattice, simplify_mm, curves);
 }
 
-// Exact rationals without laziness: a lazy number built by a long sum would be a DAG as deep as
-// the sum is long, and gmpxx expressions must be stored in a typed variable before use.
+// The exact rational behind a lazy number (gmpxx: store expressions in a typed variable before use).
 using Rational = std::remove_cvref_t<decltype(std::declval<FT>().exact())>;
 
 // The double nearest an exact number (ties to even), so a fold at Y = h - d reads back as the

@@ -2,16 +2,16 @@
 #include "origamic/plan_export.hpp"
 
 #include <cairo.h>
-#include <unistd.h>
 #include <dxflib/dl_dxf.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <memory>
 #include <sstream>
 #include <string_view>
-#include <iterator>
 
 #include "origamic/error.hpp"
 
