@@ -17,6 +17,8 @@
 // the fold between V(d) and H(h) lies on Y = h - d.
 #pragma once
 
+#include <cstdint>
+
 #include <glm/vec3.hpp>
 
 namespace origamic {
@@ -31,6 +33,12 @@ struct Sheet {
   double max_X() const { return width_mm; }
   double min_Y() const { return -half_height_mm(); }
   double max_Y() const { return half_height_mm(); }
+};
+
+/// The two kinds of face.
+enum class Orientation : std::uint8_t {
+  V,  // parallel to the back plane, at constant depth d
+  H,  // parallel to the floor, at constant height h
 };
 
 /// A point of the plan, in mm.

@@ -7,15 +7,11 @@
 #include <vector>
 
 #include "origamic/grid.hpp"
+#include "origamic/oa.hpp"
 #include "origamic/raster.hpp"
 #include "origamic/segment.hpp"
 
 namespace origamic {
-
-enum class Orientation : std::uint8_t {
-  V,  // parallel to the back plane, at constant depth d
-  H,  // parallel to the floor, at constant height h
-};
 
 /// A face of the raster plan.
 struct RasterFace {
