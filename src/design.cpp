@@ -44,16 +44,18 @@ DesignResult design(const std::filesystem::path& model_file, const DesignOptions
   result.segmentation = segment(result.maps, options.segment);
   clock.lap("segment");
   result.slices = slice(result.maps, result.segmentation, options.slice);
+  align_folds_to_lines(result.slices, result.maps.grid, fold_snap_tolerance_mm(options.plan, result.slices, result.maps.grid));
   clock.lap("slice");
-  result.plan = build_plan(result.maps, result.slices, options.sheet, options.plan);
   result.allow_dangling = options.supports.allow_dangling;
-  clock.lap("plan");
-  if (options.supports.enabled) {
+  if (!options.supports.enabled) {
+    result.plan = build_plan(result.maps, result.slices, options.sheet, options.plan);
+    clock.lap("plan");
+  } else {
     Supported supported = add_supports(result.maps, result.slices, options.sheet, options.plan, options.supports);
     result.slices = std::move(supported.slices);
     result.plan = std::move(supported.plan);
     result.supports = supported.report;
-    clock.lap("supports");
+    clock.lap("plan+supports");
   }
   return result;
 }

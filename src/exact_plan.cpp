@@ -245,7 +245,7 @@ void add_chain(const Chain& chain, Fallback fallback, const std::vector<RasterFa
   const std::size_t last = chain.corners.size() - 1;
   if (fallback != Fallback::None) simplify_mm = 0;
   const RasterFace &a = faces[static_cast<std::size_t>(chain.left)], &b = faces[static_cast<std::size_t>(chain.right)];
-  if (fallback == Fallback::PixelContour || a.orientation == b.orientation)
+  if (fallback == Fallback::PixelContour || a.orientation == b.orientation || a.hole || b.hole)
     return add_cut(chain, 0, last, lattice, simplify_mm, curves);
   const RasterFace& v = a.orientation == Orientation::V ? a : b;
   const RasterFace& h = a.orientation == Orientation::H ? a : b;
@@ -378,11 +378,18 @@ void build_arrangement(const std::vector<Chain>& chains, const std::vector<Fallb
         if (built.sides[i].fold) folds_through.push_back(chain);
       }
     } while (++he != first);
-    if (folds_through.size() == 2 && folds_through[0] == folds_through[1]) {  // one fold, seen from both sides
+    if (!folds_through.empty() && std::ranges::count(folds_through, folds_through[0]) == std::ssize(folds_through)) {  // one fold
       const std::int32_t fold = folds_through[0];
       if (std::ranges::all_of(through, [&](std::int32_t c) { return c == fold || neighbours(c, fold); })) continue;
     }
-    for (const std::int32_t chain : through) built.crossed[static_cast<std::size_t>(chain)] = true;
+    // A cut that touches a snapped fold yields first (unsimplified, then its pixel contour), so
+    // that the fold keeps its line; a fold yields only to another fold or to a cut that cannot.
+    auto is_fold = [&](std::int32_t c) { return std::ranges::find(folds_through, c) != folds_through.end(); };
+    const bool cuts_yield = std::ranges::any_of(through, [&](std::int32_t c) {
+      return !is_fold(c) && fallback[static_cast<std::size_t>(c)] != Fallback::PixelContour;
+    });
+    for (const std::int32_t chain : through)
+      if (!(cuts_yield && is_fold(chain))) built.crossed[static_cast<std::size_t>(chain)] = true;
   }
 
   // Each face takes the label that most of its boundary length names. Sides moved by a snapped fold
@@ -454,13 +461,19 @@ std::vector<PlanPolyline> chain_segments(LineKind kind, const std::vector<std::p
 
 }  // namespace
 
-Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& sheet, const PlanOptions& options) {
+Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& sheet, const PlanOptions& options) {
+  // §4.5 in two steps: the raster boundaries move to the pixel row nearest their fold line where
+  // they can (align_folds_to_lines; a no-op on plans already aligned), then only those within half a
+  // pixel snap onto it. Snapping farther could carry a fold across a neighbouring boundary, which
+  // forced the whole chain back to its pixel contour and lost the fold.
+  SliceResult slices = sliced;
+  align_folds_to_lines(slices, maps.grid, fold_snap_tolerance_mm(options, slices, maps.grid));
   const Lattice lattice(maps.grid, sheet);
   const Grid<std::int32_t> labels = labels_inside_sheet(slices.face);
   const std::vector<Chain> chains = trace_chains(labels);
   const double px_mm = 1 / maps.grid.px_per_mm;
   const double simplify_mm = std::min(options.simplify_mm, px_mm);
-  const double fold_tolerance = options.fold_snap_fraction_of_W * slices.min_strip_mm + px_mm;
+  const double fold_tolerance = aligned_fold_tolerance_mm(maps.grid);
 
   Plan plan;
   plan.sheet = sheet;
@@ -522,6 +535,7 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& 
   std::map<FT, std::int32_t> fold_line_ids;
   FaceGraph graph;
   graph.faces = static_cast<std::int32_t>(n);
+  for (const RasterFace& face : slices.faces) graph.holes.push_back(face.hole);
   std::vector<bool> fold_on_top(n, false), fold_on_bottom(n, false);
   for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
     Arrangement::Halfedge_const_handle he = e;
@@ -532,7 +546,7 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& 
     const Point &p = he->source()->point(), &q = he->target()->point();
     const RasterFace &fu = slices.faces[static_cast<std::size_t>(upper)], &fl = slices.faces[static_cast<std::size_t>(lower)];
     LineKind kind = LineKind::Cut;
-    if (p.y() == q.y() && fu.orientation != fl.orientation) {
+    if (p.y() == q.y() && fu.orientation != fl.orientation && !fu.hole && !fl.hole) {
       const RasterFace& v = fu.orientation == Orientation::V ? fu : fl;
       const RasterFace& h = fu.orientation == Orientation::H ? fu : fl;
       if (p.y() == FT(h.depth_mm) - FT(v.depth_mm)) {

@@ -75,7 +75,8 @@ nlohmann::json plan_json(const Plan& plan, bool allow_dangling) {
                       {"indirect", v.indirect},
                       {"floating", v.floating},
                       {"dangling", v.dangling},
-                      {"invalid", v.invalid}}},
+                      {"invalid", v.invalid},
+                      {"removed", v.removed}}},
           {"length_mm", {{"cut", plan.cut_mm}, {"mountain", plan.mountain_mm}, {"valley", plan.valley_mm}}},
           {"exact_checks", {{"arrangement_valid", plan.arrangement_valid},
                             {"faces_tile_sheet", plan.faces_tile_sheet},
@@ -115,6 +116,8 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
       {"plan", plan_json(result.plan, result.allow_dangling)},
       {"supports", {{"added", result.supports.supports},
                     {"rounds", result.supports.rounds},
+                    {"exact_builds", result.supports.exact_builds},
+                    {"cut_out", result.supports.cut_out},
                     {"round_bound", result.supports.round_bound},
                     {"converged", result.supports.converged},
                     {"stop_reason", result.supports.stop_reason}}},
@@ -132,13 +135,13 @@ std::string summary_line(const DesignResult& result) {
   std::snprintf(line, sizeof line,
                 "%s: %zu triangles at %.4g mm/unit; %d segments -> %zu faces (W %.3g mm); shape error mean %.2f "
                 "mm, p95 %.2f mm (%.2f W); %d supports; plan %s: %d valid, %d indirect, %d floating, %d dangling, "
-                "%d invalid; %.0f ms",
+                "%d invalid, %d removed; %.0f ms",
                 result.model_file.filename().c_str(), result.triangles, result.placement.scale,
                 result.segmentation.count, result.slices.faces.size() - 2,
                 result.slices.min_strip_mm, result.slices.error.mean_mm,
                 result.slices.error.p95_mm, result.slices.error.p95_W, result.supports.supports,
                 plan_stands(v, result.allow_dangling) ? "VALID" : "INVALID", v.valid,
-                v.indirect, v.floating, v.dangling, v.invalid, total_ms);
+                v.indirect, v.floating, v.dangling, v.invalid, v.removed, total_ms);
   return line;
 }
 

@@ -310,7 +310,9 @@ void merge_coplanar_faces(SliceResult& result) {
       for (const auto& [c, r] : {std::pair{col + 1, row}, {col, row + 1}}) {
         if (!face.contains(c, r) || face(c, r) < 2 || face(c, r) == f) continue;
         const RasterFace &a_face = result.faces[f], &b_face = result.faces[face(c, r)];
-        if (a_face.orientation != b_face.orientation || a_face.depth_mm != b_face.depth_mm) continue;
+        // Holes merge with each other whatever plane they came from, and never with paper.
+        if (a_face.hole != b_face.hole) continue;
+        if (!a_face.hole && (a_face.orientation != b_face.orientation || a_face.depth_mm != b_face.depth_mm)) continue;
         const std::int32_t a = root(f), b = root(face(c, r));
         parent[std::max(a, b)] = std::min(a, b);
       }
@@ -329,6 +331,35 @@ void merge_coplanar_faces(SliceResult& result) {
   for (auto& f : face.values)
     if (f >= 0) f = new_id[root(f)];
   result.faces = std::move(faces);
+}
+
+void align_folds_to_lines(SliceResult& result, const PixelGrid& grid, double tolerance_mm) {
+  Grid<std::int32_t>& face = result.face;
+  auto count = [&](std::int32_t f, int delta) { result.faces[static_cast<std::size_t>(f)].pixels += delta; };
+  for (int col = 0; col < face.cols; ++col)
+    for (int r = 0; r + 1 < face.rows; ++r) {
+      const std::int32_t a = face(col, r), b = face(col, r + 1);  // a above, b below
+      if (a == b || a < 0 || b < 0) continue;
+      const RasterFace &fa = result.faces[static_cast<std::size_t>(a)], &fb = result.faces[static_cast<std::size_t>(b)];
+      if (fa.orientation == fb.orientation || fa.hole || fb.hole) continue;
+      const double fold_Y = fa.orientation == Orientation::H ? fa.depth_mm - fb.depth_mm : fb.depth_mm - fa.depth_mm;
+      const double edge_Y = grid.Y(r) - 0.5 / grid.px_per_mm;
+      if (!(std::abs(edge_Y - fold_Y) <= tolerance_mm)) continue;
+      // The boundary between rows t and t + 1 lies at Y = (rows_above_fold - t - 1) / px_per_mm.
+      const int t = static_cast<int>(std::lround(grid.rows_above_fold - 1 - fold_Y * grid.px_per_mm));
+      if (t < r) {  // up: b takes rows t + 1 .. r if they are all a and a keeps row t
+        bool free = t >= 0 && face(col, t) == a;
+        for (int k = t + 1; free && k <= r; ++k) free = face(col, k) == a;
+        if (!free) continue;
+        for (int k = t + 1; k <= r; ++k) face(col, k) = b, count(a, -1), count(b, 1);
+      } else if (t > r) {  // down: a takes rows r + 1 .. t if they are all b and b keeps row t + 1
+        bool free = t + 1 < face.rows && face(col, t + 1) == b;
+        for (int k = r + 1; free && k <= t; ++k) free = face(col, k) == b;
+        if (!free) continue;
+        for (int k = r + 1; k <= t; ++k) face(col, k) = a, count(b, -1), count(a, 1);
+        r = t;  // continue below the moved boundary
+      }
+    }
 }
 
 Grid<float> shape_error_map(const RasterMaps& maps, const Grid<std::int32_t>& face, const std::vector<RasterFace>& faces) {

@@ -5,8 +5,10 @@
 #include <climits>
 #include <cmath>
 #include <random>
-#include <set>
+#include <map>
 #include <optional>
+#include <set>
+#include <tuple>
 
 namespace origamic {
 namespace {
@@ -145,90 +147,188 @@ bool plan_stands(const Validity& validity, bool allow_dangling) {
   return validity.floating + validity.invalid == 0 && (allow_dangling || validity.dangling == 0);
 }
 
-Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& sheet, const PlanOptions& plan_options,
-                       const SupportOptions& options) {
-  Supported result;
-  result.report.round_bound = slices.face.cols / std::max(1, slices.block_px) + 1;
-  std::mt19937 random(options.seed);
-  result.plan = build_plan(maps, slices, sheet, plan_options);
-  std::size_t fewest_invalid = SIZE_MAX;
-  int rounds_without_progress = 0;
-  for (;;) {
-    ++result.report.rounds;
-    std::vector<std::int32_t> invalid;
-    for (std::size_t f = 2; f < result.plan.faces.size(); ++f)
-      if (needs_support(result.plan.faces[f].status, options.allow_dangling)) invalid.push_back(static_cast<std::int32_t>(f));
-    if (invalid.empty()) {
-      result.report.converged = true;
-      break;
-    }
-    // Supports that split other faces can leave as many invalid faces as they fixed: give up when
-    // three rounds in a row made no progress.
-    if (invalid.size() < fewest_invalid) fewest_invalid = invalid.size(), rounds_without_progress = 0;
-    else if (++rounds_without_progress >= 3) {
-      result.report.stop_reason = std::to_string(invalid.size()) + " faces still invalid: no progress in 3 rounds";
-      break;
-    }
-    if (result.report.rounds > result.report.round_bound) {
-      result.report.stop_reason = std::to_string(invalid.size()) + " faces still invalid after " +
-                                  std::to_string(result.report.round_bound) + " rounds (the loop's bound)";
-      break;
-    }
-    std::shuffle(invalid.begin(), invalid.end(), random);
+namespace {
 
-    const CandidateFinder finder(maps, slices, options.split_cost_mm);
-    Grid<std::uint8_t> claimed(slices.face.cols, slices.face.rows, 0);
-    std::vector<Candidate> chosen;
-    // Seed: an edge already folded to a face is not supported again; a floating face gets both. A
-    // support chosen in this round joins the target's facing edge too, so that one is not supported
-    // again from the other side.
-    std::vector<std::uint8_t> top_joined(result.plan.faces.size()), bottom_joined(result.plan.faces.size());
-    for (std::size_t f = 0; f < result.plan.faces.size(); ++f) {
-      top_joined[f] = result.plan.faces[f].fold_on_top;
-      bottom_joined[f] = result.plan.faces[f].fold_on_bottom;
+// What the loop needs to know of a plan: each face's status and which of its sides are folded.
+struct Standing {
+  Validity validity;
+  std::vector<std::uint8_t> fold_on_top, fold_on_bottom;
+};
+
+Standing standing_of(const Plan& plan) {
+  Standing s{plan.validity, {}, {}};
+  for (const PlanFace& face : plan.faces) {
+    s.fold_on_top.push_back(face.fold_on_top);
+    s.fold_on_bottom.push_back(face.fold_on_bottom);
+  }
+  return s;
+}
+
+// The face graph read from the raster plan: a fold wherever a V(d) pixel and an H(h) pixel meet one
+// above the other within `tolerance` of Y = h - d, as the exact plan snaps them (plan.hpp). Rebuilding
+// the exact plan costs 50-700 ms; this costs a few, so rounds run on it and the exact plan only
+// confirms (and overrides) its verdict.
+Standing raster_standing(const PixelGrid& grid, const SliceResult& slices, double tolerance) {
+  const Grid<std::int32_t>& face = slices.face;
+  const std::size_t n = slices.faces.size();
+  FaceGraph graph;
+  graph.faces = static_cast<std::int32_t>(n);
+  for (const RasterFace& f : slices.faces) graph.holes.push_back(f.hole);
+  Standing s;
+  s.fold_on_top.assign(n, 0);
+  s.fold_on_bottom.assign(n, 0);
+  std::map<double, std::int32_t> line_ids;
+  std::set<std::tuple<std::int32_t, std::int32_t, std::int32_t>> seen;
+  for (int r = 0; r + 1 < face.rows; ++r) {
+    const double edge_Y = grid.Y(r) - 0.5 / grid.px_per_mm;  // between row r (above) and r + 1
+    for (int c = 0; c < face.cols; ++c) {
+      const std::int32_t upper = face(c, r), lower = face(c, r + 1);
+      if (upper == lower || upper < 0 || lower < 0) continue;
+      const RasterFace &fu = slices.faces[static_cast<std::size_t>(upper)], &fl = slices.faces[static_cast<std::size_t>(lower)];
+      if (fu.orientation == fl.orientation || fu.hole || fl.hole) continue;
+      const double fold_Y = fu.orientation == Orientation::H ? fu.depth_mm - fl.depth_mm : fl.depth_mm - fu.depth_mm;
+      if (!(std::abs(edge_Y - fold_Y) <= tolerance)) continue;
+      const auto line = line_ids.try_emplace(fold_Y, static_cast<std::int32_t>(line_ids.size())).first->second;
+      s.fold_on_top[static_cast<std::size_t>(lower)] = 1;
+      s.fold_on_bottom[static_cast<std::size_t>(upper)] = 1;
+      if (seen.emplace(upper, lower, line).second) graph.folds.push_back({upper, lower, line});
     }
-    // First the seed's rule: unjoined edges only. If that finds nothing, faces whose every edge is
-    // folded but which hang from one plane only (a staircase standing on the floor, reaching
-    // nowhere) are supported on the side of the missing plane: up towards the back plane when no
-    // fold path reaches it, down towards the floor likewise.
-    for (const bool by_missing_plane : {false, true}) {
-      if (by_missing_plane && !chosen.empty()) break;
-      for (const std::int32_t f : invalid) {
-        const auto i = static_cast<std::size_t>(f);
-        for (const bool up : {true, false}) {
-          const bool wanted = by_missing_plane ? !(up ? result.plan.validity.in_X[i] : result.plan.validity.in_Y[i])
-                                               : !(up ? top_joined[i] : bottom_joined[i]);
-          if (!wanted) continue;
-          std::vector<Candidate> candidates = finder.from_edge(f, up);
-          std::ranges::sort(candidates, [](const Candidate& a, const Candidate& b) {
-            return a.cost != b.cost ? a.cost < b.cost : a.c0 < b.c0;
-          });
-          for (Candidate& s : candidates) {
-            if (claimed_anywhere(claimed, s.c0, s.c1, s.r0, s.r1)) continue;
-            widen(slices.face, claimed, s);
-            for (int r = s.r0; r < s.r1; ++r)
-              for (int c = s.c0; c < s.c1; ++c) claimed(c, r) = 1;
-            chosen.push_back(s);
-            (up ? top_joined[i] : bottom_joined[i]) = 1;
-            (up ? bottom_joined[static_cast<std::size_t>(s.target)] : top_joined[static_cast<std::size_t>(s.target)]) = 1;
-            break;
-          }
+  }
+  s.validity = validate(graph);
+  return s;
+}
+
+std::vector<std::int32_t> unsupported(const Standing& standing, bool allow_dangling) {
+  std::vector<std::int32_t> faces;
+  for (std::size_t f = 2; f < standing.validity.status.size(); ++f)
+    if (needs_support(standing.validity.status[f], allow_dangling)) faces.push_back(static_cast<std::int32_t>(f));
+  return faces;
+}
+
+// One round of seed §4.4: supports for the given invalid faces, chosen greedily in their order,
+// widened, never overlapping. Returns the chosen supports (not yet painted).
+std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const Standing& standing,
+                                       const std::vector<std::int32_t>& invalid, const SupportOptions& options) {
+  const CandidateFinder finder(maps, slices, options.split_cost_mm);
+  Grid<std::uint8_t> claimed(slices.face.cols, slices.face.rows, 0);
+  std::vector<Candidate> chosen;
+  // Seed: an edge already folded to a face is not supported again; a floating face gets both. A
+  // support chosen in this round joins the target's facing edge too, so that one is not supported
+  // again from the other side.
+  std::vector<std::uint8_t> top_joined = standing.fold_on_top, bottom_joined = standing.fold_on_bottom;
+  // First the seed's rule: unjoined edges only. If that finds nothing, faces whose every edge is
+  // folded but which hang from one plane only (a staircase standing on the floor, reaching
+  // nowhere) are supported on the side of the missing plane: up towards the back plane when no
+  // fold path reaches it, down towards the floor likewise.
+  for (const bool by_missing_plane : {false, true}) {
+    if (by_missing_plane && !chosen.empty()) break;
+    for (const std::int32_t f : invalid) {
+      const auto i = static_cast<std::size_t>(f);
+      for (const bool up : {true, false}) {
+        const bool wanted = by_missing_plane ? !(up ? standing.validity.in_X[i] : standing.validity.in_Y[i])
+                                             : !(up ? top_joined[i] : bottom_joined[i]);
+        if (!wanted) continue;
+        std::vector<Candidate> candidates = finder.from_edge(f, up);
+        std::ranges::sort(candidates, [](const Candidate& a, const Candidate& b) {
+          return a.cost != b.cost ? a.cost < b.cost : a.c0 < b.c0;
+        });
+        for (Candidate& s : candidates) {
+          if (claimed_anywhere(claimed, s.c0, s.c1, s.r0, s.r1)) continue;
+          widen(slices.face, claimed, s);
+          for (int r = s.r0; r < s.r1; ++r)
+            for (int c = s.c0; c < s.c1; ++c) claimed(c, r) = 1;
+          chosen.push_back(s);
+          (up ? top_joined[i] : bottom_joined[i]) = 1;
+          (up ? bottom_joined[static_cast<std::size_t>(s.target)] : top_joined[static_cast<std::size_t>(s.target)]) = 1;
+          break;
         }
       }
     }
-    if (chosen.empty()) {
-      result.report.stop_reason = std::to_string(invalid.size()) + " faces invalid and no support reaches them";
-      break;
+  }
+  return chosen;
+}
+
+void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid, double tolerance, SliceResult& slices) {
+  for (const Candidate& s : chosen) {
+    const auto id = static_cast<std::int32_t>(slices.faces.size());
+    slices.faces.push_back({s.orientation, s.depth_mm, slices.faces[static_cast<std::size_t>(s.face)].segment, 0, true});
+    for (int r = s.r0; r < s.r1; ++r)
+      for (int c = s.c0; c < s.c1; ++c) slices.face(c, r) = id;
+  }
+  merge_coplanar_faces(slices);
+  align_folds_to_lines(slices, grid, tolerance);
+}
+
+}  // namespace
+
+Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& sheet, const PlanOptions& plan_options,
+                       const SupportOptions& options) {
+  Supported result;
+  SupportReport& report = result.report;
+  report.round_bound = slices.face.cols / std::max(1, slices.block_px) + 1;
+  std::mt19937 random(options.seed);
+  const double tolerance = fold_snap_tolerance_mm(plan_options, slices, maps.grid);
+  // The verdict of the raster graph, confirmed by the exact plan whenever the raster graph sees
+  // nothing left to do: the exact plan always has the last word.
+  bool exact = false;
+  Standing standing;
+  auto settle = [&] {
+    standing = raster_standing(maps.grid, slices, aligned_fold_tolerance_mm(maps.grid));
+    exact = false;
+    if (unsupported(standing, options.allow_dangling).empty()) {
+      result.plan = build_plan(maps, slices, sheet, plan_options);
+      ++report.exact_builds;
+      standing = standing_of(result.plan);
+      exact = true;
     }
-    for (const Candidate& s : chosen) {
-      const auto id = static_cast<std::int32_t>(slices.faces.size());
-      slices.faces.push_back({s.orientation, s.depth_mm, slices.faces[static_cast<std::size_t>(s.face)].segment, 0, true});
-      for (int r = s.r0; r < s.r1; ++r)
-        for (int c = s.c0; c < s.c1; ++c) slices.face(c, r) = id;
+  };
+  // Rounds of supports until every face stands or they stop helping; returns why they stopped.
+  auto support_rounds = [&]() -> std::string {
+    std::size_t fewest_invalid = SIZE_MAX;
+    int rounds_without_progress = 0;
+    for (;;) {
+      std::vector<std::int32_t> invalid = unsupported(standing, options.allow_dangling);
+      if (invalid.empty()) return {};
+      // Supports that split other faces can leave as many invalid faces as they fixed: give up
+      // when three rounds in a row made no progress.
+      if (invalid.size() < fewest_invalid) fewest_invalid = invalid.size(), rounds_without_progress = 0;
+      else if (++rounds_without_progress >= 3)
+        return std::to_string(invalid.size()) + " faces still invalid: no progress in 3 rounds";
+      if (report.rounds >= report.round_bound)
+        return std::to_string(invalid.size()) + " faces still invalid after " + std::to_string(report.round_bound) +
+               " rounds (the loop's bound)";
+      ++report.rounds;
+      std::shuffle(invalid.begin(), invalid.end(), random);
+      const std::vector<Candidate> chosen = choose_supports(maps, slices, standing, invalid, options);
+      if (chosen.empty()) return std::to_string(invalid.size()) + " faces invalid and no support reaches them";
+      report.supports += static_cast<int>(chosen.size());
+      paint_supports(chosen, maps.grid, tolerance, slices);
+      settle();
     }
-    result.report.supports += static_cast<int>(chosen.size());
+  };
+  settle();
+  report.stop_reason = support_rounds();
+  report.converged = report.stop_reason.empty();
+  // The last resort: the smaller half of the faces no support holds are cut out of the sheet (holes,
+  // reported as "removed"). That can open the way for supports to the larger ones, so the rounds
+  // resume. Every removal shrinks the plan, so this ends.
+  while (options.cut_out_unsupported && !unsupported(standing, options.allow_dangling).empty()) {
+    std::vector<std::int32_t> invalid = unsupported(standing, options.allow_dangling);
+    const auto pixels = [&](std::int32_t f) { return slices.faces[static_cast<std::size_t>(f)].pixels; };
+    std::ranges::sort(invalid, [&](std::int32_t a, std::int32_t b) { return pixels(a) != pixels(b) ? pixels(a) < pixels(b) : a < b; });
+    const std::int64_t limit = pixels(invalid[invalid.size() / 2]);
+    for (const std::int32_t f : invalid)
+      if (pixels(f) <= limit) {
+        slices.faces[static_cast<std::size_t>(f)].hole = true;
+        ++report.cut_out;
+      }
     merge_coplanar_faces(slices);
+    settle();
+    support_rounds();
+  }
+  if (!exact) {
     result.plan = build_plan(maps, slices, sheet, plan_options);
+    ++report.exact_builds;
   }
   result.slices = std::move(slices);
   return result;

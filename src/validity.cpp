@@ -38,6 +38,7 @@ std::string_view to_string(FaceStatus status) {
     case FaceStatus::Floating: return "floating";
     case FaceStatus::Dangling: return "dangling";
     case FaceStatus::Invalid: return "invalid";
+    case FaceStatus::Removed: return "removed";
   }
   return "?";
 }
@@ -102,6 +103,10 @@ Validity validate(const FaceGraph& graph) {
   v.status.assign(n, FaceStatus::Valid);
   for (std::size_t f = 2; f < n; ++f) {
     FaceStatus& s = v.status[f];
+    if (f < graph.holes.size() && graph.holes[f]) {
+      s = FaceStatus::Removed;
+      continue;
+    }
     if (held[f] && v.fold_lines[f] >= 2) continue;
     if (!v.in_X[f] && !v.in_Y[f]) {  // no chain of folds reaches the card
       s = FaceStatus::Floating;
@@ -131,6 +136,7 @@ Validity validate(const FaceGraph& graph) {
       case FaceStatus::Floating: ++v.floating; break;
       case FaceStatus::Dangling: ++v.dangling; break;
       case FaceStatus::Invalid: ++v.invalid; break;
+      case FaceStatus::Removed: ++v.removed; break;
     }
   return v;
 }

@@ -11,7 +11,7 @@ constexpr std::int32_t kMainFold = 100;  // the line Y = 0 between back plane an
 
 FaceGraph graph(std::int32_t faces, std::vector<Fold> folds) {
   folds.push_back({0, 1, kMainFold});
-  return {faces, std::move(folds)};
+  return {faces, std::move(folds), {}};
 }
 
 TEST(Validity, BoxAgainstTheBackPlaneIsValid) {

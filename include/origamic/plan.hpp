@@ -61,6 +61,15 @@ struct Plan {
   bool simplified = false;              // every cut simplified, every fold candidate snapped
 };
 
+/// How far from its fold line a V/H boundary may run and still become that fold, in mm.
+inline double fold_snap_tolerance_mm(const PlanOptions& options, const SliceResult& slices, const PixelGrid& grid) {
+  return options.fold_snap_fraction_of_W * slices.min_strip_mm + 1 / grid.px_per_mm;
+}
+
+/// After align_folds_to_lines, how far from its fold line an aligned boundary lies at most: half a
+/// pixel, and a hair for the rounding of Y.
+inline double aligned_fold_tolerance_mm(const PixelGrid& grid) { return 0.5 / grid.px_per_mm + 1e-9; }
+
 /// Builds the exact plan from the raster plan (sheet in mm). Deterministic. Not reentrant: the exact
 /// numbers are built without thread safety (see exact_plan.cpp), so one call at a time per process.
 Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& sheet, const PlanOptions& options);

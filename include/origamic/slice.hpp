@@ -20,6 +20,7 @@ struct RasterFace {
   std::int32_t segment = 0;     // the segment it was sliced from
   std::int64_t pixels = 0;
   bool support = false;         // added by the support stage (seed §4.4), not sliced from the model
+  bool hole = false;            // cut out of the sheet: a face no support could hold, given up
 };
 
 inline constexpr std::int32_t kBackFace = 0;   // V(0)
@@ -62,6 +63,13 @@ SliceResult slice(const RasterMaps& maps, const Segmentation& segmentation, cons
 /// removed thin face or a support had parted them). Faces left without pixels are dropped, except
 /// the back plane and the floor; ids are renumbered in order and pixel counts recomputed.
 void merge_coplanar_faces(SliceResult& result);
+
+/// Seed §4.5 on the raster: where a V(d) face and an H(h) face meet one above the other within
+/// `tolerance_mm` of their fold line Y = h - d, the boundary moves to the pixel boundary nearest
+/// that line, column by column, as long as both faces keep a pixel in the column. The exact plan
+/// then moves it onto the line by under half a pixel and cannot cross a neighbouring boundary on
+/// the way. Pixel counts are kept up to date.
+void align_folds_to_lines(SliceResult& result, const PixelGrid& grid, double tolerance_mm);
 
 /// Per pixel |depth of its pop-up face - depth of the model| in mm along the 45-degree ray, for
 /// model pixels; -1 elsewhere. ShapeError summarises it.

@@ -21,14 +21,19 @@ struct SupportOptions {
   // c(s) = length + corner + split (seed §4.4): a support that cuts through a third face costs this
   // much more, so it is chosen only when nothing else reaches.
   double split_cost_mm = 1000;
+  // When supports run out, cut the faces they could not hold out of the sheet (holes, reported as
+  // "removed") so that what is left stands; off, such faces stay in the plan, reported invalid.
+  bool cut_out_unsupported = true;
 };
 
 struct SupportReport {
   int supports = 0;      // support strips added, before widening merged any
-  int rounds = 0;        // exact plans rebuilt
+  int rounds = 0;        // rounds of supports chosen
+  int exact_builds = 0;  // exact plans built to confirm the raster graph's verdict
   int round_bound = 0;   // the loop's bound: one round per W-wide column of the sheet, plus one
   bool converged = false;
-  std::string stop_reason;  // empty when converged
+  std::string stop_reason;  // why supports alone did not make every face stand; empty when they did
+  int cut_out = 0;          // faces cut out of the sheet as the last resort
 };
 
 struct Supported {

@@ -15,6 +15,7 @@ enum class FaceStatus : std::uint8_t {
   Floating,  // no chain of folds joins it to the back plane or the floor
   Dangling,  // all its folds on one line: it swings about it
   Invalid,   // any other face that is not held
+  Removed,   // cut out of the sheet (a hole): no support could hold it
 };
 
 std::string_view to_string(FaceStatus status);
@@ -30,6 +31,7 @@ struct Fold {
 struct FaceGraph {
   std::int32_t faces = 2;
   std::vector<Fold> folds;
+  std::vector<std::uint8_t> holes;  // per face, empty or 1 for a face cut out of the sheet: Removed
 };
 
 struct Validity {
@@ -37,7 +39,7 @@ struct Validity {
   std::vector<bool> in_X;          // reachable from the back plane without the floor
   std::vector<bool> in_Y;          // reachable from the floor without the back plane
   std::vector<int> fold_lines;     // distinct fold lines per face
-  int valid = 0, indirect = 0, floating = 0, dangling = 0, invalid = 0;  // over faces 2 ..
+  int valid = 0, indirect = 0, floating = 0, dangling = 0, invalid = 0, removed = 0;  // over faces 2 ..
 
   /// Every face valid or indirect (the seed counts indirect faces as valid features).
   bool ok() const { return floating + dangling + invalid == 0; }
