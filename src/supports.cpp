@@ -272,15 +272,17 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
   // nothing left to do: the exact plan always has the last word.
   bool exact = false;
   Standing standing;
+  // Rounds run on the raster graph; the exact plan, built when they end, has the last word and
+  // the next rounds start from its verdict.
   auto settle = [&] {
     standing = raster_standing(maps.grid, slices, aligned_fold_tolerance_mm(maps.grid));
     exact = false;
-    if (unsupported(standing, options.allow_dangling).empty()) {
-      result.plan = build_plan(maps, slices, sheet, plan_options);
-      ++report.exact_builds;
-      standing = standing_of(result.plan);
-      exact = true;
-    }
+  };
+  auto confirm = [&] {
+    result.plan = build_plan(maps, slices, sheet, plan_options);
+    ++report.exact_builds;
+    standing = standing_of(result.plan);
+    exact = true;
   };
   // Rounds of supports until every face stands or they stop helping; returns why they stopped.
   auto support_rounds = [&]() -> std::string {
@@ -306,17 +308,37 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
       settle();
     }
   };
+  std::int64_t model_pixels = 0;
+  for (std::size_t f = 2; f < slices.faces.size(); ++f) model_pixels += slices.faces[f].pixels;
+  std::int64_t cut_out_pixels = 0;
+  std::size_t fewest_exact = SIZE_MAX;
   settle();
-  report.stop_reason = support_rounds();
-  report.converged = report.stop_reason.empty();
-  // The last resort: the smaller half of the faces no support holds are cut out of the sheet (holes,
-  // reported as "removed"). That can open the way for supports to the larger ones, so the rounds
-  // resume. Every removal shrinks the plan, so this ends.
-  while (options.cut_out_unsupported && !unsupported(standing, options.allow_dangling).empty()) {
+  for (;;) {
+    const std::string why = support_rounds();
+    confirm();
     std::vector<std::int32_t> invalid = unsupported(standing, options.allow_dangling);
+    if (invalid.empty()) break;
+    report.stop_reason = why.empty() ? std::to_string(invalid.size()) + " faces invalid in the exact plan" : why;
+    // The exact plan found fewer invalid faces than last time: another pass of rounds from its word.
+    const bool progress = invalid.size() < fewest_exact;
+    fewest_exact = std::min(fewest_exact, invalid.size());
+    if (progress && report.rounds < report.round_bound) continue;
+    // The last resort: the smaller half of the faces no support holds are cut out of the sheet
+    // (holes, reported as "removed"). That can open the way for supports to the larger ones, so
+    // the rounds resume. A card missing more than a quarter of its model is no likeness: then the
+    // plan stays invalid, with the reason.
+    if (!options.cut_out_unsupported) break;
     const auto pixels = [&](std::int32_t f) { return slices.faces[static_cast<std::size_t>(f)].pixels; };
     std::ranges::sort(invalid, [&](std::int32_t a, std::int32_t b) { return pixels(a) != pixels(b) ? pixels(a) < pixels(b) : a < b; });
     const std::int64_t limit = pixels(invalid[invalid.size() / 2]);
+    std::int64_t more = 0;
+    for (const std::int32_t f : invalid)
+      if (pixels(f) <= limit) more += pixels(f);
+    if (4 * (cut_out_pixels + more) > model_pixels) {
+      report.stop_reason += "; cutting them out would remove over a quarter of the model";
+      break;
+    }
+    cut_out_pixels += more;
     for (const std::int32_t f : invalid)
       if (pixels(f) <= limit) {
         slices.faces[static_cast<std::size_t>(f)].hole = true;
@@ -324,12 +346,9 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
       }
     merge_coplanar_faces(slices);
     settle();
-    support_rounds();
   }
-  if (!exact) {
-    result.plan = build_plan(maps, slices, sheet, plan_options);
-    ++report.exact_builds;
-  }
+  report.converged = report.cut_out == 0 && unsupported(standing, options.allow_dangling).empty();
+  if (report.converged) report.stop_reason.clear();
   result.slices = std::move(slices);
   return result;
 }

@@ -68,7 +68,7 @@ inline double fold_snap_tolerance_mm(const PlanOptions& options, const SliceResu
 
 /// After align_folds_to_lines, how far from its fold line an aligned boundary lies at most: half a
 /// pixel, and a hair for the rounding of Y.
-inline double aligned_fold_tolerance_mm(const PixelGrid& grid) { return 0.5 / grid.px_per_mm + 1e-9; }
+inline double aligned_fold_tolerance_mm(const PixelGrid& grid) { return 1 / grid.px_per_mm + 1e-9; }
 
 /// Builds the exact plan from the raster plan (sheet in mm). Deterministic. Not reentrant: the exact
 /// numbers are built without thread safety (see exact_plan.cpp), so one call at a time per process.
