@@ -56,8 +56,8 @@ struct DrawnPlan {
   int perforated_runs = 0;       // perforated: stretches of fold between insets, each laid out alone
 };
 
-/// The printed pattern of a fold kind in mm, on/off from a dash: valley dashed {2, 1}, mountain
-/// dash-dot {2, 0.75, 0.5, 0.75}. The same period (4 mm) for both, so they differ only in the dot.
+/// The printed pattern of a fold kind in mm, on/off from a dash: valley dashed {2, 1} (period
+/// 3 mm), mountain dash-dot {2, 0.75, 0.5, 0.75} (period 4 mm).
 std::span<const double> fold_dash_pattern(LineKind fold);
 
 /// One fold polyline drawn in a style. Score: the polyline, solid. Dashed: the polyline with its
