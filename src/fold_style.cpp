@@ -20,7 +20,8 @@ using Interval = std::pair<double, double>;
 constexpr double kValleyDash[] = {2.0, 1.0};
 constexpr double kMountainDash[] = {2.0, 0.75, 0.5, 0.75};
 
-// Runs and dashes shorter than this (mm) are dropped: a laser would only burn a dot there.
+// Runs and dashes shorter than this (mm) are rounding slivers (of touching insets, of a pattern's
+// end), not drawn.
 constexpr double kNegligible_mm = 1e-6;
 
 double distance(PlanPoint a, PlanPoint b) { return std::hypot(b.X - a.X, b.Y - a.Y); }
@@ -77,7 +78,8 @@ std::vector<double> arc_lengths(const std::vector<PlanPoint>& points) {
 }
 
 // The piece of a polyline between arc lengths from and to.
-std::vector<PlanPoint> piece(const std::vector<PlanPoint>& points, const std::vector<double>& s, double from, double to) {
+std::vector<PlanPoint> piece(const std::vector<PlanPoint>& points, const std::vector<double>& s, double from,
+                             double to) {
   auto at = [&](double t) {
     const std::size_t i = std::min<std::size_t>(
         static_cast<std::size_t>(std::upper_bound(s.begin(), s.end(), t) - s.begin()), points.size() - 1);
@@ -127,10 +129,14 @@ std::vector<double> fitted(std::span<const double> pattern, double L) {
 
 Layer layer_of(LineKind kind, FoldStyle style) {
   switch (kind) {
-    case LineKind::Mountain: return style == FoldStyle::Perforated ? Layer::PerfMountain : Layer::Mountain;
-    case LineKind::Valley: return style == FoldStyle::Perforated ? Layer::PerfValley : Layer::Valley;
-    case LineKind::Cut: return Layer::Cut;
-    case LineKind::Outline: return Layer::Outline;
+    case LineKind::Mountain:
+      return style == FoldStyle::Perforated ? Layer::PerfMountain : Layer::Mountain;
+    case LineKind::Valley:
+      return style == FoldStyle::Perforated ? Layer::PerfValley : Layer::Valley;
+    case LineKind::Cut:
+      return Layer::Cut;
+    case LineKind::Outline:
+      return Layer::Outline;
   }
   return Layer::Cut;
 }
@@ -140,14 +146,6 @@ std::string mm_text(double value) {
   std::snprintf(text, sizeof text, "%g", value);
   return text;
 }
-
-}  // namespace
-
-std::span<const double> fold_dash_pattern(LineKind fold) {
-  return fold == LineKind::Mountain ? std::span<const double>(kMountainDash) : std::span<const double>(kValleyDash);
-}
-
-namespace {
 
 struct RunStats {
   double length_mm = 0;  // of the runs left outside the insets
@@ -195,6 +193,10 @@ std::vector<DrawnLine> perforate(const PlanPolyline& fold, const std::vector<dou
 }
 
 }  // namespace
+
+std::span<const double> fold_dash_pattern(LineKind fold) {
+  return fold == LineKind::Mountain ? std::span<const double>(kMountainDash) : std::span<const double>(kValleyDash);
+}
 
 std::vector<DrawnLine> draw_fold(const PlanPolyline& fold, std::span<const PlanPolyline> cuts,
                                  const FoldStyleOptions& options) {
@@ -263,9 +265,12 @@ void check_fold_style(const FoldStyleOptions& options) {
 
 const char* fold_style_name(FoldStyle style) {
   switch (style) {
-    case FoldStyle::Score: return "score";
-    case FoldStyle::Perforated: return "perforated";
-    case FoldStyle::Dashed: return "dashed";
+    case FoldStyle::Score:
+      return "score";
+    case FoldStyle::Perforated:
+      return "perforated";
+    case FoldStyle::Dashed:
+      return "dashed";
   }
   return "score";
 }

@@ -20,13 +20,13 @@ namespace {
 constexpr double kPointsPerMm = 72.0 / 25.4;  // 1 pt = 1/72 in = 25.4/72 mm, exactly
 // 0.1 mm: the thick end of a cutter's hairline (LASER.md), still a clear line from any printer.
 constexpr double kLineWidth_mm = 0.1;
-constexpr double kPaperEdge_mm = 5;   // printers leave about 4 mm of the paper's edge unprinted
-constexpr double kSheetEdge_mm = 3;   // the legend keeps this far inside the sheet
-constexpr double kPlanClear_mm = 2;   // and this far from any plan line
-constexpr double kText_mm = 2.2;      // legend labels (6.2 pt)
-constexpr double kCaption_mm = 1.9;   // caption lines (5.4 pt)
-constexpr double kSample_mm = 12;     // length of a legend's line sample
-constexpr double kBar_mm = 10;        // the scale bar
+constexpr double kPaperEdge_mm = 5;      // printers leave about 4 mm of the paper's edge unprinted
+constexpr double kSheetEdge_mm = 3;      // the legend keeps this far inside the sheet
+constexpr double kPlanClear_mm = 2;      // and this far from any plan line
+constexpr double kText_mm = 2.2;         // legend labels (6.2 pt)
+constexpr double kCaption_mm = 1.9;      // caption lines (5.4 pt)
+constexpr double kSample_mm = 12;        // length of a legend's line sample
+constexpr double kBar_mm = 10;           // the scale bar
 constexpr double kCaptionWidth_mm = 85;  // caption lines wrap here (at ", ")
 
 struct Box {
@@ -71,8 +71,10 @@ bool meets(const Box& box, double ax, double ay, double bx, double by) {
   auto clip = [&](double p, double q) {  // p t <= q
     if (p == 0) return q >= 0;
     const double t = q / p;
-    if (p < 0) t0 = std::max(t0, t);
-    else t1 = std::min(t1, t);
+    if (p < 0)
+      t0 = std::max(t0, t);
+    else
+      t1 = std::min(t1, t);
     return t0 <= t1;
   };
   return clip(-dx, ax - box.x) && clip(dx, box.x + box.w - ax) && clip(-dy, ay - box.y) && clip(dy, box.y + box.h - ay);
@@ -92,7 +94,9 @@ struct Legend {
 Legend legend_of(const ExportOptions& options, cairo_t* cr) {
   Legend legend;
   const FoldStyleOptions& folds = options.folds;
-  const char* how = folds.style == FoldStyle::Score ? " (score)" : folds.style == FoldStyle::Perforated ? " (perforated)" : "";
+  const char* how = folds.style == FoldStyle::Score        ? " (score)"
+                    : folds.style == FoldStyle::Perforated ? " (perforated)"
+                                                           : "";
   const PlanPolyline straight{LineKind::Cut, {{0, 0}, {kSample_mm, 0}}};
   auto sample = [&](LineKind kind) {
     PlanPolyline line = straight;
@@ -101,16 +105,19 @@ Legend legend_of(const ExportOptions& options, cairo_t* cr) {
       return std::vector<DrawnLine>{{kind == LineKind::Cut ? Layer::Cut : Layer::Outline, line.points, {}}};
     return draw_fold(line, {}, folds);
   };
-  auto colour = [&](const std::vector<DrawnLine>& lines) { return rgb_of(layer_style(lines.front().layer, options.colours).rgb); };
-  for (const auto& [kind, label] : {std::pair{LineKind::Cut, std::string("cut")},
-                                    std::pair{LineKind::Mountain, std::string("mountain fold") + how},
-                                    std::pair{LineKind::Valley, std::string("valley fold") + how},
-                                    std::pair{LineKind::Outline, std::string("sheet edge")}}) {
+  auto colour = [&](const std::vector<DrawnLine>& lines) {
+    return rgb_of(layer_style(lines.front().layer, options.colours).rgb);
+  };
+  for (const auto& [kind, label] :
+       {std::pair{LineKind::Cut, std::string("cut")}, std::pair{LineKind::Mountain, std::string("mountain fold") + how},
+        std::pair{LineKind::Valley, std::string("valley fold") + how},
+        std::pair{LineKind::Outline, std::string("sheet edge")}}) {
     std::vector<DrawnLine> lines = sample(kind);
     legend.entries.push_back({label, lines, colour(lines)});
   }
   // Caption: the model, the settings wrapped at ", ", the fold style, how to print.
-  legend.caption.push_back("origamic " + std::string(version) + " plan of " + (options.model.empty() ? "a model" : options.model));
+  legend.caption.push_back("origamic " + std::string(version) + " plan of " +
+                           (options.model.empty() ? "a model" : options.model));
   cairo_set_font_size(cr, kCaption_mm);
   std::string line;
   std::string rest = options.settings;
@@ -155,8 +162,10 @@ Box lay_out(cairo_t* cr, const Legend& legend, bool wide, double x, double y, bo
     }
     const double right = label_x + text_width(cr, label, kText_mm);
     w = std::max(w, right - x);
-    if (wide) cx = right + spacing;
-    else cy += row;
+    if (wide)
+      cx = right + spacing;
+    else
+      cy += row;
   };
   for (const Legend::Entry& entry : legend.entries) {
     if (draw) {
@@ -217,10 +226,11 @@ Placement place_legend(cairo_t* cr, const Legend& legend, const DrawnPlan& drawn
   for (const bool wide : {true, false}) {  // the paper's margins: below, above, left, right of the sheet
     const Box size = lay_out(cr, legend, wide, 0, 0, false);
     const double left = std::max(kPaperEdge_mm, sheet_box.x);
-    for (const Box b : {Box{left, sheet_box.y + sheet_box.h + kPlanClear_mm, size.w, size.h},
-                        Box{left, sheet_box.y - kPlanClear_mm - size.h, size.w, size.h},
-                        Box{sheet_box.x - kPlanClear_mm - size.w, std::max(kPaperEdge_mm, sheet_box.y), size.w, size.h},
-                        Box{sheet_box.x + sheet_box.w + kPlanClear_mm, std::max(kPaperEdge_mm, sheet_box.y), size.w, size.h}})
+    for (const Box b :
+         {Box{left, sheet_box.y + sheet_box.h + kPlanClear_mm, size.w, size.h},
+          Box{left, sheet_box.y - kPlanClear_mm - size.h, size.w, size.h},
+          Box{sheet_box.x - kPlanClear_mm - size.w, std::max(kPaperEdge_mm, sheet_box.y), size.w, size.h},
+          Box{sheet_box.x + sheet_box.w + kPlanClear_mm, std::max(kPaperEdge_mm, sheet_box.y), size.w, size.h}})
       if (fits_page(b)) return {b, wide, false};
   }
   for (const bool wide : {true, false}) {  // the sheet's corners: bottom left, bottom right, top left, top right
@@ -257,9 +267,9 @@ PageSize pdf_page(const Sheet& sheet, Paper paper) {
   const PageSize size = paper == Paper::A4 ? PageSize{210, 297} : PageSize{215.9, 279.4};
   if (sheet.width_mm <= size.width_mm && sheet.height_mm <= size.height_mm) return size;
   if (sheet.width_mm <= size.height_mm && sheet.height_mm <= size.width_mm) return {size.height_mm, size.width_mm};
-  throw InputError("--paper: the " + number(sheet.width_mm) + "x" + number(sheet.height_mm) + " mm sheet does not fit on " +
-                   (paper == Paper::A4 ? "A4" : "Letter") + " paper (" + number(size.width_mm) + "x" +
-                   number(size.height_mm) + " mm) either way up");
+  throw InputError("--paper: the " + number(sheet.width_mm) + "x" + number(sheet.height_mm) +
+                   " mm sheet does not fit on " + (paper == Paper::A4 ? "A4" : "Letter") + " paper (" +
+                   number(size.width_mm) + "x" + number(size.height_mm) + " mm) either way up");
 }
 
 void check_export_options(const ExportOptions& options, const Sheet& sheet) {

@@ -67,8 +67,10 @@ std::string encode_png(const std::string& name, int width, int height, std::span
     chunks[i].compression = ascii ? PNG_TEXT_COMPRESSION_NONE : PNG_ITXT_COMPRESSION_NONE;
     chunks[i].key = const_cast<char*>(texts[i].keyword.c_str());
     chunks[i].text = const_cast<char*>(texts[i].text.c_str());
-    if (ascii) chunks[i].text_length = texts[i].text.size();
-    else chunks[i].itxt_length = texts[i].text.size();
+    if (ascii)
+      chunks[i].text_length = texts[i].text.size();
+    else
+      chunks[i].itxt_length = texts[i].text.size();
   }
   std::vector<png_bytep> rows(static_cast<std::size_t>(height));
   for (std::size_t y = 0; y < rows.size(); ++y)
@@ -76,8 +78,9 @@ std::string encode_png(const std::string& name, int width, int height, std::span
   std::string bytes;
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
-  const bool ok = info && write_rgb(png, info, &bytes, width, height, rows.data(), chunks.data(),
-                                    static_cast<int>(chunks.size()), static_cast<png_uint_32>(std::lround(px_per_mm * 1000)));
+  const bool ok =
+      info && write_rgb(png, info, &bytes, width, height, rows.data(), chunks.data(), static_cast<int>(chunks.size()),
+                        static_cast<png_uint_32>(std::lround(px_per_mm * 1000)));
   png_destroy_write_struct(&png, &info);
   if (!ok) throw OutputError(name + ": cannot encode PNG");
   return bytes;

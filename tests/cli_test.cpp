@@ -51,7 +51,7 @@ TEST(Cli, HelpAndVersion) {
   const CommandRun design_help = run("design --help");
   EXPECT_EQ(design_help.status, 0);
   for (const char* option : {"--card", "--up", "--rotate", "--scale", "--offset", "--margin", "--px-per-mm",
-                             "--dump-maps", "--out"})
+                             "--dump-maps", "--out", "--fold-style", "--perf", "--fold-inset", "--paper"})
     EXPECT_NE(design_help.output.find(option), std::string::npos) << option;
   const CommandRun version = run("--version");
   EXPECT_EQ(version.status, 0);

@@ -81,7 +81,8 @@ TEST(FoldStyle, PerforationsKeepTheInsetFromCutsAtTheEndsAndAcrossTheMiddle) {
 
 TEST(FoldStyle, PerforationOfARunShorterThanACutIsTheWholeRun) {
   const PlanPolyline fold{LineKind::Mountain, {{10, 0}, {11.5, 0}}};
-  const std::vector<PlanPolyline> cuts = {{LineKind::Cut, {{10, 0}, {10, 5}}}, {LineKind::Cut, {{11.5, 0}, {11.5, -5}}}};
+  const std::vector<PlanPolyline> cuts = {{LineKind::Cut, {{10, 0}, {10, 5}}},
+                                          {LineKind::Cut, {{11.5, 0}, {11.5, -5}}}};
   FoldStyleOptions options;
   options.style = FoldStyle::Perforated;
   options.perf_cut_mm = 2;

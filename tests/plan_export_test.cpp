@@ -9,10 +9,9 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
-
-#include <nlohmann/json.hpp>
 
 #include "helpers.hpp"
 #include "origamic/design.hpp"
@@ -134,8 +133,9 @@ Bar find_scale_bar(const Image& image, double px_per_mm) {
 // at 2540 dpi (0.01 mm a pixel; poppler snaps filled rectangles to whole pixels).
 double bar_length_mm(const std::filesystem::path& pdf, const Bar& bar, const test::TempDir& dir) {
   const int fine = 10;  // 2540 dpi / 254 dpi
-  const Image image = render(pdf, 2540, dir,
-                             {(bar.col_lo - 20) * fine, (bar.row_lo + bar.row_hi) / 2 * fine, (bar.col_hi - bar.col_lo + 40) * fine, 1});
+  const Image image = render(
+      pdf, 2540, dir,
+      {(bar.col_lo - 20) * fine, (bar.row_lo + bar.row_hi) / 2 * fine, (bar.col_hi - bar.col_lo + 40) * fine, 1});
   int lo = -1, hi = -1;
   for (int x = 0; x < image.width; ++x)
     if (image.darkness(x, 0) >= 0.5) (lo < 0 ? lo : hi) = x, hi = x;
@@ -169,7 +169,8 @@ double segment_distance(const Seg& a, const Seg& b) {
 
 std::vector<Seg> segs(const nlohmann::json& list) {
   std::vector<Seg> out;
-  for (const auto& s : list) out.push_back({s[0].get<double>(), s[1].get<double>(), s[2].get<double>(), s[3].get<double>()});
+  for (const auto& s : list)
+    out.push_back({s[0].get<double>(), s[1].get<double>(), s[2].get<double>(), s[3].get<double>()});
   return out;
 }
 
@@ -237,9 +238,9 @@ TEST(PlanExport, PdfPageIsTheSheetOrTheChosenPaperReadBackByPdfinfo) {
   const Plan small = plan_of_oa_mesh(test::box({40, 0, 0}, {110, 30, 20}), Sheet{150.5, 201.3});
   const Plan wide = plan_of_oa_mesh(test::box({100, 0, 0}, {180, 30, 20}), Sheet{270, 200});
   const std::vector<std::pair<const Plan*, Case>> cases = {
-      {&a4_sheet, {Paper::Sheet, 210, 297}},      {&a4_sheet, {Paper::A4, 210, 297}},
-      {&small, {Paper::Sheet, 150.5, 201.3}},     {&small, {Paper::A4, 210, 297}},
-      {&small, {Paper::Letter, 215.9, 279.4}},    {&wide, {Paper::A4, 297, 210}},
+      {&a4_sheet, {Paper::Sheet, 210, 297}},   {&a4_sheet, {Paper::A4, 210, 297}},
+      {&small, {Paper::Sheet, 150.5, 201.3}},  {&small, {Paper::A4, 210, 297}},
+      {&small, {Paper::Letter, 215.9, 279.4}}, {&wide, {Paper::A4, 297, 210}},
       {&wide, {Paper::Letter, 279.4, 215.9}},
   };
   for (const auto& [plan, c] : cases) {
@@ -358,7 +359,8 @@ TEST_F(HousePlan, PerforationsKeepClearOfEveryCutAndCutTheirShareOfEachFold) {
   double fold_mm = 0;
   for (const Fold& f : folds) fold_mm += f.hi - f.lo;
   for (const auto& [cut, gap, inset] : {std::tuple{1.0, 1.0, 0.5}, std::tuple{1.5, 0.8, 0.8}}) {
-    SCOPED_TRACE("--perf " + std::to_string(cut) + "," + std::to_string(gap) + " --fold-inset " + std::to_string(inset));
+    SCOPED_TRACE("--perf " + std::to_string(cut) + "," + std::to_string(gap) + " --fold-inset " +
+                 std::to_string(inset));
     ExportOptions options = exports(FoldStyle::Perforated);
     options.folds.perf_cut_mm = cut, options.folds.perf_gap_mm = gap, options.folds.inset_mm = inset;
     write_files({{dir / "plan.dxf", plan_dxf(house(), options)}, {dir / "plan.svg", plan_svg(house(), options)}});
@@ -368,24 +370,31 @@ TEST_F(HousePlan, PerforationsKeepClearOfEveryCutAndCutTheirShareOfEachFold) {
     EXPECT_FALSE(back["dxf"].contains("VALLEY"));
     double perforated = 0;
     int short_cuts = 0;
-    for (const auto& [layer, kind] : {std::pair{"PERF_MOUNTAIN", LineKind::Mountain}, std::pair{"PERF_VALLEY", LineKind::Valley}}) {
+    for (const auto& [layer, kind] :
+         {std::pair{"PERF_MOUNTAIN", LineKind::Mountain}, std::pair{"PERF_VALLEY", LineKind::Valley}}) {
       ASSERT_TRUE(back["dxf"].contains(layer)) << layer;
       EXPECT_EQ(back["dxf_types"][layer], nlohmann::json({{"LINE", back["dxf"][layer].size()}})) << "separate segments";
       EXPECT_EQ(back["svg"][layer].size(), back["dxf"][layer].size()) << layer << " in the SVG";
       for (const Seg& s : segs(back["dxf"][layer])) {
         // On a fold of its kind, exactly CUT long unless its whole run is shorter.
-        EXPECT_TRUE(std::ranges::any_of(folds, [&](const Fold& f) {
-          return f.kind == kind && std::abs(s.y1 - f.Y) < 1e-9 && std::abs(s.y2 - f.Y) < 1e-9 &&
-                 std::min(s.x1, s.x2) >= f.lo - 1e-9 && std::max(s.x1, s.x2) <= f.hi + 1e-9;
-        })) << layer << " segment at Y " << s.y1 << " X " << s.x1;
+        EXPECT_TRUE(std::ranges::any_of(folds,
+                                        [&](const Fold& f) {
+                                          return f.kind == kind && std::abs(s.y1 - f.Y) < 1e-9 &&
+                                                 std::abs(s.y2 - f.Y) < 1e-9 && std::min(s.x1, s.x2) >= f.lo - 1e-9 &&
+                                                 std::max(s.x1, s.x2) <= f.hi + 1e-9;
+                                        }))
+            << layer << " segment at Y " << s.y1 << " X " << s.x1;
         EXPECT_LE(length(s), cut + 1e-9);
         if (length(s) < cut - 1e-9) {
           // A run shorter than a cut: on the house, only on folds shorter than a cut and two insets.
           ++short_cuts;
-          EXPECT_TRUE(std::ranges::any_of(folds, [&](const Fold& f) {
-            return std::abs(s.y1 - f.Y) < 1e-9 && std::min(s.x1, s.x2) >= f.lo - 1e-9 &&
-                   std::max(s.x1, s.x2) <= f.hi + 1e-9 && f.hi - f.lo < cut + 2 * inset + 1e-9;
-          })) << "short cut at Y " << s.y1 << " X " << s.x1;
+          EXPECT_TRUE(std::ranges::any_of(folds,
+                                          [&](const Fold& f) {
+                                            return std::abs(s.y1 - f.Y) < 1e-9 && std::min(s.x1, s.x2) >= f.lo - 1e-9 &&
+                                                   std::max(s.x1, s.x2) <= f.hi + 1e-9 &&
+                                                   f.hi - f.lo < cut + 2 * inset + 1e-9;
+                                          }))
+              << "short cut at Y " << s.y1 << " X " << s.x1;
         }
         perforated += length(s);
         double nearest = 1e300;
@@ -403,16 +412,18 @@ TEST_F(HousePlan, PerforationsKeepClearOfEveryCutAndCutTheirShareOfEachFold) {
             std::max(c.y1, c.y2) > f.Y - inset - 1 && std::min(c.y1, c.y2) < f.Y + inset + 1)
           near.push_back(c);
       for (double x = f.lo + step / 2; x < f.hi; x += step)
-        if (std::ranges::all_of(near, [&](const Seg& c) { return point_to_segment(x, f.Y, c) >= inset; })) outside += step;
+        if (std::ranges::all_of(near, [&](const Seg& c) { return point_to_segment(x, f.Y, c) >= inset; }))
+          outside += step;
     }
     const double removed = fold_mm - outside;
     EXPECT_LT(removed, 0.03 * fold_mm) << "the insets take a small part of the folds";
     EXPECT_GT(removed, 2 * inset * static_cast<double>(folds.size()) * 0.5) << "both ends of most folds meet a cut";
     EXPECT_NEAR(perforated, outside * cut / (cut + gap), 0.01 * outside * cut / (cut + gap));
-    std::printf("[ perf %g,%g inset %g ] folds %.1f mm, outside the insets %.1f mm, perforated %.1f mm (%.2f%% of "
-                "the expected %.1f mm), %d cuts shorter than CUT\n",
-                cut, gap, inset, fold_mm, outside, perforated, 100 * perforated / (outside * cut / (cut + gap)),
-                outside * cut / (cut + gap), short_cuts);
+    std::printf(
+        "[ perf %g,%g inset %g ] folds %.1f mm, outside the insets %.1f mm, perforated %.1f mm (%.2f%% of "
+        "the expected %.1f mm), %d cuts shorter than CUT\n",
+        cut, gap, inset, fold_mm, outside, perforated, 100 * perforated / (outside * cut / (cut + gap)),
+        outside * cut / (cut + gap), short_cuts);
   }
 }
 

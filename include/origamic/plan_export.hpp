@@ -74,7 +74,8 @@ void check_export_options(const ExportOptions& options, const Sheet& sheet);
 /// and fold style first; $INSUNITS = 4 (mm) and $MEASUREMENT = 1; layers in kLayerOrder (scores
 /// and perforations first, the outline last), only those used; every entity with its layer and
 /// explicit colour; one polyline per chain. Perforations and the dashes of dashed folds are
-/// separate LINE entities (real segments, shown alike by every importer; linetypes are not).
+/// separate LINE entities: real segments look the same in every program, whereas a linetype is
+/// drawn only where linetypes are implemented, at that program's line-type scale.
 /// Coordinates carry 16 decimals. \throws OutputError if dxflib cannot write its temporary file.
 std::string plan_dxf(const Plan& plan, const ExportOptions& options);
 

@@ -125,8 +125,13 @@ origamic::ExportOptions export_options(const DesignArgs& args, const Fabrication
   origamic::ExportOptions exports;
   exports.model = std::filesystem::path(args.model).filename().string();
   exports.settings = "card " + number_text(sheet.width_mm) + "x" + number_text(sheet.height_mm) + " mm, W " +
-                     number_text(args.min_strip_mm) + " mm, " + number_text(args.px_per_mm) + " px/mm, up " + args.up +
-                     (args.no_supports ? ", no supports" : ", supports seed " + std::to_string(args.seed));
+                     number_text(args.min_strip_mm) + " mm, " + number_text(args.px_per_mm) + " px/mm, up " + args.up;
+  if (args.rotate_deg != 0) exports.settings += ", rotate " + number_text(args.rotate_deg) + " deg";
+  if (args.scale) exports.settings += ", scale " + number_text(*args.scale) + " mm/unit";
+  if (!args.offset.empty()) exports.settings += ", offset " + args.offset + " mm";
+  if (!args.scale && args.offset.empty()) exports.settings += ", margin " + number_text(args.margin_mm) + " mm";
+  exports.settings += args.no_supports ? ", no supports" : ", supports seed " + std::to_string(args.seed);
+  if (args.allow_dangling) exports.settings += ", dangling allowed";
   exports.colours = args.colours == "craft" ? origamic::ColourPreset::Craft : origamic::ColourPreset::Laser;
   exports.dxf_version = args.dxf == "r2000" ? origamic::DxfVersion::R2000 : origamic::DxfVersion::R12;
   exports.folds.style = fabrication.fold_style == "perforated" ? origamic::FoldStyle::Perforated
