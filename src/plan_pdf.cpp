@@ -241,8 +241,8 @@ Placement place_legend(cairo_t* cr, const Legend& legend, const DrawnPlan& drawn
     const double bottom = std::min(sheet_box.y + sheet_box.h - kSheetEdge_mm, page.height_mm - kPaperEdge_mm) - size.h;
     for (const Box b : {Box{left, bottom, size.w, size.h}, Box{right, bottom, size.w, size.h},
                         Box{left, top, size.w, size.h}, Box{right, top, size.w, size.h}})
-      if (fits_page(b) && b.x + b.w <= sheet_box.x + sheet_box.w && b.y + b.h <= sheet_box.y + sheet_box.h &&
-          clear_of_plan(b))
+      if (fits_page(b) && b.x >= sheet_box.x && b.y >= sheet_box.y && b.x + b.w <= sheet_box.x + sheet_box.w &&
+          b.y + b.h <= sheet_box.y + sheet_box.h && clear_of_plan(b))
         return {b, wide, false};
   }
   const Box size = lay_out(cr, legend, false, 0, 0, false);
