@@ -5,20 +5,26 @@
 #include <dxflib/dl_dxf.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <memory>
 #include <sstream>
 #include <string_view>
+#include <vector>
 
 #include "origamic/error.hpp"
+#include "origamic/version.hpp"
+#include "png_image.hpp"
 
 namespace origamic {
 namespace {
 
-constexpr LineKind kDrawOrder[] = {LineKind::Mountain, LineKind::Valley, LineKind::Cut, LineKind::Outline};
 
 // Coordinates with fixed decimals: 1e-6 mm keeps every exact value to far better than 0.001 mm.
 std::string mm(double value) {
@@ -43,21 +49,66 @@ std::string xml_escaped(std::string_view text) {
   return out;
 }
 
+// Text for a one-line field of a file (DXF comments, PNG text): no line breaks.
+std::string one_line(std::string text) {
+  for (char& c : text)
+    if (c == '\n' || c == '\r') c = ' ';
+  return text;
+}
+
+// The layers the drawing uses, in the order a laser should run them.
+std::vector<Layer> used_layers(const DrawnPlan& drawn) {
+  std::vector<Layer> layers;
+  for (const Layer layer : kLayerOrder)
+    if (std::ranges::any_of(drawn.lines, [&](const DrawnLine& l) { return l.layer == layer; })) layers.push_back(layer);
+  return layers;
+}
+
+bool is_closed(const std::vector<PlanPoint>& points) {
+  return points.size() > 3 && points.front().X == points.back().X && points.front().Y == points.back().Y;
+}
+
+// Perforations and dashes are written as many short separate segments.
+bool drawn_in_pieces(const DrawnLine& line) {
+  return !line.dash_mm.empty() || line.layer == Layer::PerfMountain || line.layer == Layer::PerfValley;
+}
 
 }  // namespace
 
-LayerStyle layer_style(LineKind kind, ColourPreset preset) {
+LayerStyle layer_style(Layer layer, ColourPreset preset) {
   const bool laser = preset == ColourPreset::Laser;
-  switch (kind) {
-    case LineKind::Cut: return laser ? LayerStyle{"CUT", 7, "#000000"} : LayerStyle{"CUT", 5, "#0000ff"};
-    case LineKind::Mountain: return laser ? LayerStyle{"MOUNTAIN", 1, "#ff0000"} : LayerStyle{"MOUNTAIN", 3, "#00e000"};
-    case LineKind::Valley: return laser ? LayerStyle{"VALLEY", 5, "#0000ff"} : LayerStyle{"VALLEY", 1, "#ff0000"};
-    case LineKind::Outline: return laser ? LayerStyle{"OUTLINE", 3, "#00e000"} : LayerStyle{"OUTLINE", 7, "#000000"};
+  switch (layer) {
+    case Layer::Cut: return laser ? LayerStyle{"CUT", 7, "#000000"} : LayerStyle{"CUT", 5, "#0000ff"};
+    case Layer::Mountain: return laser ? LayerStyle{"MOUNTAIN", 1, "#ff0000"} : LayerStyle{"MOUNTAIN", 3, "#00e000"};
+    case Layer::Valley: return laser ? LayerStyle{"VALLEY", 5, "#0000ff"} : LayerStyle{"VALLEY", 1, "#ff0000"};
+    case Layer::PerfMountain: return LayerStyle{"PERF_MOUNTAIN", 6, "#ff00ff"};
+    case Layer::PerfValley: return LayerStyle{"PERF_VALLEY", 4, "#00ffff"};
+    case Layer::Outline: return laser ? LayerStyle{"OUTLINE", 3, "#00e000"} : LayerStyle{"OUTLINE", 7, "#000000"};
   }
   return {"0", 7, "#000000"};
 }
 
+LayerStyle layer_style(LineKind kind, ColourPreset preset) {
+  switch (kind) {
+    case LineKind::Cut: return layer_style(Layer::Cut, preset);
+    case LineKind::Mountain: return layer_style(Layer::Mountain, preset);
+    case LineKind::Valley: return layer_style(Layer::Valley, preset);
+    case LineKind::Outline: return layer_style(Layer::Outline, preset);
+  }
+  return layer_style(Layer::Cut, preset);
+}
+
+std::string plan_description(const Plan& plan, const ExportOptions& options) {
+  std::string text = "origamic " + std::string(version) + " plan of " + (options.model.empty() ? "a model" : options.model) +
+                     "; units mm, 1:1 (plan X along the main fold from the sheet's left edge, Y up from the main fold);"
+                     " sheet " + mm(plan.sheet.width_mm) + " x " + mm(plan.sheet.height_mm) + " mm";
+  if (!options.settings.empty()) text += "; " + options.settings;
+  return one_line(text + "; " + fold_style_summary(options.folds));
+}
+
 std::string plan_dxf(const Plan& plan, const ExportOptions& options) {
+  const DrawnPlan drawn = draw_plan(plan, options.folds);
+  const std::vector<Layer> layers = used_layers(drawn);
   // dxflib writes to a named file only: a private temporary one, read back and removed.
   std::string temp = (std::filesystem::temp_directory_path() / "origamic-dxf-XXXXXX").string();
   const int fd = ::mkstemp(temp.data());
@@ -68,10 +119,20 @@ std::string plan_dxf(const Plan& plan, const ExportOptions& options) {
     ~Remove() { std::remove(path.c_str()); }
   } remove_temp{temp};
   {
-    const DL_Codes::version version = options.dxf_version == DxfVersion::R12 ? DL_Codes::AC1009 : DL_Codes::AC1015;
+    const DL_Codes::version flavour = options.dxf_version == DxfVersion::R12 ? DL_Codes::AC1009 : DL_Codes::AC1015;
     DL_Dxf dxf;
-    std::unique_ptr<DL_WriterA> dw(dxf.out(temp.c_str(), version));
+    std::unique_ptr<DL_WriterA> dw(dxf.out(temp.c_str(), flavour));
     if (!dw || dw->openFailed()) throw OutputError("DXF: cannot write the temporary file " + temp);
+    // 999 comments: readers skip them (AutoCAD's OPEN ignores them), people and scripts read them.
+    dw->dxfString(999, "origamic plan of " + one_line(options.model.empty() ? "a model" : options.model));
+    dw->dxfString(999, "units: mm ($INSUNITS 4, $MEASUREMENT 1), scale 1:1; X along the main fold from the sheet's "
+                       "left edge, Y up from the main fold");
+    dw->dxfString(999, "sheet " + mm(plan.sheet.width_mm) + " x " + mm(plan.sheet.height_mm) + " mm");
+    if (!options.settings.empty()) dw->dxfString(999, "settings: " + one_line(options.settings));
+    dw->dxfString(999, fold_style_summary(options.folds));
+    std::string order = "layers, in cutting order:";
+    for (const Layer layer : layers) order += std::string(" ") + layer_style(layer, options.colours).name;
+    dw->dxfString(999, order);
     dxf.writeHeader(*dw);
     dw->dxfString(9, "$INSUNITS");
     dw->dxfInt(70, 4);  // millimetres
@@ -91,10 +152,10 @@ std::string plan_dxf(const Plan& plan, const ExportOptions& options) {
     dxf.writeLinetype(*dw, DL_LinetypeData("BYLAYER", "", 0, 0, 0.0));
     dxf.writeLinetype(*dw, DL_LinetypeData("CONTINUOUS", "Solid line", 0, 0, 0.0));
     dw->tableEnd();
-    dw->tableLayers(5);
+    dw->tableLayers(static_cast<int>(layers.size()) + 1);
     dxf.writeLayer(*dw, DL_LayerData("0", 0), DL_Attributes("", 7, 0, "CONTINUOUS", 1.0));
-    for (const LineKind kind : kDrawOrder) {
-      const LayerStyle style = layer_style(kind, options.colours);
+    for (const Layer layer : layers) {
+      const LayerStyle style = layer_style(layer, options.colours);
       dxf.writeLayer(*dw, DL_LayerData(style.name, 0), DL_Attributes("", style.aci, 0, "CONTINUOUS", 1.0));
     }
     dw->tableEnd();
@@ -123,18 +184,26 @@ std::string plan_dxf(const Plan& plan, const ExportOptions& options) {
     }
     dw->sectionEnd();
     dw->sectionEntities();
-    for (const LineKind kind : kDrawOrder) {
-      const LayerStyle style = layer_style(kind, options.colours);
+    auto write_polyline = [&](const std::vector<PlanPoint>& points, const DL_Attributes& attributes) {
+      const bool closed = is_closed(points);
+      const std::size_t count = points.size() - (closed ? 1 : 0);
+      dxf.writePolyline(*dw, DL_PolylineData(static_cast<int>(count), 0, 0, closed ? 1 : 0), attributes);
+      for (std::size_t i = 0; i < count; ++i) dxf.writeVertex(*dw, DL_VertexData(points[i].X, points[i].Y, 0.0, 0.0));
+      dxf.writePolylineEnd(*dw);
+    };
+    for (const Layer layer : layers) {
+      const LayerStyle style = layer_style(layer, options.colours);
       const DL_Attributes attributes(style.name, style.aci, 0, "CONTINUOUS", 1.0);
-      for (const PlanPolyline& line : plan.lines) {
-        if (line.kind != kind || line.points.size() < 2) continue;
-        const bool closed = line.points.size() > 3 && line.points.front().X == line.points.back().X &&
-                            line.points.front().Y == line.points.back().Y;
-        const std::size_t count = line.points.size() - (closed ? 1 : 0);
-        dxf.writePolyline(*dw, DL_PolylineData(static_cast<int>(count), 0, 0, closed ? 1 : 0), attributes);
-        for (std::size_t i = 0; i < count; ++i)
-          dxf.writeVertex(*dw, DL_VertexData(line.points[i].X, line.points[i].Y, 0.0, 0.0));
-        dxf.writePolylineEnd(*dw);
+      for (const DrawnLine& line : drawn.lines) {
+        if (line.layer != layer) continue;
+        if (!drawn_in_pieces(line)) {
+          write_polyline(line.points, attributes);  // one entity per chain
+          continue;
+        }
+        for (const std::vector<PlanPoint>& p : dash_pieces(line)) {
+          if (p.size() == 2) dxf.writeLine(*dw, DL_LineData(p[0].X, p[0].Y, 0.0, p[1].X, p[1].Y, 0.0), attributes);
+          else write_polyline(p, attributes);
+        }
       }
     }
     dw->sectionEnd();
@@ -154,26 +223,41 @@ std::string plan_dxf(const Plan& plan, const ExportOptions& options) {
 }
 
 std::string plan_svg(const Plan& plan, const ExportOptions& options) {
+  const DrawnPlan drawn = draw_plan(plan, options.folds);
   const double width = plan.sheet.width_mm, height = plan.sheet.height_mm, top = plan.sheet.max_Y();
+  const std::string title = "origamic plan: " + xml_escaped(options.model);
+  const std::string description = xml_escaped(plan_description(plan, options)) +
+                                  ". SVG: 1 user unit = 1 mm; SVG y = " + mm(top) + " - plan Y (the main fold is at y = " +
+                                  mm(top) + ").";
   std::ostringstream svg;
   svg << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       << "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\""
+      << " xmlns:rdf=\"http://www.w3.org/1999/02/22-rdf-syntax-ns#\" xmlns:cc=\"http://creativecommons.org/ns#\""
+      << " xmlns:dc=\"http://purl.org/dc/elements/1.1/\""
       << " width=\"" << mm(width) << "mm\" height=\"" << mm(height) << "mm\" viewBox=\"0 0 " << mm(width) << ' '
       << mm(height) << "\">\n"
-      << "<title>origamic plan: " << xml_escaped(options.model) << "</title>\n"
-      << "<desc>Units: mm, 1 user unit = 1 mm. Plan X along the main fold from the sheet's left edge;"
-      << " SVG y = " << mm(top) << " - plan Y (the main fold is at y = " << mm(top) << "). " << xml_escaped(options.settings)
-      << "</desc>\n";
-  for (const LineKind kind : kDrawOrder) {
-    const LayerStyle style = layer_style(kind, options.colours);
+      << "<title>" << title << "</title>\n"
+      << "<desc>" << description << "</desc>\n"
+      // Dublin Core in Inkscape's form, so its Document Metadata dialog shows it.
+      << "<metadata><rdf:RDF><cc:Work rdf:about=\"\"><dc:format>image/svg+xml</dc:format><dc:title>" << title
+      << "</dc:title><dc:description>" << description << "</dc:description><dc:creator><cc:Agent><dc:title>origamic "
+      << version << "</dc:title></cc:Agent></dc:creator></cc:Work></rdf:RDF></metadata>\n";
+  for (const Layer layer : used_layers(drawn)) {
+    const LayerStyle style = layer_style(layer, options.colours);
     svg << "<g id=\"" << style.name << "\" inkscape:groupmode=\"layer\" inkscape:label=\"" << style.name
         << "\" fill=\"none\" stroke=\"" << style.rgb << "\" stroke-width=\"0.0254\">\n";
-    for (const PlanPolyline& line : plan.lines) {
-      if (line.kind != kind || line.points.size() < 2) continue;
+    for (const DrawnLine& line : drawn.lines) {
+      if (line.layer != layer) continue;
       svg << "<polyline points=\"";
       for (std::size_t i = 0; i < line.points.size(); ++i)
         svg << (i ? " " : "") << mm(line.points[i].X) << ',' << mm(top - line.points[i].Y);
-      svg << "\"/>\n";
+      svg << '"';
+      if (!line.dash_mm.empty()) {
+        svg << " stroke-dasharray=\"";
+        for (std::size_t i = 0; i < line.dash_mm.size(); ++i) svg << (i ? " " : "") << mm(line.dash_mm[i]);
+        svg << '"';
+      }
+      svg << "/>\n";
     }
     svg << "</g>\n";
   }
@@ -182,6 +266,10 @@ std::string plan_svg(const Plan& plan, const ExportOptions& options) {
 }
 
 std::string plan_png(const Plan& plan, const ExportOptions& options) {
+  // The seed's figures show fold directions by pattern: the score style is previewed dashed.
+  FoldStyleOptions folds = options.folds;
+  if (folds.style == FoldStyle::Score) folds.style = FoldStyle::Dashed;
+  const DrawnPlan drawn = draw_plan(plan, folds);
   const double scale = options.preview_px_per_mm;
   const int w = static_cast<int>(std::ceil(plan.sheet.width_mm * scale));
   const int h = static_cast<int>(std::ceil(plan.sheet.height_mm * scale));
@@ -192,34 +280,45 @@ std::string plan_png(const Plan& plan, const ExportOptions& options) {
   cairo_translate(cr, 0, plan.sheet.max_Y() * scale);
   cairo_scale(cr, scale, -scale);
   cairo_set_line_width(cr, 1.0 / scale);
-  for (const LineKind kind : kDrawOrder) {
-    const double dash_dot[] = {2.0, 0.8, 0.3, 0.8}, dash[] = {1.5, 1.0};
-    if (kind == LineKind::Mountain) cairo_set_dash(cr, dash_dot, 4, 0);
-    else if (kind == LineKind::Valley) cairo_set_dash(cr, dash, 2, 0);
-    else cairo_set_dash(cr, nullptr, 0, 0);
-    if (kind == LineKind::Cut) cairo_set_source_rgb(cr, 0.86, 0, 0);
-    else if (kind == LineKind::Outline) cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
+  for (const Layer layer : kLayerOrder) {
+    if (layer == Layer::Cut) cairo_set_source_rgb(cr, 0.86, 0, 0);
+    else if (layer == Layer::Outline) cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
     else cairo_set_source_rgb(cr, 0, 0.63, 0);
-    for (const PlanPolyline& line : plan.lines) {
-      if (line.kind != kind || line.points.size() < 2) continue;
-      cairo_move_to(cr, line.points[0].X, line.points[0].Y);
-      for (std::size_t i = 1; i < line.points.size(); ++i) cairo_line_to(cr, line.points[i].X, line.points[i].Y);
+    for (const DrawnLine& line : drawn.lines) {
+      if (line.layer != layer) continue;
+      for (const std::vector<PlanPoint>& piece : dash_pieces(line)) {
+        cairo_move_to(cr, piece[0].X, piece[0].Y);
+        for (std::size_t i = 1; i < piece.size(); ++i) cairo_line_to(cr, piece[i].X, piece[i].Y);
+      }
       cairo_stroke(cr);
     }
   }
   cairo_destroy(cr);
-  std::string bytes;
-  const cairo_status_t status = cairo_surface_write_to_png_stream(
-      surface,
-      [](void* closure, const unsigned char* data, unsigned int length) {
-        static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
-        return CAIRO_STATUS_SUCCESS;
-      },
-      &bytes);
+  cairo_surface_flush(surface);
+  const cairo_status_t status = cairo_surface_status(surface);
+  if (status != CAIRO_STATUS_SUCCESS) {
+    cairo_surface_destroy(surface);
+    throw OutputError("plan PNG: cannot draw (" + std::string(cairo_status_to_string(status)) + ")");
+  }
+  // Cairo's RGB24 pixels are native-endian 32-bit 0xXXRRGGBB words; libpng takes RGB bytes.
+  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3);
+  const unsigned char* data = cairo_image_surface_get_data(surface);
+  const int stride = cairo_image_surface_get_stride(surface);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      std::uint32_t pixel;
+      std::memcpy(&pixel, data + static_cast<std::ptrdiff_t>(y) * stride + 4 * x, 4);
+      std::uint8_t* out = &rgb[(static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)) * 3];
+      out[0] = static_cast<std::uint8_t>(pixel >> 16), out[1] = static_cast<std::uint8_t>(pixel >> 8),
+      out[2] = static_cast<std::uint8_t>(pixel);
+    }
   cairo_surface_destroy(surface);
-  if (status != CAIRO_STATUS_SUCCESS) throw OutputError("plan PNG: cannot encode (" +
-                                                         std::string(cairo_status_to_string(status)) + ")");
-  return bytes;
+  return encode_png("plan PNG", w, h, rgb,
+                    {{"Title", one_line("origamic plan: " + options.model)},
+                     {"Description", plan_description(plan, options) + "; preview at " + mm(scale) +
+                                         " px/mm: cuts red, folds green (mountain dash-dot, valley dashed)"},
+                     {"Software", std::string("origamic ") + version}},
+                    scale);
 }
 
 }  // namespace origamic

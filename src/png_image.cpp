@@ -3,7 +3,11 @@
 
 #include <png.h>
 
+#include <algorithm>
+#include <cmath>
+#include <csetjmp>
 #include <string>
+#include <vector>
 
 #include "origamic/error.hpp"
 
@@ -27,6 +31,60 @@ std::string encode(const std::string& file, int width, int height, png_uint_32 f
 }
 
 }  // namespace
+
+namespace {
+
+void append(png_structp png, png_bytep data, png_size_t length) {
+  try {
+    static_cast<std::string*>(png_get_io_ptr(png))->append(reinterpret_cast<const char*>(data), length);
+  } catch (...) {  // no exception may cross libpng's C frames
+    png_error(png, "out of memory");
+  }
+}
+
+// libpng reports errors by longjmp: this frame holds no object with a destructor.
+bool write_rgb(png_structp png, png_infop info, std::string* out, int width, int height, png_bytepp rows,
+               png_textp texts, int text_count, png_uint_32 px_per_metre) {
+  if (setjmp(png_jmpbuf(png))) return false;
+  png_set_write_fn(png, out, append, nullptr);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8, PNG_COLOR_TYPE_RGB,
+               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_set_text(png, info, texts, text_count);
+  png_set_pHYs(png, info, px_per_metre, px_per_metre, PNG_RESOLUTION_METER);
+  png_set_rows(png, info, rows);
+  png_write_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
+  return true;
+}
+
+}  // namespace
+
+std::string encode_png(const std::string& name, int width, int height, std::span<const std::uint8_t> rgb,
+                       const std::vector<PngText>& texts, double px_per_mm) {
+  std::vector<png_text> chunks(texts.size());
+  for (std::size_t i = 0; i < texts.size(); ++i) {
+    // tEXt is Latin-1: text with other bytes (UTF-8 model names) goes in an iTXt chunk instead.
+    const bool ascii = std::ranges::all_of(texts[i].text, [](char c) { return static_cast<unsigned char>(c) < 0x80; });
+    chunks[i].compression = ascii ? PNG_TEXT_COMPRESSION_NONE : PNG_ITXT_COMPRESSION_NONE;
+    chunks[i].key = const_cast<char*>(texts[i].keyword.c_str());
+    chunks[i].text = const_cast<char*>(texts[i].text.c_str());
+    if (ascii)
+      chunks[i].text_length = texts[i].text.size();
+    else
+      chunks[i].itxt_length = texts[i].text.size();
+  }
+  std::vector<png_bytep> rows(static_cast<std::size_t>(height));
+  for (std::size_t y = 0; y < rows.size(); ++y)
+    rows[y] = const_cast<png_bytep>(rgb.data() + y * 3 * static_cast<std::size_t>(width));
+  std::string bytes;
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  const bool ok =
+      info && write_rgb(png, info, &bytes, width, height, rows.data(), chunks.data(), static_cast<int>(chunks.size()),
+                        static_cast<png_uint_32>(std::lround(px_per_mm * 1000)));
+  png_destroy_write_struct(&png, &info);
+  if (!ok) throw OutputError(name + ": cannot encode PNG");
+  return bytes;
+}
 
 std::string encode_png(const std::string& file, int width, int height, PngFormat format,
                        std::span<const std::uint8_t> pixels) {

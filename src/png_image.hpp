@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace origamic {
 
@@ -16,5 +17,17 @@ enum class PngFormat { Gray8, Rgb8 };
 std::string encode_png(const std::string& name, int width, int height, PngFormat format,
                        std::span<const std::uint8_t> pixels);
 std::string encode_png(const std::string& name, int width, int height, std::span<const std::uint16_t> gray);
+
+/// A tEXt chunk: a PNG keyword ("Title", "Description", "Software", ...) and Latin-1 text.
+struct PngText {
+  std::string keyword;
+  std::string text;
+};
+
+/// PNG bytes of an Rgb8 image with tEXt chunks and a pHYs chunk of px_per_mm (so viewers know its
+/// size in mm), through libpng's full API (the simplified one writes no text).
+/// \throws OutputError naming `name` on failure.
+std::string encode_png(const std::string& name, int width, int height, std::span<const std::uint8_t> rgb,
+                       const std::vector<PngText>& texts, double px_per_mm);
 
 }  // namespace origamic

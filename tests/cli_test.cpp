@@ -31,6 +31,12 @@ CommandRun run(const std::string& arguments) {
   return result;
 }
 
+// A shell command other than origamic, with its status and output.
+CommandRun run_shell(const std::string& command) {
+  const test::CommandResult r = test::shell(command + " 2>&1");
+  return {r.status, r.output};
+}
+
 std::string quoted(const std::filesystem::path& p) {
   std::string text = p.string();
   text.insert(text.begin(), '\'');
@@ -45,7 +51,7 @@ TEST(Cli, HelpAndVersion) {
   const CommandRun design_help = run("design --help");
   EXPECT_EQ(design_help.status, 0);
   for (const char* option : {"--card", "--up", "--rotate", "--scale", "--offset", "--margin", "--px-per-mm",
-                             "--dump-maps", "--out"})
+                             "--dump-maps", "--out", "--fold-style", "--perf", "--fold-inset", "--paper"})
     EXPECT_NE(design_help.output.find(option), std::string::npos) << option;
   const CommandRun version = run("--version");
   EXPECT_EQ(version.status, 0);
@@ -86,7 +92,7 @@ TEST(Cli, DesignWritesTheReportAndTheMaps) {
   EXPECT_NEAR(area, 210.0 * 297.0, 1e-6);  // the faces tile the sheet
   EXPECT_LE(plan["shape_error"]["p95_W"].get<double>(), 1.0);
   // The exact plan: files beside the report, and the verdict with every face's status.
-  for (const char* name : {"house.dxf", "house.svg", "house.png"})
+  for (const char* name : {"house.dxf", "house.svg", "house.png", "house.pdf"})
     EXPECT_GT(std::filesystem::file_size(dir / "out" / name), 100u) << name;
   const auto& exact = report["plan"];
   EXPECT_TRUE(exact["exact_checks"]["arrangement_valid"].get<bool>());
@@ -107,7 +113,7 @@ TEST(Cli, AFailingOutputLeavesNoFileBehind) {
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_EQ(std::ranges::count(r.output, '\n'), 1) << r.output;
   EXPECT_NE(r.output.find("house.png"), std::string::npos) << r.output;
-  for (const char* name : {"house.json", "house.dxf", "house.svg"})
+  for (const char* name : {"house.json", "house.dxf", "house.svg", "house.pdf"})
     EXPECT_FALSE(std::filesystem::exists(dir / "out" / name)) << name;
   EXPECT_FALSE(std::filesystem::exists(dir / "maps" / "D.png"));
   std::size_t left = 0;
@@ -133,7 +139,7 @@ TEST(Cli, StrictExitsThreeForAnInvalidPlanAfterWritingIt) {
                            quoted(dir / "out"));
   EXPECT_EQ(r.status, 3) << r.output;
   EXPECT_NE(r.output.find("INVALID"), std::string::npos) << r.output;
-  for (const char* name : {"floating.json", "floating.dxf", "floating.svg", "floating.png"})
+  for (const char* name : {"floating.json", "floating.dxf", "floating.svg", "floating.png", "floating.pdf"})
     EXPECT_TRUE(std::filesystem::exists(dir / "out" / name)) << name;
 
   // The same box with its supports stands.
@@ -197,6 +203,40 @@ TEST(Cli, AbsurdOptionsExitWithStatusTwo) {
   expect_rejected(house + " --up x", "--up", "");
   expect_rejected(house + " --rotate abc", "--rotate", "");
   expect_rejected(house + " --bogus", "--bogus", "");
+}
+
+TEST(Cli, BadFabricationOptionsExitWithStatusTwo) {
+  const std::string house = quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj");
+  expect_rejected(house + " --fold-style crease", "--fold-style", "crease");
+  expect_rejected(house + " --fold-style perforated --perf 1", "--perf", "CUT,GAP");
+  expect_rejected(house + " --perf 1,x", "--perf", "CUT,GAP");
+  expect_rejected(house + " --perf 0,1", "--perf", "between 0.1 and 50 mm");
+  expect_rejected(house + " --perf 1,-2", "--perf", "between 0.1 and 50 mm");
+  expect_rejected(house + " --perf 1,inf", "--perf", "");
+  expect_rejected(house + " --fold-inset -1", "--fold-inset", "between 0 and 50 mm");
+  expect_rejected(house + " --fold-inset nan", "--fold-inset", "");
+  expect_rejected(house + " --fold-inset wide", "--fold-inset", "");
+  expect_rejected(house + " --paper a3", "--paper", "a3");
+  expect_rejected(house + " --paper letter", "--paper", "does not fit");
+  expect_rejected(house + " --card 300x200 --paper a4", "--paper", "does not fit");
+}
+
+TEST(Cli, FabricationOptionsReachTheFiles) {
+  const test::TempDir dir;
+  const CommandRun r = run("design " + quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") +
+                           " --card 180x240 --fold-style perforated --perf 1.5,0.5 --fold-inset 0.7 --paper letter --out " +
+                           quoted(dir.path));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("house.{dxf,svg,png,pdf}"), std::string::npos) << r.output;
+  const CommandRun info = run_shell("pdfinfo " + quoted(dir / "house.pdf"));
+  EXPECT_NE(info.output.find("612 x 792 pts (letter)"), std::string::npos) << info.output;
+  EXPECT_NE(info.output.find("fold style perforated (cut 1.5 mm, gap 0.5 mm, inset 0.7 mm)"), std::string::npos)
+      << info.output;
+  EXPECT_NE(info.output.find("card 180x240 mm, W 3 mm"), std::string::npos) << info.output;
+  std::ifstream dxf(dir / "house.dxf");
+  const std::string text{std::istreambuf_iterator<char>(dxf), std::istreambuf_iterator<char>()};
+  EXPECT_NE(text.find("PERF_MOUNTAIN"), std::string::npos);
+  EXPECT_EQ(text.find("\nMOUNTAIN\n"), std::string::npos) << "no score layer when perforating";
 }
 
 }  // namespace

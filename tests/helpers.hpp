@@ -38,6 +38,13 @@ void write_stl_ascii(const std::filesystem::path& file, const TriangleMesh& mesh
 void write_stl_binary(const std::filesystem::path& file, const TriangleMesh& mesh);
 void gzip_file(const std::filesystem::path& from, const std::filesystem::path& to);
 
+/// Runs a shell command; its status (-1 if it did not exit normally) and its standard output.
+struct CommandResult {
+  int status = -1;
+  std::string output;
+};
+CommandResult shell(const std::string& command);
+
 /// The folder of real models, or "" when it is not beside the project.
 std::filesystem::path models_dir();
 

@@ -6,4 +6,4 @@ cd "$(dirname "$0")/.."
 bash tools/build.sh
 out=out/house
 build/origamic design fixtures/house.obj --out "$out" --dump-maps "$out/maps"
-echo "outputs are in $(pwd)/$out: house.dxf, house.svg, house.png (the plan), house.json (report), maps/ (raster maps)"
+echo "outputs are in $(pwd)/$out: house.dxf, house.svg, house.png, house.pdf (the plan; print the PDF at 100 %), house.json (report), maps/ (raster maps)"

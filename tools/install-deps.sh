@@ -10,8 +10,8 @@ packages=(
   libopenmesh-dev libglm-dev libembree-dev libtbb-dev
   libcli11-dev nlohmann-json3-dev libpng-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libdxflib-dev libcairo2-dev
-  python3 python3-ezdxf
+  libdxflib-dev libcairo2-dev fonts-dejavu-core
+  python3 python3-ezdxf poppler-utils
 )
 
 missing=()

@@ -53,6 +53,13 @@ glm::dvec3 parse_offset(const std::string& text) {
   return v;
 }
 
+// A number as a person writes it: 3, 0.5, 210.3.
+std::string number_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
 // The model's name without folders and extensions: "dragon.ply.gz" -> "dragon".
 std::string model_name(const std::filesystem::path& file) {
   std::filesystem::path name = file.filename();
@@ -80,6 +87,65 @@ struct DesignArgs {
   std::string dxf = "r12";
 };
 
+// Fabrication options of every plan file (issue 6, for makers).
+struct FabricationArgs {
+  std::string fold_style = "score";
+  std::string perf = "1,1";
+  double fold_inset_mm = origamic::FoldStyleOptions{}.inset_mm;
+  std::string paper = "sheet";
+};
+
+void add_fabrication_options(CLI::App& design, FabricationArgs& args) {
+  design.add_option("--fold-style", args.fold_style,
+                    "folds as score (solid lines on MOUNTAIN/VALLEY), perforated (short cuts on "
+                    "PERF_MOUNTAIN/PERF_VALLEY) or dashed (printed: mountain dash-dot, valley dashed)")
+      ->check(CLI::IsMember({"score", "perforated", "dashed"}))
+      ->capture_default_str();
+  design.add_option("--perf", args.perf, "perforated folds: CUT,GAP lengths in mm")->capture_default_str();
+  design.add_option("--fold-inset", args.fold_inset_mm, "perforations keep this far from every cut, mm")
+      ->capture_default_str();
+  design.add_option("--paper", args.paper, "PDF page: sheet (the sheet itself), a4 or letter (the sheet centred)")
+      ->check(CLI::IsMember({"sheet", "a4", "letter"}))
+      ->capture_default_str();
+}
+
+// "1,1" -> perforation cut and gap in mm.
+void parse_perf(const std::string& text, origamic::FoldStyleOptions& folds) {
+  const auto comma = text.find(',');
+  const auto cut = parse_number(std::string_view(text).substr(0, comma));
+  const auto gap = comma == std::string::npos ? std::nullopt : parse_number(std::string_view(text).substr(comma + 1));
+  if (!cut || !gap) throw InputError("--perf: expected CUT,GAP in mm, such as 1,1, not '" + text + "'");
+  folds.perf_cut_mm = *cut;
+  folds.perf_gap_mm = *gap;
+}
+
+// The export options, checked against the sheet before any work is done.
+origamic::ExportOptions export_options(const DesignArgs& args, const FabricationArgs& fabrication,
+                                       const origamic::Sheet& sheet) {
+  origamic::ExportOptions exports;
+  exports.model = std::filesystem::path(args.model).filename().string();
+  exports.settings = "card " + number_text(sheet.width_mm) + "x" + number_text(sheet.height_mm) + " mm, W " +
+                     number_text(args.min_strip_mm) + " mm, " + number_text(args.px_per_mm) + " px/mm, up " + args.up;
+  if (args.rotate_deg != 0) exports.settings += ", rotate " + number_text(args.rotate_deg) + " deg";
+  if (args.scale) exports.settings += ", scale " + number_text(*args.scale) + " mm/unit";
+  if (!args.offset.empty()) exports.settings += ", offset " + args.offset + " mm";
+  if (!args.scale && args.offset.empty()) exports.settings += ", margin " + number_text(args.margin_mm) + " mm";
+  exports.settings += args.no_supports ? ", no supports" : ", supports seed " + std::to_string(args.seed);
+  if (args.allow_dangling) exports.settings += ", dangling allowed";
+  exports.colours = args.colours == "craft" ? origamic::ColourPreset::Craft : origamic::ColourPreset::Laser;
+  exports.dxf_version = args.dxf == "r2000" ? origamic::DxfVersion::R2000 : origamic::DxfVersion::R12;
+  exports.folds.style = fabrication.fold_style == "perforated" ? origamic::FoldStyle::Perforated
+                        : fabrication.fold_style == "dashed"   ? origamic::FoldStyle::Dashed
+                                                               : origamic::FoldStyle::Score;
+  parse_perf(fabrication.perf, exports.folds);
+  exports.folds.inset_mm = fabrication.fold_inset_mm;
+  exports.paper = fabrication.paper == "a4"       ? origamic::Paper::A4
+                  : fabrication.paper == "letter" ? origamic::Paper::Letter
+                                                  : origamic::Paper::Sheet;
+  origamic::check_export_options(exports, sheet);
+  return exports;
+}
+
 void add_design_options(CLI::App& design, DesignArgs& args) {
   design.add_option("MODEL", args.model, "3D model: .obj, .stl, .ply or .off, optionally .gz")->required();
   design.add_option("--card", args.card, "flat sheet WIDTHxHEIGHT in mm; the main fold halves the height")
@@ -97,7 +163,8 @@ void add_design_options(CLI::App& design, DesignArgs& args) {
   design.add_option("--px-per-mm", args.px_per_mm, "raster resolution, pixels per mm")->capture_default_str();
   design.add_option("--min-strip", args.min_strip_mm, "W: minimum strip width in mm")->capture_default_str();
   design.add_option("--out", args.out_dir,
-                    "write the plan (MODEL.dxf, MODEL.svg, MODEL.png) and the report (MODEL.json) into this folder");
+                    "write the plan (MODEL.dxf, MODEL.svg, MODEL.png, MODEL.pdf) and the report (MODEL.json) into "
+                    "this folder");
   design.add_flag("--strict", args.strict, "exit with status 3 when the plan is invalid (after writing it)");
   design.add_flag("--no-supports", args.no_supports, "leave out the supports (seed §4.4): the plan as sliced");
   design.add_flag("--allow-dangling", args.allow_dangling,
@@ -115,9 +182,10 @@ void add_design_options(CLI::App& design, DesignArgs& args) {
   design.add_option("--dump-maps", args.maps_dir, "write the maps (D, F, T, N, hit kind, segments S, subsegments SS, faces) and a plan preview as PNGs here");
 }
 
-int run_design(const DesignArgs& args) {
+int run_design(const DesignArgs& args, const FabricationArgs& fabrication) {
   origamic::DesignOptions options;
   options.sheet = parse_card(args.card);
+  const origamic::ExportOptions exports = export_options(args, fabrication, options.sheet);
   options.placement.up = args.up == "z" ? origamic::UpAxis::Z : origamic::UpAxis::Y;
   options.placement.rotate_deg = args.rotate_deg;
   options.placement.scale = args.scale;
@@ -140,17 +208,12 @@ int run_design(const DesignArgs& args) {
   std::string written;
   if (!args.out_dir.empty()) {
     const std::string base = (std::filesystem::path(args.out_dir) / model_name(args.model)).string();
-    origamic::ExportOptions exports;
-    exports.model = std::filesystem::path(args.model).filename().string();
-    exports.settings = "card " + args.card + " mm, W " + std::to_string(args.min_strip_mm) + " mm, " +
-                       std::to_string(args.px_per_mm) + " px/mm, up " + args.up;
-    exports.colours = args.colours == "craft" ? origamic::ColourPreset::Craft : origamic::ColourPreset::Laser;
-    exports.dxf_version = args.dxf == "r2000" ? origamic::DxfVersion::R2000 : origamic::DxfVersion::R12;
     files.push_back({base + ".json", origamic::report_json(result, options)});
     files.push_back({base + ".dxf", origamic::plan_dxf(result.plan, exports)});
     files.push_back({base + ".svg", origamic::plan_svg(result.plan, exports)});
     files.push_back({base + ".png", origamic::plan_png(result.plan, exports)});
-    written += "plan: " + base + ".{dxf,svg,png}\nreport: " + base + ".json\n";
+    files.push_back({base + ".pdf", origamic::plan_pdf(result.plan, exports)});
+    written += "plan: " + base + ".{dxf,svg,png,pdf}\nreport: " + base + ".json\n";
   }
   if (!args.maps_dir.empty()) {
     for (auto& file : origamic::raster_image_files(result.maps, args.maps_dir)) files.push_back(std::move(file));
@@ -172,6 +235,8 @@ int main(int argc, char** argv) {
   DesignArgs design_args;
   CLI::App* design = app.add_subcommand("design", "design a pop-up plan for a 3D model");
   add_design_options(*design, design_args);
+  FabricationArgs fabrication_args;
+  add_fabrication_options(*design, fabrication_args);
 
   try {
     app.parse(argc, argv);
@@ -187,7 +252,7 @@ int main(int argc, char** argv) {
   }
 
   try {
-    return run_design(design_args);
+    return run_design(design_args, fabrication_args);
   } catch (const origamic::InputError& e) {
     std::fprintf(stderr, "origamic: %s\n", e.what());
     return 2;
