@@ -54,6 +54,14 @@ nlohmann::json slices_json(const DesignResult& result, const DesignOptions& opti
           {"faces", faces}};
 }
 
+// Faces and supports narrower than W, each with a plan point to find it by.
+nlohmann::json narrow_json(const std::vector<NarrowStrip>& narrow) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const NarrowStrip& n : narrow)
+    list.push_back({{"face", n.face}, {"support", n.support}, {"width_mm", n.width_mm}, {"at_XY", {n.at.X, n.at.Y}}});
+  return list;
+}
+
 nlohmann::json plan_json(const Plan& plan, bool allow_dangling) {
   nlohmann::json faces = nlohmann::json::array();
   for (std::size_t i = 0; i < plan.faces.size(); ++i) {
@@ -118,6 +126,7 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
                     {"rounds", result.supports.rounds},
                     {"exact_builds", result.supports.exact_builds},
                     {"cut_out", result.supports.cut_out},
+                    {"narrow_strips", narrow_json(result.supports.narrow)},
                     {"round_bound", result.supports.round_bound},
                     {"converged", result.supports.converged},
                     {"stop_reason", result.supports.stop_reason}}},

@@ -143,6 +143,25 @@ void widen(const Grid<std::int32_t>& face, const Grid<std::uint8_t>& claimed, Ca
 
 }  // namespace
 
+std::vector<NarrowStrip> narrow_strips(const SliceResult& slices, const PixelGrid& grid) {
+  const std::size_t n = slices.faces.size();
+  std::vector<int> lo(n, INT_MAX), hi(n, -1), lo_row(n, 0);
+  for (int r = 0; r < slices.face.rows; ++r)
+    for (int c = 0; c < slices.face.cols; ++c) {
+      const std::int32_t f = slices.face(c, r);
+      if (f < 2) continue;
+      const auto i = static_cast<std::size_t>(f);
+      if (c < lo[i]) lo[i] = c, lo_row[i] = r;
+      hi[i] = std::max(hi[i], c);
+    }
+  std::vector<NarrowStrip> narrow;
+  for (std::size_t f = 2; f < n; ++f)
+    if (hi[f] >= 0 && !slices.faces[f].hole && hi[f] - lo[f] + 1 < slices.block_px)
+      narrow.push_back({static_cast<std::int32_t>(f), slices.faces[f].support, (hi[f] - lo[f] + 1) / grid.px_per_mm,
+                        {grid.X(lo[f]) + (hi[f] - lo[f]) / (2 * grid.px_per_mm), grid.Y(lo_row[f])}});
+  return narrow;
+}
+
 bool plan_stands(const Validity& validity, bool allow_dangling) {
   return validity.floating + validity.invalid == 0 && (allow_dangling || validity.dangling == 0);
 }
@@ -349,6 +368,7 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
   }
   report.converged = report.cut_out == 0 && unsupported(standing, options.allow_dangling).empty();
   if (report.converged) report.stop_reason.clear();
+  report.narrow = narrow_strips(slices, maps.grid);
   result.slices = std::move(slices);
   return result;
 }

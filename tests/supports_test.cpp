@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <cmath>
 #include <map>
 
 #include "helpers.hpp"
@@ -87,6 +88,39 @@ TEST(Supports, SlopesBecomeStaircasesAsWideAsTheSlope) {
     const double model_width_px = (r.placement.max_oa.x - r.placement.min_oa.x) * r.maps.grid.px_per_mm;
     EXPECT_GE(widest, slope_width_fraction * model_width_px) << "supports widened along the slope";
   }
+}
+
+TEST(Supports, QuarterSphereStandsWithSupportsAtLeastWWideAndFewFacesCutOut) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  DesignOptions options;
+  options.placement.up = UpAxis::Z;
+  const DesignResult r = design(test::models_dir() / "seedlike/quarter_sphere.stl", options);
+  expect_exact_and_standing(r.plan);
+  EXPECT_EQ(r.plan.validity.floating + r.plan.validity.dangling + r.plan.validity.invalid, 0);
+  EXPECT_GT(r.supports.supports, 100);
+  // The faces cut out as the last resort, by area: a small part of the model.
+  double model_area = 0, removed_area = 0;
+  for (std::size_t f = 2; f < r.plan.faces.size(); ++f) {
+    const PlanFace& face = r.plan.faces[f];
+    (face.status == FaceStatus::Removed ? removed_area : model_area) += face.area_mm2;
+    EXPECT_EQ(face.status == FaceStatus::Removed, r.slices.faces[f].hole) << "face " << f;
+  }
+  EXPECT_EQ(r.plan.validity.removed > 0, r.supports.cut_out > 0);
+  EXPECT_LT(removed_area, 0.05 * (model_area + removed_area));
+  // A support is at least W wide when chosen; a later one crossing it can leave a narrower piece.
+  // Every such piece is reported, with its place.
+  std::vector<std::int32_t> narrow_supports, reported;
+  for (const auto& [id, columns] : support_columns(r.slices))
+    if (columns.second - columns.first + 1 < r.slices.block_px && !r.slices.faces[static_cast<std::size_t>(id)].hole)
+      narrow_supports.push_back(id);
+  for (const NarrowStrip& n : r.supports.narrow) {
+    if (n.support) reported.push_back(n.face);
+    EXPECT_LT(n.width_mm, r.slices.min_strip_mm);
+    EXPECT_EQ(r.slices.face(static_cast<int>(n.at.X * r.maps.grid.px_per_mm), r.maps.grid.rows_above_fold - 1 -
+                            static_cast<int>(std::floor(n.at.Y * r.maps.grid.px_per_mm))), n.face) << "its place is in it";
+  }
+  EXPECT_EQ(narrow_supports, reported);
+  EXPECT_LE(narrow_supports.size(), 3u) << "supports are chosen at least W wide";
 }
 
 TEST(Supports, SameSeedSamePlanAnotherSeedStillStands) {

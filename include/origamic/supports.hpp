@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "origamic/plan.hpp"
 #include "origamic/raster.hpp"
@@ -26,6 +27,14 @@ struct SupportOptions {
   bool cut_out_unsupported = true;
 };
 
+/// A face or support whose whole extent along the main fold is under W: the place to look.
+struct NarrowStrip {
+  std::int32_t face = 0;
+  bool support = false;
+  double width_mm = 0;  // its extent along X
+  PlanPoint at;         // the middle of its narrowest side, in plan mm
+};
+
 struct SupportReport {
   int supports = 0;      // support strips added, before widening merged any
   int rounds = 0;        // rounds of supports chosen
@@ -34,10 +43,12 @@ struct SupportReport {
   bool converged = false;
   std::string stop_reason;  // why supports alone did not make every face stand; empty when they did
   int cut_out = 0;          // faces cut out of the sheet as the last resort
+  std::vector<NarrowStrip> narrow;  // faces and supports narrower than W, with their place
 };
 
 struct Supported {
-  SliceResult slices;  // the raster plan with the supports painted in (RasterFace::support)
+  SliceResult slices;
+  std::vector<NarrowStrip> narrow;  // faces and supports narrower than W, reported with their place  // the raster plan with the supports painted in (RasterFace::support)
   Plan plan;           // the exact plan of it, validated from scratch
   SupportReport report;
 };
@@ -46,6 +57,9 @@ struct Supported {
 /// dangling), or the bound is reached. Deterministic for a given seed.
 Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& sheet, const PlanOptions& plan_options,
                        const SupportOptions& options);
+
+/// Every face (holes aside) whose pixels span fewer than W (block_px) columns, in face order.
+std::vector<NarrowStrip> narrow_strips(const SliceResult& slices, const PixelGrid& grid);
 
 /// The verdict: no floating or invalid face, and no dangling one unless they are allowed.
 bool plan_stands(const Validity& validity, bool allow_dangling);
