@@ -452,6 +452,37 @@ std::vector<PlanPolyline> chain_segments(LineKind kind, const std::vector<std::p
   return lines;
 }
 
+// The plan's faces as regions for folding (plan_regions.hpp): one per labelled arrangement face,
+// its outer boundary (counter-clockwise, as CGAL walks it) and holes (clockwise) at the nearest
+// doubles of their vertices. Edges with the face on both sides (a cut ending inside the face) bound
+// nothing and are left out; so are vertices that repeat the previous point's doubles.
+std::vector<PlanRegion> regions_of(const Arrangement& arr, const std::vector<PlanFace>& faces) {
+  auto ring_of = [](Arrangement::Ccb_halfedge_const_circulator first) {
+    std::vector<PlanPoint> ring;
+    auto he = first;
+    do {
+      if (he->twin()->face() == he->face()) continue;
+      const PlanPoint p{nearest_double(he->source()->point().x()), nearest_double(he->source()->point().y())};
+      if (ring.empty() || ring.back().X != p.X || ring.back().Y != p.Y) ring.push_back(p);
+    } while (++he != first);
+    if (ring.size() > 1 && ring.back().X == ring.front().X && ring.back().Y == ring.front().Y) ring.pop_back();
+    return ring;
+  };
+  std::vector<PlanRegion> regions;
+  for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
+    if (f->is_unbounded() || f->data() < 0) continue;
+    const PlanFace& face = faces[static_cast<std::size_t>(f->data())];
+    PlanRegion region{.rings = {}, .orientation = face.orientation, .depth_mm = face.depth_mm, .placed = true,
+                      .status = face.status, .inside = face.inside};
+    region.rings.push_back(ring_of(*f->outer_ccbs_begin()));  // a bounded face has one
+    if (region.rings[0].size() < 3) continue;
+    for (auto ccb = f->inner_ccbs_begin(); ccb != f->inner_ccbs_end(); ++ccb)
+      if (std::vector<PlanPoint> hole = ring_of(*ccb); hole.size() >= 3) region.rings.push_back(std::move(hole));
+    regions.push_back(std::move(region));
+  }
+  return regions;
+}
+
 }  // namespace
 
 Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& sheet, const PlanOptions& options) {
@@ -583,6 +614,7 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& 
     if (f >= 2 && slices.faces[f].pixels > 0 && !(area[f] > 0)) ++plan.lost_faces;
     face.status = plan.validity.status[f];
   }
+  plan.regions = regions_of(arr, plan.faces);
   return plan;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "origamic/oa.hpp"
+#include "origamic/plan_regions.hpp"
 #include "origamic/raster.hpp"
 #include "origamic/slice.hpp"
 #include "origamic/validity.hpp"
@@ -46,6 +47,10 @@ struct Plan {
   Sheet sheet;
   std::vector<PlanFace> faces;          // indexed like the raster plan's faces: 0 back, 1 floor
   std::vector<PlanPolyline> lines;      // cuts, mountain and valley folds, and the sheet outline
+  // The faces as regions of the sheet, one per arrangement face (a face split by an edge with the
+  // same face on both sides gives two), with the orientation, depth and status of the face they
+  // belong to; `inside` is that face's point. For folding into 3D (fold3d.hpp).
+  std::vector<PlanRegion> regions;
   Validity validity;
   double cut_mm = 0, mountain_mm = 0, valley_mm = 0;
   // Checks of the exact construction, for the report and the tests.

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The origamic command: parses options, calls the library, reports. No algorithm lives here.
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <optional>
@@ -13,6 +14,7 @@
 #include "origamic/error.hpp"
 #include "origamic/output.hpp"
 #include "origamic/plan_export.hpp"
+#include "origamic/popup_files.hpp"
 #include "origamic/raster_images.hpp"
 #include "origamic/report.hpp"
 #include "origamic/version.hpp"
@@ -80,6 +82,47 @@ struct DesignArgs {
   std::string dxf = "r12";
 };
 
+// The 3D pop-up and its pictures (origamic/popup_files.hpp), written into --out.
+struct PopupArgs {
+  bool fold_model = false;
+  bool renders = false;
+  std::string render_size = "1200x900";
+  double thickness_mm = 0;
+};
+
+void add_popup_options(CLI::App& design, PopupArgs& args) {
+  design.add_flag("--fold-model", args.fold_model,
+                  "also write the pop-up folded at 90 degrees as a mesh: MODEL_popup.obj and its materials MODEL_popup.mat");
+  design.add_flag("--renders", args.renders,
+                  "also write pictures: the pop-up (MODEL_popup.png), the model from the same viewpoint "
+                  "(MODEL_model.png) and the card opening (MODEL_opening.gif)");
+  design.add_option("--render-size", args.render_size, "size of the pictures in pixels, WIDTHxHEIGHT; the GIF is half")
+      ->capture_default_str();
+  design.add_option("--thickness", args.thickness_mm, "paper thickness in mm for --fold-model and --renders (0: sheets)")
+      ->capture_default_str();
+}
+
+origamic::PopupFileOptions popup_file_options(const PopupArgs& args, const std::string& out_dir) {
+  origamic::PopupFileOptions options;
+  options.fold_model = args.fold_model;
+  options.renders = args.renders;
+  options.thickness_mm = args.thickness_mm;
+  const auto x = args.render_size.find_first_of("xX");
+  const auto width = parse_number(std::string_view(args.render_size).substr(0, x));
+  const auto height = x == std::string::npos ? std::nullopt : parse_number(std::string_view(args.render_size).substr(x + 1));
+  if (!width || !height || *width != std::floor(*width) || *height != std::floor(*height) || !(*width >= 8 && *width <= 8192) ||
+      !(*height >= 8 && *height <= 8192))
+    throw InputError("--render-size: expected WIDTHxHEIGHT in whole pixels from 8 to 8192, such as 1200x900, not '" +
+                     args.render_size + "'");
+  options.render.width_px = static_cast<int>(*width);
+  options.render.height_px = static_cast<int>(*height);
+  if ((args.fold_model || args.renders) && out_dir.empty())
+    throw InputError(std::string(args.fold_model ? "--fold-model" : "--renders") + ": needs --out DIR to write into");
+  if (!(args.thickness_mm >= 0 && args.thickness_mm <= 10))
+    throw InputError("--thickness: the paper thickness must be between 0 and 10 mm, not " + std::to_string(args.thickness_mm));
+  return options;
+}
+
 void add_design_options(CLI::App& design, DesignArgs& args) {
   design.add_option("MODEL", args.model, "3D model: .obj, .stl, .ply or .off, optionally .gz")->required();
   design.add_option("--card", args.card, "flat sheet WIDTHxHEIGHT in mm; the main fold halves the height")
@@ -115,7 +158,8 @@ void add_design_options(CLI::App& design, DesignArgs& args) {
   design.add_option("--dump-maps", args.maps_dir, "write the maps (D, F, T, N, hit kind, segments S, subsegments SS, faces) and a plan preview as PNGs here");
 }
 
-int run_design(const DesignArgs& args) {
+int run_design(const DesignArgs& args, const PopupArgs& popup_args) {
+  const origamic::PopupFileOptions popup_options = popup_file_options(popup_args, args.out_dir);
   origamic::DesignOptions options;
   options.sheet = parse_card(args.card);
   options.placement.up = args.up == "z" ? origamic::UpAxis::Z : origamic::UpAxis::Y;
@@ -151,6 +195,10 @@ int run_design(const DesignArgs& args) {
     files.push_back({base + ".svg", origamic::plan_svg(result.plan, exports)});
     files.push_back({base + ".png", origamic::plan_png(result.plan, exports)});
     written += "plan: " + base + ".{dxf,svg,png}\nreport: " + base + ".json\n";
+    for (auto& file : origamic::popup_files(result, options, base, popup_options)) {
+      written += "3D: " + file.path.string() + "\n";
+      files.push_back(std::move(file));
+    }
   }
   if (!args.maps_dir.empty()) {
     for (auto& file : origamic::raster_image_files(result.maps, args.maps_dir)) files.push_back(std::move(file));
@@ -172,6 +220,8 @@ int main(int argc, char** argv) {
   DesignArgs design_args;
   CLI::App* design = app.add_subcommand("design", "design a pop-up plan for a 3D model");
   add_design_options(*design, design_args);
+  PopupArgs popup_args;
+  add_popup_options(*design, popup_args);
 
   try {
     app.parse(argc, argv);
@@ -187,7 +237,7 @@ int main(int argc, char** argv) {
   }
 
   try {
-    return run_design(design_args);
+    return run_design(design_args, popup_args);
   } catch (const origamic::InputError& e) {
     std::fprintf(stderr, "origamic: %s\n", e.what());
     return 2;
