@@ -239,6 +239,10 @@ FoldedPopup fold_popup(const std::vector<PlanRegion>& regions, const Sheet& shee
   for (std::size_t i = 0; i < regions.size(); ++i) {
     const PlanRegion& region = regions[i];
     popup.regions.push_back({region.orientation, region.depth_mm, region.status});
+    if (!region.placed) {
+      ++popup.unplaced_regions;
+      continue;
+    }
     fold_region(region, static_cast<std::int32_t>(i), frame, options.thickness_mm, builder, popup);
   }
   return popup;

@@ -9,6 +9,7 @@
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -211,6 +212,17 @@ TEST(Fold3d, ThickPaperMakesClosedSlabsOfTheRightVolume) {
   }
   for (std::size_t r = 0; r < regions.size(); ++r)
     EXPECT_NEAR(volume[r], t * test::twice_signed_area(regions[r].rings[0]) / 2, 1e-6) << "region " << r;
+}
+
+TEST(Fold3d, RegionsTheFoldsDoNotPlaceAreLeftOut) {
+  std::vector<PlanRegion> regions = box_regions();
+  regions[3].placed = false;  // the top, as a plan read from its lines might leave it
+  const FoldedPopup popup = fold_popup(regions, Sheet{}, {});
+  EXPECT_EQ(popup.unplaced_regions, 1);
+  EXPECT_EQ(popup.regions.size(), 4u);
+  EXPECT_EQ(std::ranges::count(popup.triangle_region, 3), 0);
+  EXPECT_EQ(std::ranges::count(popup.position_region, 3), 0);
+  EXPECT_GT(std::ranges::count(popup.triangle_region, 2), 0);
 }
 
 TEST(Fold3d, OptionsAndCoordinatesOutOfRangeAreRejected) {

@@ -82,10 +82,12 @@ struct FoldedPopup {
   std::vector<PaperSurface> triangle_surface;            // per triangle
   std::vector<FoldedRegion> regions;                     // one per input region, in input order
   int empty_regions = 0;          // regions whose rings enclose no area (no triangles)
+  int unplaced_regions = 0;       // regions left out: the folds give them no orientation and depth
   int split_vertices = 0;         // vertices copied where a region touches itself at a point
 };
 
-/// Folds the regions into the card opened to options.angle_deg. Each region's rings are
+/// Folds the regions into the card opened to options.angle_deg. Regions not `placed` are left out
+/// (they have no triangles; the count says how many). Each region's rings are
 /// triangulated in the plan (a constrained Delaunay triangulation, inside by nesting depth: even-odd
 /// over the rings, so holes may come in either direction) and every vertex is mapped by fold_point.
 /// Printed-side triangles keep the plan's counter-clockwise order, so their normals point to the

@@ -47,9 +47,8 @@ struct Plan {
   Sheet sheet;
   std::vector<PlanFace> faces;          // indexed like the raster plan's faces: 0 back, 1 floor
   std::vector<PlanPolyline> lines;      // cuts, mountain and valley folds, and the sheet outline
-  // The faces as regions of the sheet, one per arrangement face (a face split by an edge with the
-  // same face on both sides gives two), with the orientation, depth and status of the face they
-  // belong to; `inside` is that face's point. For folding into 3D (fold3d.hpp).
+  // The faces as regions of the sheet, for folding into 3D (fold3d.hpp): one per face (one per
+  // connected part, should a face come in parts), with its orientation, depth, status and point.
   std::vector<PlanRegion> regions;
   Validity validity;
   double cut_mm = 0, mountain_mm = 0, valley_mm = 0;

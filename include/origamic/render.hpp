@@ -71,7 +71,7 @@ struct Image {
 };
 
 /// Ray-traces the scene through the view (size from the view, samples, shadows and outlines from
-/// the options). Deterministic, and independent of the thread count.
+/// the options). Rows are traced in parallel; every pixel depends only on its own rays.
 Image render(const ColouredMesh& scene, const View& view, const RenderOptions& options);
 
 /// PNG bytes of the image. \throws OutputError naming `name` on failure.
