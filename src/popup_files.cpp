@@ -5,6 +5,11 @@
 
 namespace origamic {
 
+void check_popup_file_options(const PopupFileOptions& files) {
+  fold_popup({}, Sheet{}, {.angle_deg = 90, .thickness_mm = files.thickness_mm});
+  frame_view(glm::dvec3(0.0), glm::dvec3(1.0), files.render);
+}
+
 std::vector<OutputFile> popup_files(const DesignResult& result, const DesignOptions& options, const std::string& base,
                                     const PopupFileOptions& files) {
   std::vector<OutputFile> out;

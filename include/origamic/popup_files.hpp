@@ -23,6 +23,10 @@ struct PopupFileOptions {
   int hold_cs = 100;          // ... and the first, the standing (90 degrees) and the last this long
 };
 
+/// Checks the options before any work: the thickness (as fold_popup) and the pictures' size and
+/// view (as frame_view). \throws InputError naming the option.
+void check_popup_file_options(const PopupFileOptions& files);
+
 /// The files, named BASE_popup.obj and so on (BASE is a path without extension). The pop-up is the
 /// design's final plan's regions folded (fold_popup); the model picture reloads the model file and
 /// places it as the design did, and shows it from the same viewpoint as the pop-up picture. The

@@ -110,16 +110,14 @@ origamic::PopupFileOptions popup_file_options(const PopupArgs& args, const std::
   const auto x = args.render_size.find_first_of("xX");
   const auto width = parse_number(std::string_view(args.render_size).substr(0, x));
   const auto height = x == std::string::npos ? std::nullopt : parse_number(std::string_view(args.render_size).substr(x + 1));
-  if (!width || !height || *width != std::floor(*width) || *height != std::floor(*height) || !(*width >= 8 && *width <= 8192) ||
-      !(*height >= 8 && *height <= 8192))
-    throw InputError("--render-size: expected WIDTHxHEIGHT in whole pixels from 8 to 8192, such as 1200x900, not '" +
-                     args.render_size + "'");
+  if (!width || !height || *width != std::floor(*width) || *height != std::floor(*height) || std::abs(*width) > 1e6 ||
+      std::abs(*height) > 1e6)
+    throw InputError("--render-size: expected WIDTHxHEIGHT in whole pixels, such as 1200x900, not '" + args.render_size + "'");
   options.render.width_px = static_cast<int>(*width);
   options.render.height_px = static_cast<int>(*height);
   if ((args.fold_model || args.renders) && out_dir.empty())
     throw InputError(std::string(args.fold_model ? "--fold-model" : "--renders") + ": needs --out DIR to write into");
-  if (!(args.thickness_mm >= 0 && args.thickness_mm <= 10))
-    throw InputError("--thickness: the paper thickness must be between 0 and 10 mm, not " + std::to_string(args.thickness_mm));
+  origamic::check_popup_file_options(options);
   return options;
 }
 
