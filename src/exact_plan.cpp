@@ -11,6 +11,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <type_traits>
 #include <utility>
@@ -459,6 +460,83 @@ std::vector<PlanPolyline> chain_segments(LineKind kind, const std::vector<std::p
   return lines;
 }
 
+// The plan's faces as regions for folding (plan_regions.hpp). A plan face may span several
+// arrangement faces, split by edges with its label on both sides (the connectors of snapped folds,
+// among others); those edges are no lines of the plan, so the faces they split are joined here: one
+// region per set of same-label faces connected through such edges. Its rings are the cycles of
+// halfedges with the region on their left and another label on their right: the outer one
+// counter-clockwise, holes clockwise, at the nearest doubles of their vertices (a vertex repeating
+// the previous one's doubles is dropped).
+std::vector<PlanRegion> regions_of(const Arrangement& arr, const std::vector<PlanFace>& faces) {
+  using Face = Arrangement::Face_const_handle;
+  using Halfedge = Arrangement::Halfedge_const_handle;
+  auto each_halfedge = [](Face f, auto&& visit) {
+    for (auto ccb = f->outer_ccbs_begin(); ccb != f->outer_ccbs_end(); ++ccb) {
+      auto he = *ccb, first = he;
+      do visit(Halfedge(he)); while (++he != first);
+    }
+    for (auto ccb = f->inner_ccbs_begin(); ccb != f->inner_ccbs_end(); ++ccb) {
+      auto he = *ccb, first = he;
+      do visit(Halfedge(he)); while (++he != first);
+    }
+  };
+  std::map<Face, bool> joined;
+  std::map<Halfedge, bool> walked;
+  std::vector<PlanRegion> regions;
+  for (auto start = arr.faces_begin(); start != arr.faces_end(); ++start) {
+    const std::int32_t label = start->data();
+    if (start->is_unbounded() || label < 0 || joined[start]) continue;
+    // The connected set of faces with this label, and the halfedges that bound it.
+    std::vector<Face> stack = {start};
+    std::vector<Halfedge> boundary;
+    joined[start] = true;
+    while (!stack.empty()) {
+      const Face f = stack.back();
+      stack.pop_back();
+      each_halfedge(f, [&](Halfedge he) {
+        const Face other = he->twin()->face();
+        if (other->data() != label) boundary.push_back(he);
+        else if (!joined[other]) joined[other] = true, stack.push_back(other);
+      });
+    }
+    // Around each boundary vertex, turn through faces of the set to the next boundary halfedge.
+    auto next_on_boundary = [&](Halfedge he) {
+      Halfedge next = he->next();
+      while (next->twin()->face()->data() == label) next = next->twin()->next();
+      return next;
+    };
+    std::vector<std::vector<PlanPoint>> rings;
+    for (const Halfedge first : boundary) {
+      if (walked[first]) continue;
+      std::vector<PlanPoint> ring;
+      Halfedge he = first;
+      do {
+        walked[he] = true;
+        const PlanPoint p{nearest_double(he->source()->point().x()), nearest_double(he->source()->point().y())};
+        if (ring.empty() || ring.back().X != p.X || ring.back().Y != p.Y) ring.push_back(p);
+        he = next_on_boundary(he);
+      } while (he != first);
+      if (ring.size() > 1 && ring.back().X == ring.front().X && ring.back().Y == ring.front().Y) ring.pop_back();
+      if (ring.size() >= 3) rings.push_back(std::move(ring));
+    }
+    if (rings.empty()) continue;
+    // The outer ring first: the one of largest signed area (holes are negative).
+    auto twice_area = [](const std::vector<PlanPoint>& ring) {
+      double twice = 0;
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        const PlanPoint &p = ring[i], &q = ring[(i + 1) % ring.size()];
+        twice += p.X * q.Y - q.X * p.Y;
+      }
+      return twice;
+    };
+    std::ranges::stable_sort(rings, std::greater<>(), twice_area);
+    const PlanFace& face = faces[static_cast<std::size_t>(label)];
+    regions.push_back({.rings = std::move(rings), .orientation = face.orientation, .depth_mm = face.depth_mm,
+                       .placed = true, .status = face.status, .inside = face.inside});
+  }
+  return regions;
+}
+
 }  // namespace
 
 Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& sheet, const PlanOptions& options) {
@@ -597,6 +675,7 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
     if (f >= 2 && slices.faces[f].pixels > 0 && !(area[f] > 0)) ++plan.lost_faces;
     face.status = plan.validity.status[f];
   }
+  plan.regions = regions_of(arr, plan.faces);
   return plan;
 }
 

@@ -203,6 +203,48 @@ TEST(Cli, AbsurdOptionsExitWithStatusTwo) {
   expect_rejected(house + " --up x", "--up", "");
   expect_rejected(house + " --rotate abc", "--rotate", "");
   expect_rejected(house + " --bogus", "--bogus", "");
+  expect_rejected(house + " --renders --render-size 4x4", "--render-size", "8 to 8192");
+  expect_rejected(house + " --fold-model --thickness -1", "--thickness", "between 0 and 10");
+}
+
+TEST(Cli, FoldModelAndRendersNeedAnOutputFolder) {
+  const CommandRun r = run("design " + quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") + " --renders");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--renders: needs --out"), std::string::npos) << r.output;
+}
+
+// The width and height a PNG's IHDR or a GIF's logical screen states.
+std::pair<int, int> picture_size(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::array<unsigned char, 24> b{};
+  in.read(reinterpret_cast<char*>(b.data()), b.size());
+  if (std::string(reinterpret_cast<const char*>(b.data()) + 1, 3) == "PNG")
+    return {(b[16] << 24) | (b[17] << 16) | (b[18] << 8) | b[19], (b[20] << 24) | (b[21] << 16) | (b[22] << 8) | b[23]};
+  if (std::string(reinterpret_cast<const char*>(b.data()), 6) == "GIF89a") return {b[6] | (b[7] << 8), b[8] | (b[9] << 8)};
+  return {0, 0};
+}
+
+TEST(Cli, DesignWritesTheFoldedModelAndItsPictures) {
+  const test::TempDir dir;
+  const CommandRun r = run("design " + quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") +
+                           " --fold-model --renders --render-size 160x120 --out " + quoted(dir.path));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(picture_size(dir / "house_popup.png"), std::pair(160, 120));
+  EXPECT_EQ(picture_size(dir / "house_model.png"), std::pair(160, 120));
+  EXPECT_EQ(picture_size(dir / "house_opening.gif"), std::pair(80, 60));
+  // The OBJ: at least a triangle for each face of the plan, and its materials beside it.
+  std::ifstream obj(dir / "house_popup.obj");
+  std::size_t faces = 0;
+  std::string mtllib;
+  for (std::string line; std::getline(obj, line);) {
+    faces += line.rfind("f ", 0) == 0;
+    if (line.rfind("mtllib ", 0) == 0) mtllib = line.substr(7);
+  }
+  std::ifstream in(dir / "house.json");
+  const auto report = nlohmann::json::parse(in);
+  EXPECT_GE(faces, report["plan"]["faces"].size());
+  EXPECT_EQ(mtllib, "house_popup.mat");
+  EXPECT_TRUE(std::filesystem::exists(dir / "house_popup.mat"));
 }
 
 TEST(Cli, BadFabricationOptionsExitWithStatusTwo) {

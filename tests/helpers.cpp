@@ -28,6 +28,32 @@ TriangleMesh box(const glm::dvec3& lo, const glm::dvec3& hi) {
   return mesh;
 }
 
+std::vector<PlanRegion> box_popup_regions(const Sheet& sheet, double x0, double x1, double h, double d) {
+  const double W = sheet.width_mm, half = sheet.half_height_mm();
+  std::vector<PlanRegion> regions(4);
+  regions[0].orientation = Orientation::V;  // back plane
+  regions[0].rings = {{{0, 0}, {x0, 0}, {x0, h}, {x1, h}, {x1, 0}, {W, 0}, {W, half}, {0, half}}};
+  regions[1].orientation = Orientation::H;  // floor
+  regions[1].rings = {{{0, -half}, {W, -half}, {W, 0}, {x1, 0}, {x1, -d}, {x0, -d}, {x0, 0}, {0, 0}}};
+  regions[2].orientation = Orientation::V;  // front
+  regions[2].depth_mm = d;
+  regions[2].rings = {{{x0, -d}, {x1, -d}, {x1, h - d}, {x0, h - d}}};
+  regions[3].orientation = Orientation::H;  // top
+  regions[3].depth_mm = h;
+  regions[3].rings = {{{x0, h - d}, {x1, h - d}, {x1, h}, {x0, h}}};
+  for (PlanRegion& r : regions) r.placed = true;
+  return regions;
+}
+
+double twice_signed_area(const std::vector<PlanPoint>& ring) {
+  double twice = 0;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const PlanPoint &p = ring[i], &q = ring[(i + 1) % ring.size()];
+    twice += p.X * q.Y - q.X * p.Y;
+  }
+  return twice;
+}
+
 TriangleMesh merged(const TriangleMesh& a, const TriangleMesh& b) {
   TriangleMesh m = a;
   const auto offset = static_cast<std::uint32_t>(a.positions.size());

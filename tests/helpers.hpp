@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "origamic/mesh_io.hpp"
+#include "origamic/oa.hpp"
+#include "origamic/plan_regions.hpp"
 
 namespace origamic::test {
 
@@ -18,6 +20,14 @@ TriangleMesh merged(const TriangleMesh& a, const TriangleMesh& b);
 
 /// A UV sphere of the given segments around and rings from pole to pole.
 TriangleMesh sphere(const glm::dvec3& centre, double radius, int segments, int rings);
+
+/// The plan of a box pop-up as regions, derived by hand from its folds: the box spans x0..x1, stands
+/// h high and d deep against the back plane. Back plane V(0) (the box cut out of it: 0..h), floor H(0)
+/// (cut out: -d..0), the front V(d) on -d..h-d and the top H(h) on h-d..h. Rings counter-clockwise.
+std::vector<PlanRegion> box_popup_regions(const Sheet& sheet, double x0, double x1, double h, double d);
+
+/// Twice the signed area of a ring (positive counter-clockwise), by the shoelace formula.
+double twice_signed_area(const std::vector<PlanPoint>& ring);
 
 /// A fresh empty folder under the system's temporary folder, removed at destruction.
 struct TempDir {

@@ -58,6 +58,24 @@ void expect_exact_construction(const Plan& plan) {
   EXPECT_EQ(plan.label_conflicts, 0);
   EXPECT_EQ(plan.lost_faces, 0) << "a face of the raster plan has no area in the exact plan";
   EXPECT_EQ(plan.unresolved_crossings, 0);
+  // The regions (for folding) tile the sheet too, outer rings counter-clockwise and holes clockwise,
+  // and carry each face's area under its orientation and depth.
+  std::map<std::pair<Orientation, double>, double> face_area, region_area;
+  for (const PlanFace& face : plan.faces) face_area[{face.orientation, face.depth_mm}] += face.area_mm2;
+  double total = 0;
+  for (const PlanRegion& region : plan.regions) {
+    ASSERT_FALSE(region.rings.empty());
+    EXPECT_GT(test::twice_signed_area(region.rings[0]), 0) << "outer ring counter-clockwise";
+    for (std::size_t k = 1; k < region.rings.size(); ++k) EXPECT_LT(test::twice_signed_area(region.rings[k]), 0) << "hole clockwise";
+    for (const auto& ring : region.rings) {
+      total += test::twice_signed_area(ring) / 2;
+      region_area[{region.orientation, region.depth_mm}] += test::twice_signed_area(ring) / 2;
+    }
+  }
+  const double sheet_area = plan.sheet.width_mm * plan.sheet.height_mm;
+  EXPECT_NEAR(total, sheet_area, 1e-9 * sheet_area);
+  ASSERT_EQ(region_area.size(), face_area.size());
+  for (const auto& [key, area] : face_area) EXPECT_NEAR(region_area[key], area, 1e-9 * sheet_area);
 }
 
 TEST(Plan, BoxAgainstTheBackPlaneFoldsExactlyOnItsLines) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "origamic/oa.hpp"
+#include "origamic/plan_regions.hpp"
 #include "origamic/raster.hpp"
 #include "origamic/slice.hpp"
 #include "origamic/validity.hpp"
@@ -46,6 +47,9 @@ struct Plan {
   Sheet sheet;
   std::vector<PlanFace> faces;          // indexed like the raster plan's faces: 0 back, 1 floor
   std::vector<PlanPolyline> lines;      // cuts, mountain and valley folds, and the sheet outline
+  // The faces as regions of the sheet, for folding into 3D (fold3d.hpp): one per face (one per
+  // connected part, should a face come in parts), with its orientation, depth, status and point.
+  std::vector<PlanRegion> regions;
   Validity validity;
   double cut_mm = 0, mountain_mm = 0, valley_mm = 0;
   // Checks of the exact construction, for the report and the tests.

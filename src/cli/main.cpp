@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The origamic command: parses options, calls the library, reports. No algorithm lives here.
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <optional>
@@ -13,6 +14,7 @@
 #include "origamic/error.hpp"
 #include "origamic/output.hpp"
 #include "origamic/plan_export.hpp"
+#include "origamic/popup_files.hpp"
 #include "origamic/raster_images.hpp"
 #include "origamic/report.hpp"
 #include "origamic/version.hpp"
@@ -146,6 +148,45 @@ origamic::ExportOptions export_options(const DesignArgs& args, const Fabrication
   return exports;
 }
 
+// The 3D pop-up and its pictures (origamic/popup_files.hpp), written into --out.
+struct PopupArgs {
+  bool fold_model = false;
+  bool renders = false;
+  std::string render_size = "1200x900";
+  double thickness_mm = 0;
+};
+
+void add_popup_options(CLI::App& design, PopupArgs& args) {
+  design.add_flag("--fold-model", args.fold_model,
+                  "also write the pop-up folded at 90 degrees as a mesh: MODEL_popup.obj and its materials MODEL_popup.mat");
+  design.add_flag("--renders", args.renders,
+                  "also write pictures: the pop-up (MODEL_popup.png), the model from the same viewpoint "
+                  "(MODEL_model.png) and the card opening (MODEL_opening.gif)");
+  design.add_option("--render-size", args.render_size, "size of the pictures in pixels, WIDTHxHEIGHT; the GIF is half")
+      ->capture_default_str();
+  design.add_option("--thickness", args.thickness_mm, "paper thickness in mm for --fold-model and --renders (0: sheets)")
+      ->capture_default_str();
+}
+
+origamic::PopupFileOptions popup_file_options(const PopupArgs& args, const std::string& out_dir) {
+  origamic::PopupFileOptions options;
+  options.fold_model = args.fold_model;
+  options.renders = args.renders;
+  options.thickness_mm = args.thickness_mm;
+  const auto x = args.render_size.find_first_of("xX");
+  const auto width = parse_number(std::string_view(args.render_size).substr(0, x));
+  const auto height = x == std::string::npos ? std::nullopt : parse_number(std::string_view(args.render_size).substr(x + 1));
+  if (!width || !height || *width != std::floor(*width) || *height != std::floor(*height) || std::abs(*width) > 1e6 ||
+      std::abs(*height) > 1e6)
+    throw InputError("--render-size: expected WIDTHxHEIGHT in whole pixels, such as 1200x900, not '" + args.render_size + "'");
+  options.render.width_px = static_cast<int>(*width);
+  options.render.height_px = static_cast<int>(*height);
+  if ((args.fold_model || args.renders) && out_dir.empty())
+    throw InputError(std::string(args.fold_model ? "--fold-model" : "--renders") + ": needs --out DIR to write into");
+  origamic::check_popup_file_options(options);
+  return options;
+}
+
 void add_design_options(CLI::App& design, DesignArgs& args) {
   design.add_option("MODEL", args.model, "3D model: .obj, .stl, .ply or .off, optionally .gz")->required();
   design.add_option("--card", args.card, "flat sheet WIDTHxHEIGHT in mm; the main fold halves the height")
@@ -182,7 +223,8 @@ void add_design_options(CLI::App& design, DesignArgs& args) {
   design.add_option("--dump-maps", args.maps_dir, "write the maps (D, F, T, N, hit kind, segments S, subsegments SS, faces) and a plan preview as PNGs here");
 }
 
-int run_design(const DesignArgs& args, const FabricationArgs& fabrication) {
+int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const PopupArgs& popup_args) {
+  const origamic::PopupFileOptions popup_options = popup_file_options(popup_args, args.out_dir);
   origamic::DesignOptions options;
   options.sheet = parse_card(args.card);
   const origamic::ExportOptions exports = export_options(args, fabrication, options.sheet);
@@ -214,6 +256,10 @@ int run_design(const DesignArgs& args, const FabricationArgs& fabrication) {
     files.push_back({base + ".png", origamic::plan_png(result.plan, exports)});
     files.push_back({base + ".pdf", origamic::plan_pdf(result.plan, exports)});
     written += "plan: " + base + ".{dxf,svg,png,pdf}\nreport: " + base + ".json\n";
+    for (auto& file : origamic::popup_files(result, options, base, popup_options)) {
+      written += "3D: " + file.path.string() + "\n";
+      files.push_back(std::move(file));
+    }
   }
   if (!args.maps_dir.empty()) {
     for (auto& file : origamic::raster_image_files(result.maps, args.maps_dir)) files.push_back(std::move(file));
@@ -237,6 +283,8 @@ int main(int argc, char** argv) {
   add_design_options(*design, design_args);
   FabricationArgs fabrication_args;
   add_fabrication_options(*design, fabrication_args);
+  PopupArgs popup_args;
+  add_popup_options(*design, popup_args);
 
   try {
     app.parse(argc, argv);
@@ -252,7 +300,7 @@ int main(int argc, char** argv) {
   }
 
   try {
-    return run_design(design_args, fabrication_args);
+    return run_design(design_args, fabrication_args, popup_args);
   } catch (const origamic::InputError& e) {
     std::fprintf(stderr, "origamic: %s\n", e.what());
     return 2;

@@ -1,0 +1,307 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Folding regions into 3D: CGAL's constrained Delaunay triangulation (inexact constructions are
+// enough: the triangles only draw the faces) and OpenMesh for the mesh and its files.
+#include "origamic/fold3d.hpp"
+
+// OpenMesh's VectorT leaves its elements uninitialized by default, which GCC 12 reports wherever a
+// colour property grows (OpenMesh/Core/Utils/Property.hh, push_back of T()); the values are set.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+
+#include <stdlib.h>
+
+#include <cassert>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <glm/geometric.hpp>
+
+#include "origamic/error.hpp"
+
+namespace origamic {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
+struct FaceInfo {
+  int nesting = -1;  // rings crossed from outside; odd is inside the region
+  bool inside() const { return nesting % 2 == 1; }
+};
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, Kernel>;
+using FaceBase =
+    CGAL::Constrained_triangulation_face_base_2<Kernel, CGAL::Triangulation_face_base_with_info_2<FaceInfo, Kernel>>;
+using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
+// Rings that cross (a malformed region) are split at their crossing instead of failing.
+using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_predicates_tag>;
+
+struct OmTraits : OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Color = OpenMesh::Vec3uc;
+};
+using OmMesh = OpenMesh::TriMesh_ArrayKernelT<OmTraits>;
+
+// OpenMesh reports through global streams (a refused face, every file written): keep it quiet.
+struct QuietOpenMesh {
+  QuietOpenMesh() {
+    omerr().disable();
+    omlog().disable();
+    omout().disable();
+  }
+  ~QuietOpenMesh() {
+    omerr().enable();
+    omlog().enable();
+    omout().enable();
+  }
+  QuietOpenMesh(const QuietOpenMesh&) = delete;
+  QuietOpenMesh& operator=(const QuietOpenMesh&) = delete;
+};
+
+void check_options(const FoldOptions& options) {
+  if (!(options.angle_deg >= 0 && options.angle_deg <= 180))
+    throw InputError("--angle: the opening angle must be between 0 and 180 degrees, not " +
+                     std::to_string(options.angle_deg));
+  // Card is at most a millimetre or so; 10 mm is a slab, not paper.
+  if (!(options.thickness_mm >= 0 && options.thickness_mm <= 10))
+    throw InputError("--thickness: the paper thickness must be between 0 and 10 mm, not " +
+                     std::to_string(options.thickness_mm));
+}
+
+// Marks every face of the triangulation with how many rings separate it from the outside: a flood
+// from the infinite face that stops at constrained edges, then from each edge reached, one deeper.
+void mark_nesting(Cdt& cdt) {
+  for (Cdt::Face_handle f : cdt.all_face_handles()) f->info().nesting = -1;
+  std::vector<Cdt::Edge> border;
+  std::vector<Cdt::Face_handle> stack;
+  auto flood = [&](Cdt::Face_handle start, int level) {
+    stack.assign(1, start);
+    while (!stack.empty()) {
+      const Cdt::Face_handle f = stack.back();
+      stack.pop_back();
+      if (f->info().nesting != -1) continue;
+      f->info().nesting = level;
+      for (int i = 0; i < 3; ++i) {
+        const Cdt::Face_handle next = f->neighbor(i);
+        if (next->info().nesting != -1) continue;
+        if (cdt.is_constrained({f, i})) border.emplace_back(f, i);
+        else stack.push_back(next);
+      }
+    }
+  };
+  flood(cdt.infinite_face(), 0);
+  for (std::size_t k = 0; k < border.size(); ++k) {  // grows while we walk it: breadth first by level
+    const auto [f, i] = border[k];
+    const Cdt::Face_handle next = f->neighbor(i);
+    if (next->info().nesting == -1) flood(next, f->info().nesting + 1);
+  }
+}
+
+// Builds the popup and, alongside, the OpenMesh mesh it will be written as: a triangle OpenMesh
+// refuses (a region touching itself at a vertex makes it non-manifold there) gets its own copies of
+// its vertices, so the popup and any file of it hold the same vertices and triangles.
+class Builder {
+ public:
+  explicit Builder(FoldedPopup& popup) : popup_(popup) {}
+
+  std::uint32_t add_vertex(const glm::dvec3& position, PlanPoint plan, std::int32_t region) {
+    popup_.positions.push_back(position);
+    popup_.plan_points.push_back(plan);
+    popup_.position_region.push_back(region);
+    mesh_.add_vertex(OmMesh::Point(position.x, position.y, position.z));
+    return static_cast<std::uint32_t>(popup_.positions.size() - 1);
+  }
+
+  void add_triangle(std::array<std::uint32_t, 3> t, std::int32_t region, PaperSurface surface) {
+    auto handles = [&] {
+      return std::array{mesh_.vertex_handle(t[0]), mesh_.vertex_handle(t[1]), mesh_.vertex_handle(t[2])};
+    };
+    auto h = handles();
+    if (!mesh_.add_face(h[0], h[1], h[2]).is_valid()) {
+      for (std::uint32_t& v : t)
+        v = add_vertex(glm::dvec3(popup_.positions[v]), PlanPoint(popup_.plan_points[v]), region);
+      popup_.split_vertices += 3;
+      h = handles();
+      [[maybe_unused]] const bool added = mesh_.add_face(h[0], h[1], h[2]).is_valid();
+      assert(added);
+    }
+    popup_.triangles.push_back(t);
+    popup_.triangle_region.push_back(region);
+    popup_.triangle_surface.push_back(surface);
+  }
+
+ private:
+  FoldedPopup& popup_;
+  OmMesh mesh_;
+  QuietOpenMesh quiet_;
+};
+
+void check_finite(const PlanRegion& region, std::size_t index) {
+  for (const auto& ring : region.rings)
+    for (const PlanPoint& p : ring)
+      if (!std::isfinite(p.X) || !std::isfinite(p.Y))
+        throw InputError("region " + std::to_string(index) + ": a ring has a coordinate that is not finite");
+}
+
+void fold_region(const PlanRegion& region, std::int32_t index, const CardFrame& frame, double thickness_mm,
+                 Builder& builder, FoldedPopup& popup) {
+  Cdt cdt;
+  for (const auto& ring : region.rings) {
+    std::vector<Kernel::Point_2> points;
+    points.reserve(ring.size());
+    for (const PlanPoint& p : ring) points.emplace_back(p.X, p.Y);
+    cdt.insert_constraint(points.begin(), points.end(), true);
+  }
+  mark_nesting(cdt);
+  for (Cdt::Vertex_handle v : cdt.finite_vertex_handles()) v->info() = kUnused;
+
+  std::vector<std::uint32_t> front;  // the region's printed-side vertices, in order of first use
+  auto vertex = [&](Cdt::Vertex_handle v) {
+    if (v->info() == kUnused) {
+      const PlanPoint p{v->point().x(), v->point().y()};
+      v->info() = builder.add_vertex(fold_point(frame, p, region.orientation, region.depth_mm), p, index);
+      front.push_back(v->info());
+    }
+    return v->info();
+  };
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<std::array<std::uint32_t, 2>> boundary;  // directed with the region on the left
+  for (Cdt::Face_handle f : cdt.finite_face_handles()) {
+    if (!f->info().inside()) continue;
+    triangles.push_back({vertex(f->vertex(0)), vertex(f->vertex(1)), vertex(f->vertex(2))});
+    for (int i = 0; i < 3; ++i)
+      if (!f->neighbor(i)->info().inside())
+        boundary.push_back({f->vertex(Cdt::ccw(i))->info(), f->vertex(Cdt::cw(i))->info()});
+  }
+  if (triangles.empty()) {
+    ++popup.empty_regions;
+    return;
+  }
+  for (const auto& t : triangles) builder.add_triangle(t, index, PaperSurface::Printed);
+  if (thickness_mm <= 0) return;
+
+  // The slab: the reverse side thickness_mm behind the printed one, and quads along the boundary.
+  const glm::dvec3 offset =
+      -thickness_mm * (region.orientation == Orientation::V ? frame.n_back : frame.n_floor);
+  std::vector<std::uint32_t> behind(popup.positions.size(), kUnused);
+  for (const std::uint32_t v : front)
+    behind[v] = builder.add_vertex(popup.positions[v] + offset, popup.plan_points[v], index);
+  for (const auto& t : triangles) builder.add_triangle({behind[t[0]], behind[t[2]], behind[t[1]]}, index, PaperSurface::Reverse);
+  for (const auto& [a, b] : boundary) {
+    builder.add_triangle({a, behind[a], behind[b]}, index, PaperSurface::Edge);
+    builder.add_triangle({a, behind[b], b}, index, PaperSurface::Edge);
+  }
+}
+
+// sin and cos of an angle in degrees, exact at the quarter turns the tests and pictures use most.
+std::pair<double, double> sin_cos_deg(double angle_deg) {
+  if (angle_deg == 0) return {0.0, 1.0};
+  if (angle_deg == 90) return {1.0, 0.0};
+  if (angle_deg == 180) return {0.0, -1.0};
+  const double radians = angle_deg * (std::acos(-1.0) / 180);
+  return {std::sin(radians), std::cos(radians)};
+}
+
+}  // namespace
+
+CardFrame card_frame(double angle_deg) {
+  const auto [s, c] = sin_cos_deg(angle_deg);
+  CardFrame frame;
+  frame.b = {0, s, c};
+  frame.n_back = glm::cross(frame.e_x, frame.b);
+  frame.n_floor = glm::cross(frame.f, frame.e_x);
+  return frame;
+}
+
+glm::dvec3 fold_point(const CardFrame& frame, PlanPoint p, Orientation orientation, double depth_mm) {
+  const double h = orientation == Orientation::V ? p.Y + depth_mm : depth_mm;
+  const double d = orientation == Orientation::V ? depth_mm : depth_mm - p.Y;
+  return p.X * frame.e_x + h * frame.b + d * frame.f;
+}
+
+FoldedPopup fold_popup(const std::vector<PlanRegion>& regions, const Sheet& sheet, const FoldOptions& options) {
+  check_options(options);
+  for (std::size_t i = 0; i < regions.size(); ++i) check_finite(regions[i], i);
+  FoldedPopup popup;
+  popup.sheet = sheet;
+  popup.options = options;
+  const CardFrame frame = card_frame(options.angle_deg);
+  Builder builder(popup);
+  for (std::size_t i = 0; i < regions.size(); ++i) {
+    const PlanRegion& region = regions[i];
+    popup.regions.push_back({region.orientation, region.depth_mm, region.status});
+    if (!region.placed) {
+      ++popup.unplaced_regions;
+      continue;
+    }
+    fold_region(region, static_cast<std::int32_t>(i), frame, options.thickness_mm, builder, popup);
+  }
+  return popup;
+}
+
+Rgb8 paper_colour(const FoldedRegion& region, PaperSurface surface, bool mark_unsupported) {
+  if (surface == PaperSurface::Edge) return {150, 138, 120};
+  const bool v = region.orientation == Orientation::V;
+  const bool stands = region.status == FaceStatus::Valid || region.status == FaceStatus::Indirect;
+  if (mark_unsupported && !stands) return v ? Rgb8{246, 178, 178} : Rgb8{236, 160, 160};
+  if (region.depth_mm == 0) return v ? Rgb8{226, 230, 236} : Rgb8{214, 205, 186};  // the card
+  return v ? Rgb8{250, 248, 242} : Rgb8{240, 230, 208};
+}
+
+std::vector<OutputFile> folded_mesh_files(const FoldedPopup& popup, const std::filesystem::path& path,
+                                          MeshFormat format) {
+  const QuietOpenMesh quiet;
+  OmMesh mesh;
+  mesh.request_face_colors();
+  for (const glm::dvec3& p : popup.positions) mesh.add_vertex(OmMesh::Point(p.x, p.y, p.z));
+  for (std::size_t i = 0; i < popup.triangles.size(); ++i) {
+    const auto& t = popup.triangles[i];
+    const OmMesh::FaceHandle f =
+        mesh.add_face(mesh.vertex_handle(t[0]), mesh.vertex_handle(t[1]), mesh.vertex_handle(t[2]));
+    if (!f.is_valid()) throw std::logic_error("folded_mesh_files: a triangle fold_popup added is refused");
+    const Rgb8 c =
+        paper_colour(popup.regions[static_cast<std::size_t>(popup.triangle_region[i])], popup.triangle_surface[i], true);
+    mesh.set_color(f, {c.r, c.g, c.b});
+  }
+  OpenMesh::IO::Options options = OpenMesh::IO::Options::FaceColor;
+  constexpr std::streamsize precision = 9;  // as many digits as a float holds
+  if (format == MeshFormat::Ply) {
+    options += OpenMesh::IO::Options::Binary;
+    std::ostringstream out;
+    if (!OpenMesh::IO::write_mesh(mesh, out, ".ply", options, precision))
+      throw OutputError(path.string() + ": cannot write PLY");
+    return {{path, out.str()}};
+  }
+
+  // OpenMesh writes an OBJ's materials only beside a file of that name: write both in a private
+  // folder, read them back, and leave publishing to write_files.
+  const std::filesystem::path mat = std::filesystem::path(path).replace_extension(".mat");
+  std::string folder = (std::filesystem::temp_directory_path() / "origamic-mesh-XXXXXX").string();
+  if (!mkdtemp(folder.data())) throw OutputError(path.string() + ": cannot make a temporary folder to write OBJ");
+  const std::filesystem::path staged = std::filesystem::path(folder) / path.filename();
+  const std::filesystem::path staged_mat = std::filesystem::path(folder) / mat.filename();
+  const bool written = OpenMesh::IO::write_mesh(mesh, staged.string(), options, precision);
+  auto slurp = [](const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  std::vector<OutputFile> files = {{path, slurp(staged)}};
+  const bool has_materials = std::filesystem::exists(staged_mat);  // none without a face
+  if (has_materials) files.push_back({mat, slurp(staged_mat)});
+  std::error_code ignored;
+  std::filesystem::remove_all(folder, ignored);
+  if (!written || files[0].bytes.empty() || (has_materials != !popup.triangles.empty()))
+    throw OutputError(path.string() + ": cannot write OBJ");
+  return files;
+}
+
+}  // namespace origamic

@@ -1,0 +1,354 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "origamic/fold3d.hpp"
+
+#include <gtest/gtest.h>
+
+// OpenMesh's colour property trips GCC 12's -Wmaybe-uninitialized (see src/fold3d.cpp).
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+
+#include "helpers.hpp"
+#include "origamic/error.hpp"
+#include "origamic/output.hpp"
+#include "origamic/plan.hpp"
+#include "origamic/raster.hpp"
+#include "origamic/segment.hpp"
+#include "origamic/slice.hpp"
+
+namespace origamic {
+namespace {
+
+// The box of the hand-made plan: off any round number, taller than deep.
+constexpr double kX0 = 61.3, kX1 = 148.9, kH = 63.7, kD = 41.9;
+const std::vector<double> kAngles = {0, 30, 90, 137, 180};
+
+std::vector<PlanRegion> box_regions() { return test::box_popup_regions(Sheet{}, kX0, kX1, kH, kD); }
+
+double plan_distance(PlanPoint p, PlanPoint q) { return std::hypot(p.X - q.X, p.Y - q.Y); }
+
+void expect_near3(const glm::dvec3& a, const glm::dvec3& b, double tolerance, const std::string& what) {
+  EXPECT_LE(glm::length(a - b), tolerance) << what << ": (" << a.x << ", " << a.y << ", " << a.z << ") vs (" << b.x
+                                           << ", " << b.y << ", " << b.z << ")";
+}
+
+TEST(Fold3d, FlatAt180EveryVertexIsItsPlanPoint) {
+  for (const double thickness : {0.0, 0.3}) {
+    const FoldedPopup popup = fold_popup(box_regions(), Sheet{}, {.angle_deg = 180, .thickness_mm = thickness});
+    ASSERT_FALSE(popup.positions.empty());
+    for (std::size_t i = 0; i < popup.positions.size(); ++i) {
+      const PlanPoint p = popup.plan_points[i];
+      const glm::dvec3 flat(p.X, 0, -p.Y);  // the flat frame: the sheet on y = 0, plan Y along -z
+      const glm::dvec3 q = popup.positions[i];
+      if (thickness == 0) {
+        expect_near3(q, flat, 1e-9, "vertex " + std::to_string(i));
+      } else {  // printed side on y = 0, reverse side a thickness below
+        EXPECT_NEAR(q.x, flat.x, 1e-9);
+        EXPECT_NEAR(q.z, flat.z, 1e-9);
+        EXPECT_TRUE(std::abs(q.y) <= 1e-9 || std::abs(q.y + thickness) <= 1e-9) << q.y;
+      }
+    }
+  }
+}
+
+TEST(Fold3d, At90VFacesKeepTheirDepthAndHFacesTheirHeight) {
+  const std::vector<PlanRegion> regions = box_regions();
+  const FoldedPopup popup = fold_popup(regions, Sheet{}, {});
+  std::set<std::int32_t> seen;
+  for (std::size_t i = 0; i < popup.positions.size(); ++i) {
+    const PlanRegion& r = regions[static_cast<std::size_t>(popup.position_region[i])];
+    const glm::dvec3 q = popup.positions[i];
+    const PlanPoint p = popup.plan_points[i];
+    EXPECT_EQ(q.x, p.X);
+    if (r.orientation == Orientation::V) {  // parallel to the back plane, at its depth
+      EXPECT_NEAR(q.z, r.depth_mm, 1e-9);
+      EXPECT_NEAR(q.y, p.Y + r.depth_mm, 1e-9);
+    } else {  // parallel to the floor, at its height
+      EXPECT_NEAR(q.y, r.depth_mm, 1e-9);
+      EXPECT_NEAR(q.z, r.depth_mm - p.Y, 1e-9);
+    }
+    EXPECT_GE(q.y, -1e-9) << "nothing below the floor";
+    EXPECT_GE(q.z, -1e-9) << "nothing behind the back plane";
+    seen.insert(popup.position_region[i]);
+  }
+  EXPECT_EQ(seen.size(), regions.size());
+  // The box itself: front and top span exactly the box.
+  for (std::size_t i = 0; i < popup.positions.size(); ++i) {
+    if (popup.position_region[i] < 2) continue;
+    const glm::dvec3 q = popup.positions[i];
+    EXPECT_TRUE(q.x == kX0 || q.x == kX1);
+    EXPECT_TRUE(std::abs(q.y) < 1e-9 || std::abs(q.y - kH) < 1e-9);
+    EXPECT_TRUE(std::abs(q.z) < 1e-9 || std::abs(q.z - kD) < 1e-9);
+  }
+}
+
+TEST(Fold3d, EveryEdgeKeepsItsPlanLengthAtEveryAngle) {
+  for (const double thickness : {0.0, 0.5})
+    for (const double angle : kAngles) {
+      const FoldedPopup popup = fold_popup(box_regions(), Sheet{}, {.angle_deg = angle, .thickness_mm = thickness});
+      int edges = 0;
+      for (std::size_t t = 0; t < popup.triangles.size(); ++t) {
+        if (popup.triangle_surface[t] == PaperSurface::Edge) continue;
+        for (int k = 0; k < 3; ++k) {
+          const std::uint32_t a = popup.triangles[t][k], b = popup.triangles[t][(k + 1) % 3];
+          const double plan = plan_distance(popup.plan_points[a], popup.plan_points[b]);
+          const double folded = glm::length(popup.positions[a] - popup.positions[b]);
+          ASSERT_GT(plan, 0);
+          EXPECT_NEAR(folded / plan, 1.0, 1e-9) << "angle " << angle << ", triangle " << t;
+          ++edges;
+        }
+      }
+      EXPECT_EQ(edges, 3 * static_cast<int>(std::ranges::count_if(popup.triangle_surface, [](PaperSurface s) {
+                         return s != PaperSurface::Edge;
+                       })));
+      EXPECT_GT(edges, 0);
+    }
+}
+
+TEST(Fold3d, FacesStayJoinedAlongTheirFoldsAndOnlyThere) {
+  const std::vector<PlanRegion> regions = box_regions();
+  for (const double angle : kAngles) {
+    const FoldedPopup popup = fold_popup(regions, Sheet{}, {.angle_deg = angle});
+    int joined = 0;
+    for (std::size_t i = 0; i < popup.positions.size(); ++i)
+      for (std::size_t j = i + 1; j < popup.positions.size(); ++j) {
+        const PlanRegion& a = regions[static_cast<std::size_t>(popup.position_region[i])];
+        const PlanRegion& b = regions[static_cast<std::size_t>(popup.position_region[j])];
+        const PlanPoint p = popup.plan_points[i], q = popup.plan_points[j];
+        if (&a == &b || p.X != q.X || p.Y != q.Y || a.orientation == b.orientation) continue;
+        const PlanRegion& v = a.orientation == Orientation::V ? a : b;
+        const PlanRegion& h = a.orientation == Orientation::H ? a : b;
+        ASSERT_EQ(p.Y, h.depth_mm - v.depth_mm) << "the box plan shares points only on folds";
+        expect_near3(popup.positions[i], popup.positions[j], 1e-9, "fold point at angle " + std::to_string(angle));
+        ++joined;
+      }
+    // Main fold (0, a, b, W), floor-front, front-top and top-back fold ends (2 each).
+    EXPECT_EQ(joined, 10) << "angle " << angle;
+  }
+  // Across a cut the faces part: plan point (x0, 0) lies on the front's side (a cut) and on the
+  // floor's cut-out; at 90 degrees the front holds it at (x0, d, d), the floor at (x0, 0, 0).
+  const CardFrame frame = card_frame(90);
+  const glm::dvec3 on_front = fold_point(frame, {kX0, 0}, Orientation::V, kD);
+  const glm::dvec3 on_floor = fold_point(frame, {kX0, 0}, Orientation::H, 0);
+  EXPECT_NEAR(glm::length(on_front - on_floor), std::hypot(kD, kD), 1e-9);
+}
+
+TEST(Fold3d, PrintedSidesFaceTheViewerAndTheSky) {
+  for (const double angle : kAngles) {
+    const CardFrame frame = card_frame(angle);
+    EXPECT_NEAR(glm::dot(frame.b, frame.f), std::cos(angle * std::acos(-1.0) / 180), 1e-15);
+    const FoldedPopup popup = fold_popup(box_regions(), Sheet{}, {.angle_deg = angle, .thickness_mm = 0.2});
+    for (std::size_t t = 0; t < popup.triangles.size(); ++t) {
+      const auto& tri = popup.triangles[t];
+      const glm::dvec3 n = glm::normalize(glm::cross(popup.positions[tri[1]] - popup.positions[tri[0]],
+                                                     popup.positions[tri[2]] - popup.positions[tri[0]]));
+      const bool v = popup.regions[static_cast<std::size_t>(popup.triangle_region[t])].orientation == Orientation::V;
+      const glm::dvec3 printed = v ? frame.n_back : frame.n_floor;
+      switch (popup.triangle_surface[t]) {
+        case PaperSurface::Printed: expect_near3(n, printed, 1e-9, "printed normal"); break;
+        case PaperSurface::Reverse: expect_near3(n, -printed, 1e-9, "reverse normal"); break;
+        case PaperSurface::Edge: EXPECT_NEAR(glm::dot(n, printed), 0, 1e-9); break;
+      }
+    }
+  }
+  EXPECT_EQ(card_frame(90).n_back, glm::dvec3(0, 0, 1));
+  EXPECT_EQ(card_frame(90).n_floor, glm::dvec3(0, 1, 0));
+}
+
+TEST(Fold3d, TrianglesCoverEachRegionLessItsHoles) {
+  // The back plane with a window as a clockwise hole, beside the box.
+  std::vector<PlanRegion> regions = box_regions();
+  const std::vector<PlanPoint> window = {{20, 100}, {20, 120}, {45, 120}, {45, 100}};
+  regions[0].rings.push_back(window);
+  const FoldedPopup popup = fold_popup(regions, Sheet{}, {.angle_deg = 63});
+  std::vector<double> area(regions.size(), 0.0);
+  for (std::size_t t = 0; t < popup.triangles.size(); ++t) {
+    const auto& tri = popup.triangles[t];
+    const double twice = test::twice_signed_area(
+        {popup.plan_points[tri[0]], popup.plan_points[tri[1]], popup.plan_points[tri[2]]});
+    EXPECT_GT(twice, 0) << "plan triangles are counter-clockwise";
+    area[static_cast<std::size_t>(popup.triangle_region[t])] += twice / 2;
+    // No triangle inside the window: its centroid is outside.
+    const double cx = (popup.plan_points[tri[0]].X + popup.plan_points[tri[1]].X + popup.plan_points[tri[2]].X) / 3;
+    const double cy = (popup.plan_points[tri[0]].Y + popup.plan_points[tri[1]].Y + popup.plan_points[tri[2]].Y) / 3;
+    EXPECT_FALSE(cx > 20 && cx < 45 && cy > 100 && cy < 120);
+  }
+  for (std::size_t r = 0; r < regions.size(); ++r) {
+    double expected = 0;
+    for (const auto& ring : regions[r].rings) expected += test::twice_signed_area(ring) / 2;
+    EXPECT_NEAR(area[r], expected, 1e-9 * expected) << "region " << r;
+  }
+  EXPECT_NEAR(area[0], 210 * 148.5 - (kX1 - kX0) * kH - 25 * 20, 1e-9);
+  EXPECT_EQ(popup.empty_regions, 0);
+}
+
+TEST(Fold3d, ThickPaperMakesClosedSlabsOfTheRightVolume) {
+  const double t = 0.4;
+  const std::vector<PlanRegion> regions = box_regions();
+  const FoldedPopup popup = fold_popup(regions, Sheet{}, {.angle_deg = 75, .thickness_mm = t});
+  std::vector<double> volume(regions.size(), 0.0);
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+  for (std::size_t i = 0; i < popup.triangles.size(); ++i) {
+    const auto& tri = popup.triangles[i];
+    const glm::dvec3 &a = popup.positions[tri[0]], &b = popup.positions[tri[1]], &c = popup.positions[tri[2]];
+    volume[static_cast<std::size_t>(popup.triangle_region[i])] += glm::dot(a, glm::cross(b, c)) / 6;
+    for (int k = 0; k < 3; ++k) ++directed[{tri[k], tri[(k + 1) % 3]}];
+  }
+  // Closed and consistently wound: every directed edge once, and its reverse once.
+  for (const auto& [edge, count] : directed) {
+    EXPECT_EQ(count, 1);
+    EXPECT_EQ(directed.count({edge.second, edge.first}), 1u);
+  }
+  for (std::size_t r = 0; r < regions.size(); ++r)
+    EXPECT_NEAR(volume[r], t * test::twice_signed_area(regions[r].rings[0]) / 2, 1e-6) << "region " << r;
+}
+
+TEST(Fold3d, RegionsTheFoldsDoNotPlaceAreLeftOut) {
+  std::vector<PlanRegion> regions = box_regions();
+  regions[3].placed = false;  // the top, as a plan read from its lines might leave it
+  const FoldedPopup popup = fold_popup(regions, Sheet{}, {});
+  EXPECT_EQ(popup.unplaced_regions, 1);
+  EXPECT_EQ(popup.regions.size(), 4u);
+  EXPECT_EQ(std::ranges::count(popup.triangle_region, 3), 0);
+  EXPECT_EQ(std::ranges::count(popup.position_region, 3), 0);
+  EXPECT_GT(std::ranges::count(popup.triangle_region, 2), 0);
+}
+
+TEST(Fold3d, OptionsAndCoordinatesOutOfRangeAreRejected) {
+  auto message = [](const std::vector<PlanRegion>& regions, const FoldOptions& options) {
+    try {
+      fold_popup(regions, Sheet{}, options);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  for (const double angle : {-1.0, 180.5, std::numeric_limits<double>::quiet_NaN()})
+    EXPECT_NE(message(box_regions(), {.angle_deg = angle}).find("--angle"), std::string::npos) << angle;
+  for (const double thickness : {-0.1, 11.0, std::numeric_limits<double>::infinity()})
+    EXPECT_NE(message(box_regions(), {.thickness_mm = thickness}).find("--thickness"), std::string::npos) << thickness;
+  std::vector<PlanRegion> regions = box_regions();
+  regions[2].rings[0][1].Y = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(message(regions, {}).find("region 2"), std::string::npos);
+}
+
+struct OmTraits : OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Color = OpenMesh::Vec3uc;
+};
+using OmMesh = OpenMesh::TriMesh_ArrayKernelT<OmTraits>;
+
+std::string slurp(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+TEST(Fold3d, MeshFilesReadBackWithTheSameVerticesFacesAndColours) {
+  const test::TempDir dir;
+  for (const double thickness : {0.0, 0.4}) {
+    const FoldedPopup popup = fold_popup(box_regions(), Sheet{}, {.angle_deg = 90, .thickness_mm = thickness});
+    std::set<std::array<int, 3>> colours;
+    for (std::size_t t = 0; t < popup.triangles.size(); ++t) {
+      const Rgb8 c = paper_colour(popup.regions[static_cast<std::size_t>(popup.triangle_region[t])],
+                                  popup.triangle_surface[t], true);
+      colours.insert({c.r, c.g, c.b});
+    }
+    const std::vector<OutputFile> obj = folded_mesh_files(popup, dir / "box.obj", MeshFormat::Obj);
+    ASSERT_EQ(obj.size(), 2u);
+    EXPECT_EQ(obj[1].path, dir / "box.mat");
+    const std::vector<OutputFile> ply = folded_mesh_files(popup, dir / "box.ply", MeshFormat::Ply);
+    ASSERT_EQ(ply.size(), 1u);
+    write_files({obj[0], obj[1], ply[0]});
+
+    // OpenMesh reads both back.
+    for (const char* name : {"box.obj", "box.ply"}) {
+      OmMesh mesh;
+      mesh.request_face_colors();
+      OpenMesh::IO::Options options = OpenMesh::IO::Options::FaceColor;
+      ASSERT_TRUE(OpenMesh::IO::read_mesh(mesh, (dir / name).string(), options)) << name;
+      EXPECT_EQ(mesh.n_vertices(), popup.positions.size()) << name;
+      EXPECT_EQ(mesh.n_faces(), popup.triangles.size()) << name;
+      EXPECT_TRUE(options.check(OpenMesh::IO::Options::FaceColor)) << name;
+      std::set<std::array<int, 3>> read;
+      for (const auto f : mesh.faces()) read.insert({mesh.color(f)[0], mesh.color(f)[1], mesh.color(f)[2]});
+      if (std::string(name) == "box.ply") {
+        EXPECT_EQ(read, colours);  // the OBJ's are Kd fractions, read back rounded
+      }
+      EXPECT_EQ(read.size(), colours.size()) << name;
+    }
+
+    // And by hand: OBJ lines and materials, the PLY header and its exact binary size.
+    std::istringstream lines(slurp(dir / "box.obj"));
+    std::size_t v = 0, f = 0;
+    std::set<std::string> used;
+    std::string mtllib;
+    for (std::string line; std::getline(lines, line);) {
+      if (line.rfind("v ", 0) == 0) ++v;
+      if (line.rfind("f ", 0) == 0) ++f;
+      if (line.rfind("usemtl ", 0) == 0) used.insert(line.substr(7));
+      if (line.rfind("mtllib ", 0) == 0) mtllib = line.substr(7);
+    }
+    EXPECT_EQ(v, popup.positions.size());
+    EXPECT_EQ(f, popup.triangles.size());
+    EXPECT_EQ(mtllib, "box.mat");
+    EXPECT_EQ(used.size(), colours.size());
+    const std::string materials = slurp(dir / "box.mat");
+    for (const std::string& m : used) EXPECT_NE(materials.find("newmtl " + m + "\n"), std::string::npos) << m;
+
+    const std::string bytes = slurp(dir / "box.ply");
+    const std::size_t header_end = bytes.find("end_header\n");
+    ASSERT_NE(header_end, std::string::npos);
+    const std::string header = bytes.substr(0, header_end);
+    EXPECT_NE(header.find("format binary_little_endian 1.0"), std::string::npos);
+    EXPECT_NE(header.find("element vertex " + std::to_string(popup.positions.size()) + "\n"), std::string::npos);
+    EXPECT_NE(header.find("element face " + std::to_string(popup.triangles.size()) + "\n"), std::string::npos);
+    // Three floats a vertex; a count byte, three int indices and three colour bytes a face.
+    EXPECT_EQ(bytes.size(), header_end + 11 + 12 * popup.positions.size() + 16 * popup.triangles.size());
+  }
+}
+
+// The plan of a box designed from its mesh, through the exact core's regions.
+Plan designed_box_plan() {
+  const RayScene scene(test::box({kX0, 0, 0}, {kX1, kH, kD}));
+  const Sheet sheet;
+  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
+  const SliceResult slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  return build_plan(maps, slices, sheet, PlanOptions{});
+}
+
+TEST(Fold3d, ADesignedBoxFoldsIntoTheBoxAndFlatIntoItsPlan) {
+  const Plan plan = designed_box_plan();
+  ASSERT_EQ(plan.regions.size(), 4u);
+  const FoldedPopup standing = fold_popup(plan.regions, plan.sheet, {});
+  int on_box = 0;
+  for (std::size_t i = 0; i < standing.positions.size(); ++i) {
+    const PlanRegion& r = plan.regions[static_cast<std::size_t>(standing.position_region[i])];
+    if (r.depth_mm == 0) continue;  // the card
+    const glm::dvec3 q = standing.positions[i];
+    // On the box's front (z = d) or top (y = h), within its x range to a pixel.
+    const bool front = q.z == kD && q.y >= -1e-9 && q.y <= kH + 1e-9;
+    const bool top = q.y == kH && q.z >= -1e-9 && q.z <= kD + 1e-9;
+    EXPECT_TRUE(front || top) << "(" << q.x << ", " << q.y << ", " << q.z << ")";
+    EXPECT_GE(q.x, kX0 - 0.25);
+    EXPECT_LE(q.x, kX1 + 0.25);
+    ++on_box;
+  }
+  EXPECT_GE(on_box, 8);
+  const FoldedPopup flat = fold_popup(plan.regions, plan.sheet, {.angle_deg = 180});
+  for (std::size_t i = 0; i < flat.positions.size(); ++i)
+    expect_near3(flat.positions[i], {flat.plan_points[i].X, 0, -flat.plan_points[i].Y}, 1e-9, "flat");
+}
+
+}  // namespace
+}  // namespace origamic
