@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "origamic/mesh_io.hpp"
+#include "origamic/plan.hpp"
 
 namespace origamic::test {
 
@@ -48,5 +49,26 @@ struct ManifestEntry {
   std::string up_axis;
 };
 std::vector<ManifestEntry> manifest();
+
+/// The origamic executable run with these arguments (a shell command line), its exit status and
+/// its output (stdout and stderr together; stderr alone with stdout_only).
+struct CommandRun {
+  int status = -1;
+  std::string output;
+};
+CommandRun run_origamic(const std::string& arguments, bool stdout_only = false);
+
+/// A path in single quotes for a shell command line.
+std::string quoted(const std::filesystem::path& path);
+
+/// The layer names a hand-written DXF puts each kind of line on.
+struct DxfLayers {
+  std::string cut = "CUT", mountain = "MOUNTAIN", valley = "VALLEY", outline = "OUTLINE";
+};
+
+/// A minimal ASCII DXF written by hand (not by dxflib): a HEADER with $INSUNITS, then one LINE per
+/// two-point polyline and one R12 POLYLINE with VERTEXes per longer one (closed flag set when the
+/// last point repeats the first), coordinates with 17 significant digits.
+std::string dxf_text(const std::vector<PlanPolyline>& lines, int insunits = 4, const DxfLayers& layers = {});
 
 }  // namespace origamic::test
