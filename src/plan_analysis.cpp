@@ -619,7 +619,8 @@ struct Analyzer {
         const std::string where = along_Y ? "at X = " + num(from.X) + " from Y = " + num(from.Y) + " to " + num(to.Y)
                                           : "at Y = " + num(from.Y) + " from X = " + num(from.X) + " to " + num(to.X);
         problem(PlanProblemKind::NarrowStrip, plan_point(CGAL::midpoint(a, b)), from, to, static_cast<std::int32_t>(r), width,
-                "face " + face_text(place[r]) + " at " + point_text(result.regions[r].inside) + " is " + num(width) +
+                "face " + (place[r].placed ? face_text(place[r]) + " " : "") + "at " +
+                    point_text(result.regions[r].inside) + " is " + num(width) +
                     " mm wide along " + (along_Y ? "Y " : "X ") + where + ", under W = " + num(options.min_strip_mm) +
                     " mm" + (narrow > 1 ? " (" + std::to_string(narrow) + " such places)" : ""));
       }

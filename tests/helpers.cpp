@@ -222,6 +222,18 @@ std::string quoted(const std::filesystem::path& path) {
   return text;
 }
 
+std::vector<PlanPolyline> box_plan(double d, double h, double x0, double x1) {
+  const double width = 210, half = 148.5;
+  return {{LineKind::Outline, {{0, -half}, {width, -half}, {width, half}, {0, half}, {0, -half}}},
+          {LineKind::Valley, {{0, 0}, {x0, 0}}},
+          {LineKind::Valley, {{x1, 0}, {width, 0}}},
+          {LineKind::Cut, {{x0, -d}, {x0, h}}},
+          {LineKind::Cut, {{x1, -d}, {x1, h}}},
+          {LineKind::Valley, {{x0, -d}, {x1, -d}}},
+          {LineKind::Mountain, {{x0, h - d}, {x1, h - d}}},
+          {LineKind::Valley, {{x0, h}, {x1, h}}}};
+}
+
 std::string dxf_text(const std::vector<PlanPolyline>& lines, int insunits, const DxfLayers& layers) {
   std::ostringstream out;
   auto pair = [&](int code, const std::string& value) { out << code << "\n" << value << "\n"; };

@@ -66,6 +66,12 @@ struct DxfLayers {
   std::string cut = "CUT", mountain = "MOUNTAIN", valley = "VALLEY", outline = "OUTLINE";
 };
 
+/// The plan of a box against the back plane drawn by hand on the default sheet (210 x 297 mm): the
+/// outline, the main fold beside the box, cuts at X = x0 and x1 from -d to h, and folds across the
+/// box: floor to front V(d) on Y = -d (valley), front to top H(h) on h - d (mountain), top to back
+/// plane on h (valley).
+std::vector<PlanPolyline> box_plan(double d, double h, double x0, double x1);
+
 /// A minimal ASCII DXF written by hand (not by dxflib): a HEADER with $INSUNITS, then one LINE per
 /// two-point polyline and one R12 POLYLINE with VERTEXes per longer one (closed flag set when the
 /// last point repeats the first), coordinates with 17 significant digits.

@@ -25,16 +25,7 @@ struct Box {
   double mid() const { return (x0 + x1) / 2; }
 };
 
-std::vector<PlanPolyline> box_plan(const Box& b) {
-  return {{LineKind::Outline, {{0, -kHalf}, {kWidth, -kHalf}, {kWidth, kHalf}, {0, kHalf}, {0, -kHalf}}},
-          {LineKind::Valley, {{0, 0}, {b.x0, 0}}},  // the main fold beside the box
-          {LineKind::Valley, {{b.x1, 0}, {kWidth, 0}}},
-          {LineKind::Cut, {{b.x0, -b.d}, {b.x0, b.h}}},
-          {LineKind::Cut, {{b.x1, -b.d}, {b.x1, b.h}}},
-          {LineKind::Valley, {{b.x0, -b.d}, {b.x1, -b.d}}},          // floor, then the front
-          {LineKind::Mountain, {{b.x0, b.h - b.d}, {b.x1, b.h - b.d}}},  // front, then the top
-          {LineKind::Valley, {{b.x0, b.h}, {b.x1, b.h}}}};           // top, then the back plane
-}
+std::vector<PlanPolyline> box_plan(const Box& b) { return test::box_plan(b.d, b.h, b.x0, b.x1); }
 
 // The line of a box plan drawn at height Y (the first one found), to change it.
 PlanPolyline& line_at(std::vector<PlanPolyline>& lines, double Y) {
@@ -339,6 +330,10 @@ TEST(PlanAnalysis, FoldEndingInsideAFaceIsReportedAtItsLooseEnd) {
   EXPECT_EQ(stray[0].at.Y, 100);
   EXPECT_EQ(stray[0].to.X, 30);
   EXPECT_EQ(a.errors, 1);
+  // The back plane's boundary leaves the stray line out.
+  const PlanRegion& back = a.regions[static_cast<std::size_t>(region_at(a, {5, 140}))];
+  ASSERT_EQ(back.rings.size(), 1u);
+  for (const PlanPoint& p : back.rings[0]) EXPECT_NE(p.Y, 100);
 }
 
 TEST(PlanAnalysis, SlantedFoldAndAFoldOverACutAreErrors) {
@@ -370,6 +365,13 @@ TEST(PlanAnalysis, LineLeavingTheSheetIsClippedWithAWarning) {
   EXPECT_EQ(outside[0].at.X, 230);
   EXPECT_EQ(a.warnings, 2) << listing(a);  // and the clipped cut is a slit into the back plane
   EXPECT_EQ(a.sheet.max_X, kWidth);
+  const auto slit = problems_of(a, PlanProblemKind::CutInsideFace);
+  ASSERT_EQ(slit.size(), 1u);
+  EXPECT_EQ(slit[0].at.X, 200) << "its loose end";
+  // The back plane's outer ring goes past the slit's foot on the sheet's edge, not round the slit.
+  const PlanRegion& back = a.regions[static_cast<std::size_t>(region_at(a, {5, 140}))];
+  ASSERT_EQ(back.rings.size(), 1u);
+  for (const PlanPoint& p : back.rings[0]) EXPECT_NE(p.X, 200);
 }
 
 TEST(PlanAnalysis, PlanWithoutMainFoldOrAcrossIt) {
