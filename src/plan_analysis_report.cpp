@@ -11,6 +11,21 @@ namespace {
 
 nlohmann::json point_json(PlanPoint p) { return nlohmann::json::array({p.X, p.Y}); }
 
+// "3 inconsistent folds", "1 dangling": the counts of the verdict line.
+std::string counted(PlanProblemKind kind, int count) {
+  const auto noun = [&](const char* one, const char* many) { return std::to_string(count) + " " + (count == 1 ? one : many); };
+  switch (kind) {
+    case PlanProblemKind::ConflictingLines: return noun("conflicting line", "conflicting lines");
+    case PlanProblemKind::SheetNotSplit: return noun("sheet not split", "sheets not split");
+    case PlanProblemKind::FoldNotHorizontal: return noun("slanted fold", "slanted folds");
+    case PlanProblemKind::FoldInsideFace: return noun("fold inside a face", "folds inside faces");
+    case PlanProblemKind::InconsistentFold: return noun("inconsistent fold", "inconsistent folds");
+    case PlanProblemKind::WrongFoldKind: return noun("wrong fold kind", "wrong fold kinds");
+    case PlanProblemKind::NarrowStrip: return noun("narrow strip", "narrow strips");
+    default: return std::to_string(count) + " " + std::string(to_string(kind));  // floating, dangling, invalid
+  }
+}
+
 }  // namespace
 
 std::string analysis_summary_line(const PlanAnalysis& analysis) {
@@ -20,12 +35,7 @@ std::string analysis_summary_line(const PlanAnalysis& analysis) {
   for (const PlanProblem& p : analysis.problems)
     if (is_error(p.kind)) ++errors[p.kind];
   std::string counts;
-  for (const auto& [kind, count] : errors) {
-    std::string name(to_string(kind));
-    for (char& c : name)
-      if (c == '_') c = ' ';
-    counts += (counts.empty() ? "" : ", ") + std::to_string(count) + " " + name;
-  }
+  for (const auto& [kind, count] : errors) counts += (counts.empty() ? "" : ", ") + counted(kind, count);
   if (!counts.empty()) line += "; " + counts;
   if (analysis.warnings > 0) line += " (" + std::to_string(analysis.warnings) + (analysis.warnings == 1 ? " warning)" : " warnings)");
   return line;

@@ -82,16 +82,17 @@ class Reader : public DL_CreationAdapter {
     finish_polyline();
     const auto kind = kind_of_entity("POLYLINE");
     if (!kind) return;
-    if (data.flags & (8 | 16 | 64))
-      throw InputError(name_ + ": a 3D or mesh POLYLINE on layer " + getAttributes().getLayer() +
-                       "; a plan is drawn in 2D");
+    if (data.flags & (16 | 64))
+      throw InputError(name_ + ": a mesh POLYLINE on layer " + getAttributes().getLayer() + "; a plan is drawn in 2D");
+    // 2D polylines are in their object coordinate system; 3D ones (flag 8) in world coordinates.
+    const bool world = (data.flags & 8) != 0;
     const double* direction = getExtrusion()->getDirection();
-    if (direction[0] != 0 || direction[1] != 0 || direction[2] == 0)
+    if (!world && (direction[0] != 0 || direction[1] != 0 || direction[2] == 0))
       throw InputError(name_ + ": a POLYLINE on layer " + getAttributes().getLayer() +
                        " is not in the XY plane (extrusion is not +-Z)");
     polyline_ = PlanPolyline{*kind, {}};
     closed_ = (data.flags & 1) != 0;
-    mirrored_ = direction[2] < 0;
+    mirrored_ = !world && direction[2] < 0;
   }
 
   void addVertex(const DL_VertexData& data) override {

@@ -42,7 +42,9 @@ enum class PlanProblemKind : std::uint8_t {
   Floating,           // validity (seed §4.4): no chain of folds to the back plane or the floor
   Dangling,           // all its folds on one line: it swings about it
   Invalid,            // held by neither two disjoint fold paths nor a connective face
-  NarrowStrip,        // narrower than W along X or Y (value_mm: the width)
+  NarrowStrip,        // narrower than W: the shortest chord of a face along X or along Y through one of
+                      // its vertices, longer than zero (a corner's tip is no strip) and shorter than W;
+                      // one per face and direction (from/to: the chord, value_mm: its length)
   // Warnings: reported, the verdict does not change.
   OutsideCard,        // part of a face reaches below the floor or behind the back plane when the card is
                       // open at 90 degrees (value_mm: how far): it pokes out through the hole it leaves
@@ -99,8 +101,9 @@ PlanAnalysis analyze_plan(const std::vector<PlanPolyline>& lines, const Analysis
 /// "plan VALID: N faces" or "plan INVALID: N faces; k floating, ..." (errors counted by kind).
 std::string analysis_summary_line(const PlanAnalysis& analysis);
 
-/// The analysis as JSON text: verdict, counts, problems (kind, severity, place, message), faces
-/// (orientation, depth, placed, status, inside point, area, rings) and line lengths.
+/// The analysis as JSON text: verdict, summary line, sheet, counts, problems (kind, severity, at,
+/// from, to, face, value, message), faces (node, role, placed, orientation, depth, status, inside
+/// point, area, holes) and line lengths, all in plan mm.
 std::string analysis_json(const PlanAnalysis& analysis, const std::string& file_name);
 
 }  // namespace origamic

@@ -35,15 +35,16 @@ struct DxfDrawing {
 double mm_per_unit(DrawingUnit unit);
 const char* to_string(DrawingUnit unit);
 
-/// Reads an ASCII DXF (R12 or later) with dxflib: LINE, POLYLINE (2D, with its VERTEXes) and
-/// LWPOLYLINE entities on the four layers, in model space, outside block definitions; the closed flag
-/// closes a polyline. Coordinates are taken exactly as the file's doubles, Z is ignored, and a
-/// polyline whose extrusion is (0, 0, -1) is mirrored into world X as CAD programs draw it.
+/// Reads an ASCII DXF (R12 or later) with dxflib: LINE, POLYLINE (with its VERTEXes) and LWPOLYLINE
+/// entities on the four layers, in model space, outside block definitions; the closed flag closes a
+/// polyline. Coordinates are taken exactly as the file's doubles, Z is ignored, and a 2D polyline
+/// whose extrusion is (0, 0, -1) is mirrored into world X as CAD programs draw it.
 /// $INSUNITS 4 (mm) is assumed when absent or 0 (unitless); 1 (in), 2 (ft), 5 (cm) and 6 (m) are
 /// recorded in `unit`.
 /// \throws InputError naming the file for a missing, unreadable, empty, binary, truncated (no EOF)
 /// or non-DXF file, for any other $INSUNITS, for arcs (bulges, ARC, CIRCLE, ELLIPSE, SPLINE), block
-/// references, 3D or mesh polylines on the plan's layers, and when no cut or fold line is found.
+/// references, mesh polylines or polylines out of the XY plane on the plan's layers, and when no cut
+/// or fold line is found.
 DxfDrawing read_dxf_drawing(const std::filesystem::path& file, const LayerNames& layers);
 
 /// The same plan in millimetres: each coordinate multiplied by mm_per_unit and rounded to the
