@@ -10,12 +10,12 @@
 #error "define CGAL_HAS_NO_THREADS before including exact_kernel.hpp"
 #endif
 
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+
 #include <bit>
 #include <cstdint>
 #include <type_traits>
 #include <utility>
-
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 
 namespace origamic::exact {
 

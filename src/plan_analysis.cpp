@@ -63,11 +63,16 @@ PlanPoint plan_point(const Point& p) { return {nearest_double(p.x()), nearest_do
 
 FT exact_unit(DrawingUnit unit) {
   switch (unit) {
-    case DrawingUnit::Millimetre: return FT(1);
-    case DrawingUnit::Centimetre: return FT(10);
-    case DrawingUnit::Metre: return FT(1000);
-    case DrawingUnit::Inch: return FT(254) / FT(10);
-    case DrawingUnit::Foot: return FT(3048) / FT(10);
+    case DrawingUnit::Millimetre:
+      return FT(1);
+    case DrawingUnit::Centimetre:
+      return FT(10);
+    case DrawingUnit::Metre:
+      return FT(1000);
+    case DrawingUnit::Inch:
+      return FT(254) / FT(10);
+    case DrawingUnit::Foot:
+      return FT(3048) / FT(10);
   }
   return FT(1);
 }
@@ -247,8 +252,10 @@ std::optional<Chord> narrowest_chord(const std::vector<Ring>& rings, bool along_
     for (std::size_t i = 0; i < ring.size(); ++i) {
       const Point &p = ring[i], &q = ring[(i + 1) % ring.size()];
       vertices.emplace_back(u_of(p), v_of(p));
-      if (u_of(p) <= u_of(q)) edges.push_back({u_of(p), v_of(p), u_of(q), v_of(q)});
-      else edges.push_back({u_of(q), v_of(q), u_of(p), v_of(p)});
+      if (u_of(p) <= u_of(q))
+        edges.push_back({u_of(p), v_of(p), u_of(q), v_of(q)});
+      else
+        edges.push_back({u_of(q), v_of(q), u_of(p), v_of(p)});
     }
   std::sort(vertices.begin(), vertices.end());
   std::sort(edges.begin(), edges.end(), [](const Edge& a, const Edge& b) { return a.u0 < b.u0; });
@@ -278,8 +285,10 @@ std::optional<Chord> narrowest_chord(const std::vector<Ring>& rings, bool along_
     std::sort(pieces.begin(), pieces.end());
     std::vector<std::pair<FT, FT>> merged;
     for (const auto& piece : pieces)
-      if (!merged.empty() && piece.first <= merged.back().second) merged.back().second = CGAL::max(merged.back().second, piece.second);
-      else merged.push_back(piece);
+      if (!merged.empty() && piece.first <= merged.back().second)
+        merged.back().second = CGAL::max(merged.back().second, piece.second);
+      else
+        merged.push_back(piece);
     const std::pair<FT, FT>* last = nullptr;
     for (std::size_t k = i; k < j; ++k)
       for (const auto& piece : merged) {
@@ -336,7 +345,8 @@ struct Analyzer {
 
   void run(const std::vector<PlanPolyline>& lines) {
     Input in = collect(lines, options);
-    result.sheet = {nearest_double(in.min_X), nearest_double(in.min_Y), nearest_double(in.max_X), nearest_double(in.max_Y)};
+    result.sheet = {nearest_double(in.min_X), nearest_double(in.min_Y), nearest_double(in.max_X),
+                    nearest_double(in.max_Y)};
     result.problems = std::move(in.warnings);
     kind = std::move(in.kind);
     CGAL::insert(arr, in.curves.begin(), in.curves.end());
@@ -388,7 +398,8 @@ struct Analyzer {
       if (top[r] || bottom[r]) place[r] = {true, top[r] ? Orientation::V : Orientation::H, FT(0)};
       result.node[r] = top[r] ? 0 : bottom[r] ? 1 : next_node++;
       if (top[r] && bottom[r])
-        problem(PlanProblemKind::SheetNotSplit, region.inside, region.inside, region.inside, static_cast<std::int32_t>(r), 0,
+        problem(PlanProblemKind::SheetNotSplit, region.inside, region.inside, region.inside,
+                static_cast<std::int32_t>(r), 0,
                 "the face at " + point_text(region.inside) +
                     " touches both the sheet's top edge (back plane) and its bottom edge (floor): no main fold "
                     "separates them");
@@ -414,7 +425,8 @@ struct Analyzer {
       if (int(cut) + int(mountain) + int(valley) > 1) {
         const PlanPoint a = plan_point(p), b = plan_point(q);
         std::string drawn;
-        for (const auto& [on, name] : {std::pair{cut, "a cut"}, {mountain, "a mountain fold"}, {valley, "a valley fold"}})
+        for (const auto& [on, name] :
+             {std::pair{cut, "a cut"}, {mountain, "a mountain fold"}, {valley, "a valley fold"}})
           if (on) drawn += (drawn.empty() ? "" : " and ") + std::string(name);
         problem(PlanProblemKind::ConflictingLines, a, a, b, -1, 0,
                 "the stretch from " + point_text(a) + " to " + point_text(b) + " is drawn as " + drawn +
@@ -516,10 +528,13 @@ struct Analyzer {
     auto note = [&](PlanProblemKind k, const FoldEdge& fold, double value, std::string what) {
       const auto key = std::make_tuple(static_cast<int>(k), fold.lower, fold.upper, nearest_double(fold.Y));
       auto [it, fresh] = groups.try_emplace(key, Group{fold.X_lo, fold.X_hi, value, std::move(what)});
-      if (!fresh) it->second.X_lo = CGAL::min(it->second.X_lo, fold.X_lo), it->second.X_hi = CGAL::max(it->second.X_hi, fold.X_hi);
+      if (!fresh)
+        it->second.X_lo = CGAL::min(it->second.X_lo, fold.X_lo),
+        it->second.X_hi = CGAL::max(it->second.X_hi, fold.X_hi);
     };
     for (const FoldEdge& fold : folds) {
-      const Place &below = place[static_cast<std::size_t>(fold.lower)], &above = place[static_cast<std::size_t>(fold.upper)];
+      const Place &below = place[static_cast<std::size_t>(fold.lower)],
+                  &above = place[static_cast<std::size_t>(fold.upper)];
       if (!below.placed || !above.placed) continue;  // a floating group: validity reports it
       const std::string kind_name = fold.kind == LineKind::Mountain ? "mountain" : "valley";
       if (below.orientation == above.orientation) {
@@ -540,7 +555,8 @@ struct Analyzer {
       if (fold.kind != expected)
         note(PlanProblemKind::WrongFoldKind, fold, 0,
              kind_name + " fold, but " + face_text(below) + " below and " + face_text(above) + " above make a " +
-                 (expected == LineKind::Mountain ? "mountain fold (V then H going up)" : "valley fold (H then V going up)"));
+                 (expected == LineKind::Mountain ? "mountain fold (V then H going up)"
+                                                 : "valley fold (H then V going up)"));
     }
     for (const auto& [key, group] : groups) {
       const auto& [k, lower, upper, Y] = key;
@@ -566,8 +582,8 @@ struct Analyzer {
       const PlanPoint at = plan_point(*worst);
       problem(PlanProblemKind::OutsideCard, at, at, at, static_cast<std::int32_t>(r), nearest_double(beyond),
               "face " + face_text(p) + " at " + point_text(result.regions[r].inside) + " reaches " +
-                  (v ? "below the floor" : "behind the back plane") + " by " + num(nearest_double(beyond)) +
-                  " mm at " + point_text(at));
+                  (v ? "below the floor" : "behind the back plane") + " by " + num(nearest_double(beyond)) + " mm at " +
+                  point_text(at));
     }
   }
 
@@ -580,7 +596,8 @@ struct Analyzer {
     for (std::size_t i = 1; i < ys.size(); ++i) line_of[i] = line_of[i - 1] + (ys[i] - ys[i - 1] > tolerance ? 1 : 0);
     result.graph.faces = result.faces + 2;
     for (const FoldEdge& fold : folds) {
-      const std::int32_t a = result.node[static_cast<std::size_t>(fold.lower)], b = result.node[static_cast<std::size_t>(fold.upper)];
+      const std::int32_t a = result.node[static_cast<std::size_t>(fold.lower)],
+                         b = result.node[static_cast<std::size_t>(fold.upper)];
       if (a == b) continue;
       const auto y = static_cast<std::size_t>(std::lower_bound(ys.begin(), ys.end(), fold.Y) - ys.begin());
       result.graph.folds.push_back({a, b, line_of[y]});
@@ -595,10 +612,17 @@ struct Analyzer {
       PlanProblemKind k;
       std::string why;
       switch (region.status) {
-        case FaceStatus::Floating: k = PlanProblemKind::Floating, why = "no chain of folds joins it to the back plane or the floor"; break;
-        case FaceStatus::Dangling: k = PlanProblemKind::Dangling, why = "all its folds lie on one line: it swings about it"; break;
-        case FaceStatus::Invalid: k = PlanProblemKind::Invalid, why = "no two fold paths to the back plane and the floor hold it"; break;
-        default: continue;
+        case FaceStatus::Floating:
+          k = PlanProblemKind::Floating, why = "no chain of folds joins it to the back plane or the floor";
+          break;
+        case FaceStatus::Dangling:
+          k = PlanProblemKind::Dangling, why = "all its folds lie on one line: it swings about it";
+          break;
+        case FaceStatus::Invalid:
+          k = PlanProblemKind::Invalid, why = "no two fold paths to the back plane and the floor hold it";
+          break;
+        default:
+          continue;
       }
       problem(k, region.inside, region.inside, region.inside, static_cast<std::int32_t>(r), 0,
               std::string(to_string(region.status)) + " face " + (place[r].placed ? face_text(place[r]) + " " : "") +
@@ -618,11 +642,12 @@ struct Analyzer {
         const double width = nearest_double(chord->hi - chord->lo);
         const std::string where = along_Y ? "at X = " + num(from.X) + " from Y = " + num(from.Y) + " to " + num(to.Y)
                                           : "at Y = " + num(from.Y) + " from X = " + num(from.X) + " to " + num(to.X);
-        problem(PlanProblemKind::NarrowStrip, plan_point(CGAL::midpoint(a, b)), from, to, static_cast<std::int32_t>(r), width,
+        problem(PlanProblemKind::NarrowStrip, plan_point(CGAL::midpoint(a, b)), from, to, static_cast<std::int32_t>(r),
+                width,
                 "face " + (place[r].placed ? face_text(place[r]) + " " : "") + "at " +
-                    point_text(result.regions[r].inside) + " is " + num(width) +
-                    " mm wide along " + (along_Y ? "Y " : "X ") + where + ", under W = " + num(options.min_strip_mm) +
-                    " mm" + (narrow > 1 ? " (" + std::to_string(narrow) + " such places)" : ""));
+                    point_text(result.regions[r].inside) + " is " + num(width) + " mm wide along " +
+                    (along_Y ? "Y " : "X ") + where + ", under W = " + num(options.min_strip_mm) + " mm" +
+                    (narrow > 1 ? " (" + std::to_string(narrow) + " such places)" : ""));
       }
   }
 
@@ -641,19 +666,32 @@ struct Analyzer {
 
 std::string_view to_string(PlanProblemKind kind) {
   switch (kind) {
-    case PlanProblemKind::ConflictingLines: return "conflicting_lines";
-    case PlanProblemKind::SheetNotSplit: return "sheet_not_split";
-    case PlanProblemKind::FoldNotHorizontal: return "fold_not_horizontal";
-    case PlanProblemKind::FoldInsideFace: return "fold_inside_face";
-    case PlanProblemKind::InconsistentFold: return "inconsistent_fold";
-    case PlanProblemKind::WrongFoldKind: return "wrong_fold_kind";
-    case PlanProblemKind::Floating: return "floating";
-    case PlanProblemKind::Dangling: return "dangling";
-    case PlanProblemKind::Invalid: return "invalid";
-    case PlanProblemKind::NarrowStrip: return "narrow_strip";
-    case PlanProblemKind::OutsideCard: return "outside_card";
-    case PlanProblemKind::CutInsideFace: return "cut_inside_face";
-    case PlanProblemKind::OutsideSheet: return "outside_sheet";
+    case PlanProblemKind::ConflictingLines:
+      return "conflicting_lines";
+    case PlanProblemKind::SheetNotSplit:
+      return "sheet_not_split";
+    case PlanProblemKind::FoldNotHorizontal:
+      return "fold_not_horizontal";
+    case PlanProblemKind::FoldInsideFace:
+      return "fold_inside_face";
+    case PlanProblemKind::InconsistentFold:
+      return "inconsistent_fold";
+    case PlanProblemKind::WrongFoldKind:
+      return "wrong_fold_kind";
+    case PlanProblemKind::Floating:
+      return "floating";
+    case PlanProblemKind::Dangling:
+      return "dangling";
+    case PlanProblemKind::Invalid:
+      return "invalid";
+    case PlanProblemKind::NarrowStrip:
+      return "narrow_strip";
+    case PlanProblemKind::OutsideCard:
+      return "outside_card";
+    case PlanProblemKind::CutInsideFace:
+      return "cut_inside_face";
+    case PlanProblemKind::OutsideSheet:
+      return "outside_sheet";
   }
   return "?";
 }

@@ -126,17 +126,28 @@ class Reader : public DL_CreationAdapter {
     finish_polyline();
     switch (insunits_) {
       case 0:
-      case 4: drawing.unit = DrawingUnit::Millimetre; break;
-      case 1: drawing.unit = DrawingUnit::Inch; break;
-      case 2: drawing.unit = DrawingUnit::Foot; break;
-      case 5: drawing.unit = DrawingUnit::Centimetre; break;
-      case 6: drawing.unit = DrawingUnit::Metre; break;
+      case 4:
+        drawing.unit = DrawingUnit::Millimetre;
+        break;
+      case 1:
+        drawing.unit = DrawingUnit::Inch;
+        break;
+      case 2:
+        drawing.unit = DrawingUnit::Foot;
+        break;
+      case 5:
+        drawing.unit = DrawingUnit::Centimetre;
+        break;
+      case 6:
+        drawing.unit = DrawingUnit::Metre;
+        break;
       default:
         throw InputError(name_ + ": unsupported drawing unit $INSUNITS = " + std::to_string(insunits_) +
                          " (mm, cm, m, inches and feet are read)");
     }
     drawing.other_layers.assign(other_layers_.begin(), other_layers_.end());
-    const bool any = std::ranges::any_of(drawing.lines, [](const PlanPolyline& l) { return l.kind != LineKind::Outline; });
+    const bool any =
+        std::ranges::any_of(drawing.lines, [](const PlanPolyline& l) { return l.kind != LineKind::Outline; });
     if (!any) {
       std::string found;
       for (const std::string& layer : other_layers_) found += (found.empty() ? "" : ", ") + layer;
@@ -185,7 +196,8 @@ class Reader : public DL_CreationAdapter {
 
   void check_finite(std::initializer_list<double> values, const char* entity) const {
     for (const double v : values)
-      if (!std::isfinite(v)) throw InputError(name_ + ": a " + std::string(entity) + " has a coordinate that is not finite");
+      if (!std::isfinite(v))
+        throw InputError(name_ + ": a " + std::string(entity) + " has a coordinate that is not finite");
   }
 
   void finish_polyline() {
@@ -203,22 +215,32 @@ class Reader : public DL_CreationAdapter {
 
 double mm_per_unit(DrawingUnit unit) {
   switch (unit) {
-    case DrawingUnit::Millimetre: return 1;
-    case DrawingUnit::Centimetre: return 10;
-    case DrawingUnit::Metre: return 1000;
-    case DrawingUnit::Inch: return 25.4;
-    case DrawingUnit::Foot: return 304.8;
+    case DrawingUnit::Millimetre:
+      return 1;
+    case DrawingUnit::Centimetre:
+      return 10;
+    case DrawingUnit::Metre:
+      return 1000;
+    case DrawingUnit::Inch:
+      return 25.4;
+    case DrawingUnit::Foot:
+      return 304.8;
   }
   return 1;
 }
 
 const char* to_string(DrawingUnit unit) {
   switch (unit) {
-    case DrawingUnit::Millimetre: return "mm";
-    case DrawingUnit::Centimetre: return "cm";
-    case DrawingUnit::Metre: return "m";
-    case DrawingUnit::Inch: return "in";
-    case DrawingUnit::Foot: return "ft";
+    case DrawingUnit::Millimetre:
+      return "mm";
+    case DrawingUnit::Centimetre:
+      return "cm";
+    case DrawingUnit::Metre:
+      return "m";
+    case DrawingUnit::Inch:
+      return "in";
+    case DrawingUnit::Foot:
+      return "ft";
   }
   return "?";
 }

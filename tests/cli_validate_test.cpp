@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <fstream>
-
 #include <nlohmann/json.hpp>
 
 #include "helpers.hpp"
@@ -108,9 +107,9 @@ TEST(CliValidate, LayerNamesAndStripWidthAreOptions) {
 
 TEST(CliValidate, DesignedPlanValidatesWithTheDesignsCounts) {
   const test::TempDir dir;
-  const test::CommandRun designed = test::run_origamic(
-      "design " + test::quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") + " --no-supports --out " +
-      test::quoted(dir.path));
+  const test::CommandRun designed =
+      test::run_origamic("design " + test::quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") +
+                         " --no-supports --out " + test::quoted(dir.path));
   ASSERT_EQ(designed.status, 0) << designed.output;
   std::ifstream in(dir / "house.json");
   const auto design = nlohmann::json::parse(in)["plan"];
@@ -147,8 +146,8 @@ TEST(CliValidate, BadFilesAndOptionsExitTwoWithOneLineNamingThem) {
 TEST(CliValidate, HelpListsTheOptions) {
   const test::CommandRun help = test::run_origamic("validate --help");
   EXPECT_EQ(help.status, 0);
-  for (const char* option : {"--min-strip", "--json", "--tolerance", "--cut-layer", "--mountain-layer", "--valley-layer",
-                             "--outline-layer"})
+  for (const char* option :
+       {"--min-strip", "--json", "--tolerance", "--cut-layer", "--mountain-layer", "--valley-layer", "--outline-layer"})
     EXPECT_NE(help.output.find(option), std::string::npos) << option;
   EXPECT_NE(test::run_origamic("--help").output.find("validate"), std::string::npos);
 }

@@ -507,7 +507,8 @@ TEST(PlanDxfReader, BadFilesAreRejectedNamingTheFile) {
   expect_rejected("text.dxf", "hello, this is not a drawing\n", "not a DXF");
   expect_rejected("truncated.dxf", box.substr(0, box.size() / 2), "truncated");
   expect_rejected("binary.dxf", std::string("AutoCAD Binary DXF\r\n\x1a\0", 22), "binary");
-  expect_rejected("bulge.dxf", dxf_of("0\nLWPOLYLINE\n8\nCUT\n90\n2\n70\n0\n10\n0\n20\n0\n42\n1\n10\n5\n20\n0\n"), "arc");
+  expect_rejected("bulge.dxf", dxf_of("0\nLWPOLYLINE\n8\nCUT\n90\n2\n70\n0\n10\n0\n20\n0\n42\n1\n10\n5\n20\n0\n"),
+                  "arc");
   expect_rejected("circle.dxf", dxf_of("0\nCIRCLE\n8\nCUT\n10\n0\n20\n0\n40\n5\n"), "CIRCLE");
   expect_rejected("insert.dxf", dxf_of("0\nINSERT\n8\n0\n2\nframe\n10\n0\n20\n0\n"), "INSERT");
   expect_rejected("layers.dxf", dxf_of("0\nLINE\n8\nSCHNITT\n10\n0\n20\n0\n11\n9\n21\n9\n"), "SCHNITT");
@@ -598,9 +599,10 @@ TEST(PlanAnalysis, PlansOfBoxesAndStairsReadBackAsDesigned) {
   for (const bool supports : {false, true}) {
     DesignOptions options;
     options.supports.enabled = supports;
-    for (const auto& [name, mesh] : {std::pair{"box", test::box({0, 0, -1}, {2, 1, 0})},
-                                     {"floating box", test::box({0, 1, -1}, {2, 2, 0})},
-                                     {"stairs", test::merged(test::box({0, 0, -2}, {4, 1, 0}), test::box({0, 1, -1}, {4, 2, 0}))}}) {
+    for (const auto& [name, mesh] :
+         {std::pair{"box", test::box({0, 0, -1}, {2, 1, 0})},
+          {"floating box", test::box({0, 1, -1}, {2, 2, 0})},
+          {"stairs", test::merged(test::box({0, 0, -2}, {4, 1, 0}), test::box({0, 1, -1}, {4, 2, 0}))}}) {
       SCOPED_TRACE(std::string(name) + (supports ? " with supports" : ""));
       test::write_obj(dir / "model.obj", mesh);
       const Comparison c = expect_read_back_matches(design(dir / "model.obj", options), dir);
@@ -634,8 +636,9 @@ TEST(PlanAnalysis, EverySeedlikePlanReadsBackAsDesigned) {
       const Comparison c = expect_read_back_matches(design(entry.path(), options), dir);
       (!c.sound ? unsound : c.one_region_per_face ? whole : split) += 1;
       if (!c.sound || !c.one_region_per_face)
-        std::printf("%s%s: %s\n", entry.path().filename().c_str(), supports ? " with supports" : "",
-                    c.sound ? "a design face is several pieces of paper in the plan" : "design plan has label conflicts");
+        std::printf(
+            "%s%s: %s\n", entry.path().filename().c_str(), supports ? " with supports" : "",
+            c.sound ? "a design face is several pieces of paper in the plan" : "design plan has label conflicts");
     }
   }
   EXPECT_GT(whole, 0);

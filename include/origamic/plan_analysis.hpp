@@ -46,10 +46,10 @@ enum class PlanProblemKind : std::uint8_t {
                       // its vertices, longer than zero (a corner's tip is no strip) and shorter than W;
                       // one per face and direction (from/to: the chord, value_mm: its length)
   // Warnings: reported, the verdict does not change.
-  OutsideCard,        // part of a face reaches below the floor or behind the back plane when the card is
-                      // open at 90 degrees (value_mm: how far): it pokes out through the hole it leaves
-  CutInsideFace,      // a cut with one face on both sides: a slit or a loose end
-  OutsideSheet,       // a line leaving the sheet (the outline), clipped to it
+  OutsideCard,    // part of a face reaches below the floor or behind the back plane when the card is
+                  // open at 90 degrees (value_mm: how far): it pokes out through the hole it leaves
+  CutInsideFace,  // a cut with one face on both sides: a slit or a loose end
+  OutsideSheet,   // a line leaving the sheet (the outline), clipped to it
 };
 
 std::string_view to_string(PlanProblemKind kind);  // snake_case, as in the JSON report
@@ -58,11 +58,11 @@ bool is_error(PlanProblemKind kind);
 /// One problem, located on the plan in mm.
 struct PlanProblem {
   PlanProblemKind kind = PlanProblemKind::ConflictingLines;
-  PlanPoint at;          // the point to look at
-  PlanPoint from, to;    // the stretch concerned: a segment, or the corners of a box (from == to: a point)
+  PlanPoint at;              // the point to look at
+  PlanPoint from, to;        // the stretch concerned: a segment, or the corners of a box (from == to: a point)
   std::int32_t region = -1;  // the face concerned (index in PlanAnalysis::regions), -1 for none
-  double value_mm = 0;   // the measured amount, for the kinds that say so
-  std::string message;   // one line, with the plan coordinates
+  double value_mm = 0;       // the measured amount, for the kinds that say so
+  std::string message;       // one line, with the plan coordinates
 };
 
 /// The sheet, in plan mm: the bounding box of the outline, or of every line when there is none.
@@ -76,15 +76,15 @@ struct PlanAnalysis {
   // place in OA space when folds reach it, and its validity status. Faces touching the sheet's top
   // edge are the back plane V(0), those touching its bottom edge the floor H(0).
   std::vector<PlanRegion> regions;
-  std::vector<double> area_mm2;      // per region
-  std::vector<std::int32_t> node;    // per region: its face in `graph` (0 back plane, 1 floor, 2.. the others)
-  FaceGraph graph;                   // one fold per fold edge between two nodes; lines by Y within the tolerance
-  Validity validity;                 // validate(graph)
+  std::vector<double> area_mm2;       // per region
+  std::vector<std::int32_t> node;     // per region: its face in `graph` (0 back plane, 1 floor, 2.. the others)
+  FaceGraph graph;                    // one fold per fold edge between two nodes; lines by Y within the tolerance
+  Validity validity;                  // validate(graph)
   std::vector<PlanProblem> problems;  // errors and warnings, errors first, each group in plan order
-  int faces = 0;                     // nodes other than the back plane and the floor
+  int faces = 0;                      // nodes other than the back plane and the floor
   int errors = 0, warnings = 0;
   double cut_mm = 0, mountain_mm = 0, valley_mm = 0;  // lengths inside the sheet
-  bool arrangement_valid = false;    // CGAL's is_valid on the exact arrangement
+  bool arrangement_valid = false;                     // CGAL's is_valid on the exact arrangement
 
   /// No error: every face placed consistently and held (valid or indirect), every fold where it folds.
   bool valid() const { return errors == 0; }

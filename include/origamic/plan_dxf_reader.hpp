@@ -27,7 +27,7 @@ enum class DrawingUnit : std::uint8_t { Millimetre, Centimetre, Metre, Inch, Foo
 struct DxfDrawing {
   std::vector<PlanPolyline> lines;  // in `unit`; closed polylines repeat their first point at the end
   DrawingUnit unit = DrawingUnit::Millimetre;
-  int ignored_entities = 0;         // entities on other layers (texts, dimensions, frames)
+  int ignored_entities = 0;               // entities on other layers (texts, dimensions, frames)
   std::vector<std::string> other_layers;  // the layers they were on, sorted
 };
 
