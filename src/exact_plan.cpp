@@ -1,33 +1,32 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The one translation unit that builds the exact arrangement (CGAL is heavy to compile: keep it here).
 
-// Exact numbers here are never shared between threads; without this, every lazily evaluated number
-// pays for a std::call_once (a futex system call on completion), which tripled the plan's time.
+// Exact numbers here are never shared between threads (see exact_kernel.hpp).
 #define CGAL_HAS_NO_THREADS 1
 
 #include "origamic/plan.hpp"
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <functional>
 #include <map>
-#include <type_traits>
 #include <utility>
 
 #include <CGAL/Arr_consolidated_curve_data_traits_2.h>
 #include <CGAL/Arr_extended_dcel.h>
 #include <CGAL/Arr_segment_traits_2.h>
 #include <CGAL/Arrangement_2.h>
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+
+#include "exact_kernel.hpp"
 
 namespace origamic {
 namespace {
 
-using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
-using FT = Kernel::FT;
-using Point = Kernel::Point_2;
+using exact::FT;
+using exact::Kernel;
+using exact::nearest_double;
+using exact::Point;
 using SegmentTraits = CGAL::Arr_segment_traits_2<Kernel>;
 // Each inserted segment carries the index of its side labels; overlapping pieces keep every index.
 using Traits = CGAL::Arr_consolidated_curve_data_traits_2<SegmentTraits, std::int32_t>;
@@ -290,22 +289,6 @@ void add_chain(const Chain& chain, Fallback fallback, const std::vector<RasterFa
     i = j + 1;
   }
   add_cut(chain, cut_from, last, lattice, simplify_mm, curves);
-}
-
-// The exact rational behind a lazy number (gmpxx: store expressions in a typed variable before use).
-using Rational = std::remove_cvref_t<decltype(std::declval<FT>().exact())>;
-
-// The double nearest an exact number (ties to even), so a fold at Y = h - d reads back as the
-// IEEE difference h - d. CGAL's to_double may return any double within its interval instead.
-double nearest_double(const FT& x) {
-  if (const auto [lo, hi] = CGAL::to_interval(x); lo == hi) return lo + 0.0;  // pixel corners, most often; no -0
-  const Rational& exact = x.exact();
-  const auto [lo, hi] = CGAL::to_interval(exact);
-  if (lo == hi) return lo;
-  const Rational mid = (Rational(lo) + Rational(hi)) / 2;  // typed: gmpxx expressions must not outlive their operands
-  if (exact < mid) return lo;
-  if (exact > mid) return hi;
-  return (std::bit_cast<std::uint64_t>(lo) & 1) == 0 ? lo : hi;
 }
 
 // Signed area of a boundary cycle from its vertices' nearest doubles: areas are reported, never

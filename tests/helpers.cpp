@@ -5,6 +5,8 @@
 #include <zlib.h>
 
 #include <array>
+#include <cstdio>
+
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -237,6 +239,77 @@ std::vector<ManifestEntry> manifest() {
     if (fields.size() > 9) entries.push_back({fields[0], std::stoul(fields[4]), fields[9]});
   }
   return entries;
+}
+
+CommandRun run_origamic(const std::string& arguments, bool stdout_only) {
+  const std::string command = std::string(ORIGAMIC_EXE) + " " + arguments + (stdout_only ? " 2>/dev/null" : " 2>&1");
+  CommandRun result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> buffer{};
+  std::size_t n = 0;
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+std::string quoted(const std::filesystem::path& path) {
+  std::string text = path.string();
+  text.insert(text.begin(), '\'');
+  text.push_back('\'');
+  return text;
+}
+
+std::vector<PlanPolyline> box_plan(double d, double h, double x0, double x1) {
+  const double width = 210, half = 148.5;
+  return {{LineKind::Outline, {{0, -half}, {width, -half}, {width, half}, {0, half}, {0, -half}}},
+          {LineKind::Valley, {{0, 0}, {x0, 0}}},
+          {LineKind::Valley, {{x1, 0}, {width, 0}}},
+          {LineKind::Cut, {{x0, -d}, {x0, h}}},
+          {LineKind::Cut, {{x1, -d}, {x1, h}}},
+          {LineKind::Valley, {{x0, -d}, {x1, -d}}},
+          {LineKind::Mountain, {{x0, h - d}, {x1, h - d}}},
+          {LineKind::Valley, {{x0, h}, {x1, h}}}};
+}
+
+std::string dxf_text(const std::vector<PlanPolyline>& lines, int insunits, const DxfLayers& layers) {
+  std::ostringstream out;
+  auto pair = [&](int code, const std::string& value) { out << code << "\n" << value << "\n"; };
+  auto real = [&](int code, double value) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.17g", value);
+    pair(code, text);
+  };
+  auto layer = [&](LineKind kind) {
+    switch (kind) {
+      case LineKind::Cut: return layers.cut;
+      case LineKind::Mountain: return layers.mountain;
+      case LineKind::Valley: return layers.valley;
+      case LineKind::Outline: return layers.outline;
+    }
+    return std::string("0");
+  };
+  pair(999, "written by origamic's tests");
+  pair(0, "SECTION"), pair(2, "HEADER"), pair(9, "$INSUNITS"), pair(70, std::to_string(insunits)), pair(0, "ENDSEC");
+  pair(0, "SECTION"), pair(2, "ENTITIES");
+  for (const PlanPolyline& line : lines) {
+    if (line.points.size() == 2) {
+      pair(0, "LINE"), pair(8, layer(line.kind));
+      real(10, line.points[0].X), real(20, line.points[0].Y), real(11, line.points[1].X), real(21, line.points[1].Y);
+      continue;
+    }
+    const bool closed = line.points.size() > 3 && line.points.front().X == line.points.back().X &&
+                        line.points.front().Y == line.points.back().Y;
+    pair(0, "POLYLINE"), pair(8, layer(line.kind)), pair(66, "1"), pair(70, closed ? "1" : "0");
+    for (std::size_t i = 0; i + (closed ? 1 : 0) < line.points.size(); ++i) {
+      pair(0, "VERTEX"), pair(8, layer(line.kind));
+      real(10, line.points[i].X), real(20, line.points[i].Y);
+    }
+    pair(0, "SEQEND"), pair(8, layer(line.kind));
+  }
+  pair(0, "ENDSEC"), pair(0, "EOF");
+  return out.str();
 }
 
 }  // namespace origamic::test

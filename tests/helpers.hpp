@@ -9,6 +9,7 @@
 #include "origamic/mesh_io.hpp"
 #include "origamic/oa.hpp"
 #include "origamic/plan_regions.hpp"
+#include "origamic/plan.hpp"
 
 namespace origamic::test {
 
@@ -65,5 +66,32 @@ struct ManifestEntry {
   std::string up_axis;
 };
 std::vector<ManifestEntry> manifest();
+
+/// The origamic executable run with these arguments (a shell command line), its exit status and
+/// its output (stdout and stderr together; stderr alone with stdout_only).
+struct CommandRun {
+  int status = -1;
+  std::string output;
+};
+CommandRun run_origamic(const std::string& arguments, bool stdout_only = false);
+
+/// A path in single quotes for a shell command line.
+std::string quoted(const std::filesystem::path& path);
+
+/// The layer names a hand-written DXF puts each kind of line on.
+struct DxfLayers {
+  std::string cut = "CUT", mountain = "MOUNTAIN", valley = "VALLEY", outline = "OUTLINE";
+};
+
+/// The plan of a box against the back plane drawn by hand on the default sheet (210 x 297 mm): the
+/// outline, the main fold beside the box, cuts at X = x0 and x1 from -d to h, and folds across the
+/// box: floor to front V(d) on Y = -d (valley), front to top H(h) on h - d (mountain), top to back
+/// plane on h (valley).
+std::vector<PlanPolyline> box_plan(double d, double h, double x0, double x1);
+
+/// A minimal ASCII DXF written by hand (not by dxflib): a HEADER with $INSUNITS, then one LINE per
+/// two-point polyline and one R12 POLYLINE with VERTEXes per longer one (closed flag set when the
+/// last point repeats the first), coordinates with 17 significant digits.
+std::string dxf_text(const std::vector<PlanPolyline>& lines, int insunits = 4, const DxfLayers& layers = {});
 
 }  // namespace origamic::test

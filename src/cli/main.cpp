@@ -13,6 +13,7 @@
 #include "origamic/design.hpp"
 #include "origamic/error.hpp"
 #include "origamic/output.hpp"
+#include "origamic/plan_analysis.hpp"
 #include "origamic/plan_export.hpp"
 #include "origamic/popup_files.hpp"
 #include "origamic/raster_images.hpp"
@@ -272,6 +273,57 @@ int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const
   return args.strict && !origamic::plan_stands(result.plan.validity, args.allow_dangling) ? 3 : 0;
 }
 
+struct ValidateArgs {
+  std::string plan;
+  double min_strip_mm = 0;
+  double tolerance_mm = 1e-6;
+  bool json = false;
+  origamic::LayerNames layers;
+};
+
+void add_validate_options(CLI::App& validate, ValidateArgs& args) {
+  validate.add_option("PLAN", args.plan, "plan as ASCII DXF: cuts, mountain and valley folds on their layers, in mm, "
+                                         "Y = 0 the main fold")
+      ->required();
+  validate.add_option("--min-strip", args.min_strip_mm, "W: report faces narrower than this along X or Y, mm (0: no check)")
+      ->capture_default_str();
+  validate.add_option("--tolerance", args.tolerance_mm,
+                      "a fold and the line Y = h - d of its faces agree within this, mm (absorbs the rounding of "
+                      "coordinates in the file)")
+      ->capture_default_str();
+  validate.add_flag("--json", args.json, "print the report as JSON instead of text");
+  validate.add_option("--cut-layer", args.layers.cut, "layer of the cuts")->capture_default_str();
+  validate.add_option("--mountain-layer", args.layers.mountain, "layer of the mountain folds")->capture_default_str();
+  validate.add_option("--valley-layer", args.layers.valley, "layer of the valley folds")->capture_default_str();
+  validate.add_option("--outline-layer", args.layers.outline,
+                      "layer of the sheet's edge (without one, the sheet is the bounding box of every line)")
+      ->capture_default_str();
+}
+
+int run_validate(const ValidateArgs& args) {
+  const origamic::DxfDrawing drawing = origamic::read_dxf_drawing(args.plan, args.layers);
+  origamic::AnalysisOptions options;
+  options.min_strip_mm = args.min_strip_mm;
+  options.tolerance_mm = args.tolerance_mm;
+  options.unit = drawing.unit;
+  origamic::PlanAnalysis analysis;
+  try {
+    analysis = origamic::analyze_plan(drawing.lines, options);
+  } catch (const InputError& e) {
+    const std::string message = e.what();  // name the file for problems of the plan, not of an option
+    throw InputError(message.rfind("plan: ", 0) == 0 ? args.plan + ": " + message.substr(6) : message);
+  }
+  if (args.json) {
+    std::fputs(origamic::analysis_json(analysis, args.plan).c_str(), stdout);
+  } else {
+    std::printf("%s\n", origamic::analysis_summary_line(analysis).c_str());
+    for (const origamic::PlanProblem& p : analysis.problems)
+      std::printf("%s: %s: %s\n", origamic::is_error(p.kind) ? "error" : "warning",
+                  std::string(origamic::to_string(p.kind)).c_str(), p.message.c_str());
+  }
+  return analysis.valid() ? 0 : 3;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -285,6 +337,10 @@ int main(int argc, char** argv) {
   add_fabrication_options(*design, fabrication_args);
   PopupArgs popup_args;
   add_popup_options(*design, popup_args);
+  ValidateArgs validate_args;
+  CLI::App* validate = app.add_subcommand("validate", "check a plan (DXF), made by origamic or by hand: faces, folds, "
+                                                      "validity; exit 0 valid, 3 invalid");
+  add_validate_options(*validate, validate_args);
 
   try {
     app.parse(argc, argv);
@@ -300,7 +356,9 @@ int main(int argc, char** argv) {
   }
 
   try {
-    return run_design(design_args, fabrication_args, popup_args);
+    if (*validate) return run_validate(validate_args);
+    if (*design) return run_design(design_args, fabrication_args, popup_args);
+    return 2;  // CLI11 requires one subcommand
   } catch (const origamic::InputError& e) {
     std::fprintf(stderr, "origamic: %s\n", e.what());
     return 2;

@@ -1,0 +1,109 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Validating a plan from its lines alone (seed §4.4, "validating raster results", made exact): the
+// cuts and folds are put in an exact arrangement, its faces are placed in OA space by walking the
+// folds from the back plane and the floor, every fold is checked against the faces it joins, and the
+// face graph is validated as the design's own plan is. This header is CGAL-free.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "origamic/plan.hpp"
+#include "origamic/plan_dxf_reader.hpp"
+#include "origamic/plan_regions.hpp"
+#include "origamic/validity.hpp"
+
+namespace origamic {
+
+struct AnalysisOptions {
+  // W: report every face narrower than this along X or Y (see PlanProblemKind::NarrowStrip);
+  // 0 skips the check.
+  double min_strip_mm = 0;
+  // A fold and the line Y = h - d of the faces it joins, placed along other paths, agree when they
+  // are at most this far apart. The decision is exact; the tolerance only absorbs the rounding of
+  // coordinates to doubles in a file (about 1e-14 mm per fold: a plan's h - d is rarely a double).
+  // 1e-6 mm is far below any cutter's precision and catches a fold 0.0001 mm off its line.
+  double tolerance_mm = 1e-6;
+  // The lines' unit; converted to mm exactly (25.4 mm per inch as the rational 254/10).
+  DrawingUnit unit = DrawingUnit::Millimetre;
+};
+
+enum class PlanProblemKind : std::uint8_t {
+  // Errors: the plan does not fold as drawn.
+  ConflictingLines,   // one stretch drawn as two kinds: cut and fold, or mountain and valley
+  SheetNotSplit,      // a face touches both the sheet's top edge (back plane) and bottom edge (floor)
+  FoldNotHorizontal,  // a fold not parallel to the main fold Y = 0
+  FoldInsideFace,     // a fold with one face on both sides (a loose end or a slit): nothing folds there
+  InconsistentFold,   // the faces it joins, placed along other paths, are both V or both H, or fold on
+                      // another line Y = h - d (value_mm: how far the fold is off that line)
+  WrongFoldKind,      // mountain where the faces make a valley fold, or the reverse
+  Floating,           // validity (seed §4.4): no chain of folds to the back plane or the floor
+  Dangling,           // all its folds on one line: it swings about it
+  Invalid,            // held by neither two disjoint fold paths nor a connective face
+  NarrowStrip,        // narrower than W: the shortest chord of a face along X or along Y through one of
+                      // its vertices, longer than zero (a corner's tip is no strip) and shorter than W;
+                      // one per face and direction (from/to: the chord, value_mm: its length)
+  // Warnings: reported, the verdict does not change.
+  OutsideCard,    // part of a face reaches below the floor or behind the back plane when the card is
+                  // open at 90 degrees (value_mm: how far): it pokes out through the hole it leaves
+  CutInsideFace,  // a cut with one face on both sides: a slit or a loose end
+  OutsideSheet,   // a line leaving the sheet (the outline), clipped to it
+};
+
+std::string_view to_string(PlanProblemKind kind);  // snake_case, as in the JSON report
+bool is_error(PlanProblemKind kind);
+
+/// One problem, located on the plan in mm.
+struct PlanProblem {
+  PlanProblemKind kind = PlanProblemKind::ConflictingLines;
+  PlanPoint at;              // the point to look at
+  PlanPoint from, to;        // the stretch concerned: a segment, or the corners of a box (from == to: a point)
+  std::int32_t region = -1;  // the face concerned (index in PlanAnalysis::regions), -1 for none
+  double value_mm = 0;       // the measured amount, for the kinds that say so
+  std::string message;       // one line, with the plan coordinates
+};
+
+/// The sheet, in plan mm: the bounding box of the outline, or of every line when there is none.
+struct PlanBox {
+  double min_X = 0, min_Y = 0, max_X = 0, max_Y = 0;
+};
+
+struct PlanAnalysis {
+  PlanBox sheet;
+  // Every face of the plan: rings in plan mm (outer counter-clockwise first, holes clockwise), its
+  // place in OA space when folds reach it, and its validity status. Faces touching the sheet's top
+  // edge are the back plane V(0), those touching its bottom edge the floor H(0).
+  std::vector<PlanRegion> regions;
+  std::vector<double> area_mm2;       // per region
+  std::vector<std::int32_t> node;     // per region: its face in `graph` (0 back plane, 1 floor, 2.. the others)
+  FaceGraph graph;                    // one fold per fold edge between two nodes; lines by Y within the tolerance
+  Validity validity;                  // validate(graph)
+  std::vector<PlanProblem> problems;  // errors and warnings, errors first, each group in plan order
+  int faces = 0;                      // nodes other than the back plane and the floor
+  int errors = 0, warnings = 0;
+  double cut_mm = 0, mountain_mm = 0, valley_mm = 0;  // lengths inside the sheet
+  bool arrangement_valid = false;                     // CGAL's is_valid on the exact arrangement
+
+  /// No error: every face placed consistently and held (valid or indirect), every fold where it folds.
+  bool valid() const { return errors == 0; }
+};
+
+/// Builds the exact arrangement of the lines (doubles taken exactly, scaled to mm exactly), clipped
+/// to the sheet, and analyses it. Y = 0 must be the main fold: the sheet must reach both sides of it.
+/// Deterministic. Not reentrant: the exact numbers are built without thread safety (see
+/// plan_analysis.cpp), so one call at a time per process, and not alongside build_plan.
+/// \throws InputError if there is no cut or fold line, a coordinate is not finite, an option is
+/// absurd, or the sheet does not straddle Y = 0.
+PlanAnalysis analyze_plan(const std::vector<PlanPolyline>& lines, const AnalysisOptions& options);
+
+/// "plan VALID: N faces" or "plan INVALID: N faces; k floating, ..." (errors counted by kind).
+std::string analysis_summary_line(const PlanAnalysis& analysis);
+
+/// The analysis as JSON text: verdict, summary line, sheet, counts, problems (kind, severity, at,
+/// from, to, face, value, message), faces (node, role, placed, orientation, depth, status, inside
+/// point, area, holes) and line lengths, all in plan mm.
+std::string analysis_json(const PlanAnalysis& analysis, const std::string& file_name);
+
+}  // namespace origamic

@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Internal: the exact kernel shared by the translation units that build arrangements (exact_plan.cpp,
+// plan_analysis.cpp), and the one conversion of an exact number to the double written out.
+#pragma once
+
+// Exact numbers are never shared between threads; without this, every lazily evaluated number pays
+// for a std::call_once (a futex system call on completion), which tripled the plan's time. Each
+// including translation unit defines it first, so all agree.
+#ifndef CGAL_HAS_NO_THREADS
+#error "define CGAL_HAS_NO_THREADS before including exact_kernel.hpp"
+#endif
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+
+#include <bit>
+#include <cstdint>
+#include <type_traits>
+#include <utility>
+
+namespace origamic::exact {
+
+using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
+using FT = Kernel::FT;
+using Point = Kernel::Point_2;
+
+// The exact rational behind a lazy number (gmpxx: store expressions in a typed variable before use).
+using Rational = std::remove_cvref_t<decltype(std::declval<FT>().exact())>;
+
+/// The double nearest an exact number (ties to even), so a fold at Y = h - d reads back as the IEEE
+/// difference h - d. CGAL's to_double may return any double within its interval instead.
+inline double nearest_double(const FT& x) {
+  if (const auto [lo, hi] = CGAL::to_interval(x); lo == hi) return lo + 0.0;  // most often; no -0
+  const Rational& exact = x.exact();
+  const auto [lo, hi] = CGAL::to_interval(exact);
+  if (lo == hi) return lo + 0.0;
+  const Rational mid = (Rational(lo) + Rational(hi)) / 2;  // typed: gmpxx expressions must not outlive their operands
+  if (exact < mid) return lo;
+  if (exact > mid) return hi;
+  return (std::bit_cast<std::uint64_t>(lo) & 1) == 0 ? lo : hi;
+}
+
+}  // namespace origamic::exact

@@ -1,0 +1,711 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The translation unit that validates a plan from its lines on an exact arrangement (CGAL is heavy
+// to compile: keep it here). Not reentrant: see exact_kernel.hpp.
+#define CGAL_HAS_NO_THREADS 1
+
+#include "origamic/plan_analysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <map>
+#include <optional>
+#include <tuple>
+#include <unordered_map>
+#include <utility>
+
+#include <CGAL/Arr_consolidated_curve_data_traits_2.h>
+#include <CGAL/Arr_extended_dcel.h>
+#include <CGAL/Arr_segment_traits_2.h>
+#include <CGAL/Arrangement_2.h>
+#include <CGAL/intersections.h>
+
+#include "exact_kernel.hpp"
+#include "origamic/error.hpp"
+
+namespace origamic {
+namespace {
+
+using exact::FT;
+using exact::Kernel;
+using exact::nearest_double;
+using exact::Point;
+using SegmentTraits = CGAL::Arr_segment_traits_2<Kernel>;
+// Each inserted segment carries the index of its kind; overlapping pieces keep every index.
+using Traits = CGAL::Arr_consolidated_curve_data_traits_2<SegmentTraits, std::int32_t>;
+using Dcel = CGAL::Arr_face_extended_dcel<Traits, std::int32_t>;
+using Arrangement = CGAL::Arrangement_2<Traits, Dcel>;
+using Face = Arrangement::Face_const_handle;
+using Halfedge = Arrangement::Halfedge_const_handle;
+using Ring = std::vector<Point>;
+
+constexpr std::int32_t kOutside = -1;
+
+// Numbers in messages: plan mm to 1e-6, small amounts with three significant digits.
+std::string num(double value) {
+  char text[64];
+  if (value != 0 && std::abs(value) < 1e-3) {
+    std::snprintf(text, sizeof text, "%.3g", value);
+    return text;
+  }
+  std::snprintf(text, sizeof text, "%.6f", value);
+  std::string s = text;
+  s.erase(s.find_last_not_of('0') + 1);
+  if (s.back() == '.') s.pop_back();
+  if (s == "-0") s = "0";
+  return s;
+}
+
+std::string point_text(PlanPoint p) { return "(" + num(p.X) + ", " + num(p.Y) + ")"; }
+
+PlanPoint plan_point(const Point& p) { return {nearest_double(p.x()), nearest_double(p.y())}; }
+
+FT exact_unit(DrawingUnit unit) {
+  switch (unit) {
+    case DrawingUnit::Millimetre:
+      return FT(1);
+    case DrawingUnit::Centimetre:
+      return FT(10);
+    case DrawingUnit::Metre:
+      return FT(1000);
+    case DrawingUnit::Inch:
+      return FT(254) / FT(10);
+    case DrawingUnit::Foot:
+      return FT(3048) / FT(10);
+  }
+  return FT(1);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The arrangement of every line, clipped to the sheet.
+
+struct Input {
+  std::vector<Traits::Curve_2> curves;
+  std::vector<LineKind> kind;  // per data index
+  FT min_X, min_Y, max_X, max_Y;
+  std::vector<PlanProblem> warnings;
+};
+
+Input collect(const std::vector<PlanPolyline>& lines, const AnalysisOptions& options) {
+  const FT unit = exact_unit(options.unit);
+  const bool scaled = options.unit != DrawingUnit::Millimetre;
+  auto exact = [&](PlanPoint p) {
+    if (!std::isfinite(p.X) || !std::isfinite(p.Y)) throw InputError("plan: a coordinate is not finite");
+    return scaled ? Point(FT(p.X) * unit, FT(p.Y) * unit) : Point(p.X, p.Y);
+  };
+  std::vector<std::vector<Point>> points(lines.size());
+  bool any_line = false, any_outline = false;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    for (const PlanPoint& p : lines[i].points) points[i].push_back(exact(p));
+    if (lines[i].points.size() >= 2) (lines[i].kind == LineKind::Outline ? any_outline : any_line) = true;
+  }
+  if (!any_line) throw InputError("plan: no cut or fold line");
+
+  Input in;
+  bool first = true;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (any_outline && lines[i].kind != LineKind::Outline) continue;
+    for (const Point& p : points[i]) {
+      if (first || p.x() < in.min_X) in.min_X = p.x();
+      if (first || p.x() > in.max_X) in.max_X = p.x();
+      if (first || p.y() < in.min_Y) in.min_Y = p.y();
+      if (first || p.y() > in.max_Y) in.max_Y = p.y();
+      first = false;
+    }
+  }
+  if (!(in.min_X < in.max_X) || !(in.min_Y < FT(0)) || !(FT(0) < in.max_Y))
+    throw InputError("plan: the sheet (X " + num(nearest_double(in.min_X)) + " to " + num(nearest_double(in.max_X)) +
+                     ", Y " + num(nearest_double(in.min_Y)) + " to " + num(nearest_double(in.max_Y)) +
+                     " mm) does not straddle the main fold Y = 0: origamic plans have the back plane above Y = 0 "
+                     "and the floor below");
+
+  const Kernel::Iso_rectangle_2 sheet(Point(in.min_X, in.min_Y), Point(in.max_X, in.max_Y));
+  auto add = [&](const Point& p, const Point& q, LineKind kind) {
+    if (p == q) return;
+    in.curves.emplace_back(Kernel::Segment_2(p, q), static_cast<std::int32_t>(in.kind.size()));
+    in.kind.push_back(kind);
+  };
+  const Point corners[4] = {{in.min_X, in.min_Y}, {in.max_X, in.min_Y}, {in.max_X, in.max_Y}, {in.min_X, in.max_Y}};
+  for (int k = 0; k < 4; ++k) add(corners[k], corners[(k + 1) % 4], LineKind::Outline);
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    bool reported = false;
+    for (std::size_t k = 1; k < points[i].size(); ++k) {
+      const Point &p = points[i][k - 1], &q = points[i][k];
+      if (!sheet.has_on_unbounded_side(p) && !sheet.has_on_unbounded_side(q)) {
+        add(p, q, lines[i].kind);
+        continue;
+      }
+      if (!reported) {
+        reported = true;
+        const PlanPoint at = plan_point(sheet.has_on_unbounded_side(p) ? p : q);
+        in.warnings.push_back({PlanProblemKind::OutsideSheet, at, plan_point(p), plan_point(q), -1, 0,
+                               "a line leaves the sheet at " + point_text(at) + ": clipped to the sheet"});
+      }
+      const auto clipped = CGAL::intersection(Kernel::Segment_2(p, q), sheet);
+      if (!clipped) continue;
+      if (const auto* s = boost::get<Kernel::Segment_2>(&*clipped)) add(s->source(), s->target(), lines[i].kind);
+    }
+  }
+  return in;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Faces as rings.
+
+// The boundary of a face without the edges that have it on both sides (slits and loose ends): from
+// each remaining halfedge, the next one around its target vertex that still bounds another face.
+std::vector<Ring> rings_of(Face f) {
+  std::vector<Halfedge> real;
+  auto collect = [&](Arrangement::Ccb_halfedge_const_circulator first) {
+    auto he = first;
+    do
+      if (he->twin()->face() != f) real.push_back(he);
+    while (++he != first);
+  };
+  for (auto ccb = f->outer_ccbs_begin(); ccb != f->outer_ccbs_end(); ++ccb) collect(*ccb);
+  for (auto ccb = f->inner_ccbs_begin(); ccb != f->inner_ccbs_end(); ++ccb) collect(*ccb);
+  std::unordered_map<const void*, bool> used;
+  for (const Halfedge& he : real) used[&*he] = false;
+  std::vector<std::pair<FT, Ring>> rings;  // (twice the signed area, ring)
+  for (const Halfedge& start : real) {
+    if (used[&*start]) continue;
+    Ring ring;
+    FT twice = 0;
+    Halfedge he = start;
+    do {
+      used[&*he] = true;
+      ring.push_back(he->source()->point());
+      const Point &p = he->source()->point(), &q = he->target()->point();
+      twice += p.x() * q.y() - q.x() * p.y();
+      Halfedge next = he->next();
+      while (next->twin()->face() == f) next = next->twin()->next();
+      he = next;
+    } while (he != start);
+    rings.emplace_back(twice, std::move(ring));
+  }
+  // Counter-clockwise rings (positive area) are outer boundaries: the largest first, then the holes.
+  std::stable_sort(rings.begin(), rings.end(), [](const auto& a, const auto& b) {
+    const bool outer_a = CGAL::is_positive(a.first), outer_b = CGAL::is_positive(b.first);
+    if (outer_a != outer_b) return outer_a;
+    return outer_a && a.first > b.first;
+  });
+  std::vector<Ring> out;
+  for (auto& [area, ring] : rings) out.push_back(std::move(ring));
+  return out;
+}
+
+double ring_area(const Ring& ring) {
+  double twice = 0;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Point &p = ring[i], &q = ring[(i + 1) % ring.size()];
+    twice += CGAL::to_double(p.x()) * CGAL::to_double(q.y()) - CGAL::to_double(q.x()) * CGAL::to_double(p.y());
+  }
+  return twice / 2;
+}
+
+// A point strictly inside: on the horizontal line midway across the widest gap between vertex
+// heights, the middle of the widest stretch inside.
+Point inside_point(const std::vector<Ring>& rings) {
+  std::vector<FT> ys;
+  for (const Ring& ring : rings)
+    for (const Point& p : ring) ys.push_back(p.y());
+  std::sort(ys.begin(), ys.end());
+  ys.erase(std::unique(ys.begin(), ys.end()), ys.end());
+  std::size_t gap = 0;
+  for (std::size_t i = 1; i + 1 < ys.size(); ++i)
+    if (ys[i + 1] - ys[i] > ys[gap + 1] - ys[gap]) gap = i;
+  const FT y = (ys[gap] + ys[gap + 1]) / 2;
+  std::vector<FT> xs;
+  for (const Ring& ring : rings)
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Point &p = ring[i], &q = ring[(i + 1) % ring.size()];
+      if ((p.y() < y) != (q.y() < y)) xs.push_back(p.x() + (q.x() - p.x()) * (y - p.y()) / (q.y() - p.y()));
+    }
+  std::sort(xs.begin(), xs.end());
+  std::size_t best = 0;
+  for (std::size_t i = 2; i + 1 < xs.size(); i += 2)
+    if (xs[i + 1] - xs[i] > xs[best + 1] - xs[best]) best = i;
+  return {(xs[best] + xs[best + 1]) / 2, y};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Strips narrower than W: chords of a face along one axis through each of its vertices.
+
+struct Chord {
+  FT at, lo, hi;  // the chord runs from lo to hi along the measured axis, at `at` on the other
+};
+
+// The shortest chord through a vertex, along Y (vertical chords at each vertex X) or along X, that is
+// longer than zero (a corner's tip is no strip) and shorter than W; `narrow` counts such chords. A
+// chord is a connected piece of the closed face on the line: the union of the stretches inside just
+// before and just after the line (half-open crossing rules on both sides, exact).
+std::optional<Chord> narrowest_chord(const std::vector<Ring>& rings, bool along_Y, const FT& W, int& narrow) {
+  struct Edge {
+    FT u0, v0, u1, v1;  // u across the chord, v along it; u0 <= u1
+  };
+  auto u_of = [&](const Point& p) { return along_Y ? p.x() : p.y(); };
+  auto v_of = [&](const Point& p) { return along_Y ? p.y() : p.x(); };
+  std::vector<Edge> edges;
+  std::vector<std::pair<FT, FT>> vertices;
+  for (const Ring& ring : rings)
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Point &p = ring[i], &q = ring[(i + 1) % ring.size()];
+      vertices.emplace_back(u_of(p), v_of(p));
+      if (u_of(p) <= u_of(q))
+        edges.push_back({u_of(p), v_of(p), u_of(q), v_of(q)});
+      else
+        edges.push_back({u_of(q), v_of(q), u_of(p), v_of(p)});
+    }
+  std::sort(vertices.begin(), vertices.end());
+  std::sort(edges.begin(), edges.end(), [](const Edge& a, const Edge& b) { return a.u0 < b.u0; });
+  std::optional<Chord> best;
+  std::vector<const Edge*> active;
+  std::vector<FT> after, before;
+  std::vector<std::pair<FT, FT>> pieces;
+  std::size_t next_edge = 0;
+  for (std::size_t i = 0; i < vertices.size();) {
+    const FT u = vertices[i].first;
+    std::size_t j = i;
+    while (j < vertices.size() && vertices[j].first == u) ++j;
+    while (next_edge < edges.size() && edges[next_edge].u0 <= u) active.push_back(&edges[next_edge++]);
+    std::erase_if(active, [&](const Edge* e) { return e->u1 < u; });
+    after.clear(), before.clear();
+    for (const Edge* e : active) {
+      if (e->u0 == e->u1) continue;  // along the line: both faces' sides come from the other edges
+      const FT v = u == e->u0 ? e->v0 : u == e->u1 ? e->v1 : e->v0 + (e->v1 - e->v0) * (u - e->u0) / (e->u1 - e->u0);
+      if (e->u0 <= u && u < e->u1) after.push_back(v);
+      if (e->u0 < u && u <= e->u1) before.push_back(v);
+    }
+    pieces.clear();
+    for (std::vector<FT>* side : {&after, &before}) {
+      std::sort(side->begin(), side->end());
+      for (std::size_t k = 0; k + 1 < side->size(); k += 2) pieces.emplace_back((*side)[k], (*side)[k + 1]);
+    }
+    std::sort(pieces.begin(), pieces.end());
+    std::vector<std::pair<FT, FT>> merged;
+    for (const auto& piece : pieces)
+      if (!merged.empty() && piece.first <= merged.back().second)
+        merged.back().second = CGAL::max(merged.back().second, piece.second);
+      else
+        merged.push_back(piece);
+    const std::pair<FT, FT>* last = nullptr;
+    for (std::size_t k = i; k < j; ++k)
+      for (const auto& piece : merged) {
+        if (vertices[k].second < piece.first || piece.second < vertices[k].second || &piece == last) continue;
+        last = &piece;  // vertices of one chord count it once
+        const FT length = piece.second - piece.first;
+        if (!CGAL::is_positive(length) || !(length < W)) continue;
+        ++narrow;
+        if (!best || length < best->hi - best->lo) best = Chord{u, piece.first, piece.second};
+      }
+    i = j;
+  }
+  return best;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The analysis.
+
+struct Place {
+  bool placed = false;
+  Orientation orientation = Orientation::V;
+  FT depth = 0;
+};
+
+std::string face_text(const Place& place) {
+  if (!place.placed) return "unplaced";
+  return std::string(place.orientation == Orientation::V ? "V(" : "H(") + num(nearest_double(place.depth)) + ")";
+}
+
+struct FoldEdge {
+  std::int32_t lower, upper;
+  FT Y, X_lo, X_hi;
+  LineKind kind;
+};
+
+struct Analyzer {
+  const AnalysisOptions& options;
+  FT tolerance, W;
+  Arrangement arr;
+  std::vector<LineKind> kind;
+  std::vector<Face> faces;
+  std::vector<std::vector<Ring>> rings;
+  std::vector<Place> place;
+  std::vector<FoldEdge> folds;
+  std::vector<std::vector<std::size_t>> folds_of;
+  PlanAnalysis result;
+
+  explicit Analyzer(const AnalysisOptions& o) : options(o), tolerance(o.tolerance_mm), W(o.min_strip_mm) {}
+
+  void problem(PlanProblemKind k, PlanPoint at, PlanPoint from, PlanPoint to, std::int32_t region, double value,
+               std::string message) {
+    result.problems.push_back({k, at, from, to, region, value, std::move(message)});
+  }
+
+  void run(const std::vector<PlanPolyline>& lines) {
+    Input in = collect(lines, options);
+    result.sheet = {nearest_double(in.min_X), nearest_double(in.min_Y), nearest_double(in.max_X),
+                    nearest_double(in.max_Y)};
+    result.problems = std::move(in.warnings);
+    kind = std::move(in.kind);
+    CGAL::insert(arr, in.curves.begin(), in.curves.end());
+    result.arrangement_valid = arr.is_valid();
+    make_regions(in);
+    classify_edges();
+    place_faces();
+    check_folds();
+    check_card();
+    validate_graph();
+    if (options.min_strip_mm > 0) check_strips();
+    finish();
+  }
+
+  void make_regions(const Input& in) {
+    for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
+      if (f->is_unbounded()) {
+        f->set_data(kOutside);
+        continue;
+      }
+      f->set_data(static_cast<std::int32_t>(faces.size()));
+      faces.push_back(f);
+    }
+    const std::size_t n = faces.size();
+    rings.resize(n);
+    place.assign(n, {});
+    folds_of.assign(n, {});
+    result.regions.resize(n);
+    result.area_mm2.assign(n, 0.0);
+    std::vector<bool> top(n, false), bottom(n, false);
+    for (auto he = arr.halfedges_begin(); he != arr.halfedges_end(); ++he) {
+      if (he->face()->is_unbounded() || !he->twin()->face()->is_unbounded()) continue;
+      const Point &p = he->source()->point(), &q = he->target()->point();
+      const auto r = static_cast<std::size_t>(he->face()->data());
+      if (p.y() == in.max_Y && q.y() == in.max_Y) top[r] = true;
+      if (p.y() == in.min_Y && q.y() == in.min_Y) bottom[r] = true;
+    }
+    result.node.assign(n, 0);
+    std::int32_t next_node = 2;
+    for (std::size_t r = 0; r < n; ++r) {
+      rings[r] = rings_of(faces[r]);
+      PlanRegion& region = result.regions[r];
+      for (const Ring& ring : rings[r]) {
+        std::vector<PlanPoint>& out = region.rings.emplace_back();
+        for (const Point& p : ring) out.push_back(plan_point(p));
+        result.area_mm2[r] += ring_area(ring);
+      }
+      region.inside = plan_point(inside_point(rings[r]));
+      if (top[r] || bottom[r]) place[r] = {true, top[r] ? Orientation::V : Orientation::H, FT(0)};
+      result.node[r] = top[r] ? 0 : bottom[r] ? 1 : next_node++;
+      if (top[r] && bottom[r])
+        problem(PlanProblemKind::SheetNotSplit, region.inside, region.inside, region.inside,
+                static_cast<std::int32_t>(r), 0,
+                "the face at " + point_text(region.inside) +
+                    " touches both the sheet's top edge (back plane) and its bottom edge (floor): no main fold "
+                    "separates them");
+    }
+    result.faces = next_node - 2;
+  }
+
+  // Each edge inside the sheet: a cut, a fold between two faces, or a problem.
+  void classify_edges() {
+    std::vector<Halfedge> cut_inside, fold_inside;
+    for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
+      Halfedge he = e;
+      if (he->direction() != CGAL::ARR_LEFT_TO_RIGHT) he = he->twin();  // he->face() is above or left
+      if (he->face()->is_unbounded() || he->twin()->face()->is_unbounded()) continue;
+      bool cut = false, mountain = false, valley = false;
+      for (const std::int32_t d : he->curve().data()) {
+        const LineKind k = kind[static_cast<std::size_t>(d)];
+        (k == LineKind::Mountain ? mountain : k == LineKind::Valley ? valley : cut) = true;
+      }
+      const Point &p = he->source()->point(), &q = he->target()->point();
+      const double length = std::hypot(CGAL::to_double(q.x() - p.x()), CGAL::to_double(q.y() - p.y()));
+      const std::int32_t upper = he->face()->data(), lower = he->twin()->face()->data();
+      if (int(cut) + int(mountain) + int(valley) > 1) {
+        const PlanPoint a = plan_point(p), b = plan_point(q);
+        std::string drawn;
+        for (const auto& [on, name] :
+             {std::pair{cut, "a cut"}, {mountain, "a mountain fold"}, {valley, "a valley fold"}})
+          if (on) drawn += (drawn.empty() ? "" : " and ") + std::string(name);
+        problem(PlanProblemKind::ConflictingLines, a, a, b, -1, 0,
+                "the stretch from " + point_text(a) + " to " + point_text(b) + " is drawn as " + drawn +
+                    ": it is taken as a cut");
+        mountain = valley = false, cut = true;
+      }
+      if (cut) {
+        result.cut_mm += length;
+        if (upper == lower) cut_inside.push_back(he);
+        continue;
+      }
+      (mountain ? result.mountain_mm : result.valley_mm) += length;
+      if (upper == lower) {
+        fold_inside.push_back(he);
+        continue;
+      }
+      if (p.y() != q.y()) {
+        const PlanPoint a = plan_point(p), b = plan_point(q);
+        problem(PlanProblemKind::FoldNotHorizontal, a, a, b, -1, 0,
+                std::string(mountain ? "mountain" : "valley") + " fold from " + point_text(a) + " to " + point_text(b) +
+                    " is not parallel to the main fold: folds run along X");
+        continue;
+      }
+      folds.push_back({lower, upper, p.y(), p.x(), q.x(), mountain ? LineKind::Mountain : LineKind::Valley});
+      folds_of[static_cast<std::size_t>(lower)].push_back(folds.size() - 1);
+      folds_of[static_cast<std::size_t>(upper)].push_back(folds.size() - 1);
+    }
+    report_inside(fold_inside, PlanProblemKind::FoldInsideFace);
+    report_inside(cut_inside, PlanProblemKind::CutInsideFace);
+  }
+
+  // Edges with one face on both sides, grouped into connected pieces; each piece is one problem.
+  void report_inside(const std::vector<Halfedge>& edges, PlanProblemKind k) {
+    std::unordered_map<const void*, std::size_t> index;
+    for (std::size_t i = 0; i < edges.size(); ++i) index[&*edges[i]] = index[&*edges[i]->twin()] = i;
+    std::vector<bool> seen(edges.size(), false);
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      if (seen[i]) continue;
+      std::vector<std::size_t> stack = {i};
+      seen[i] = true;
+      FT lo_x = edges[i]->source()->point().x(), hi_x = lo_x, lo_y = edges[i]->source()->point().y(), hi_y = lo_y;
+      std::optional<Point> loose;
+      while (!stack.empty()) {
+        const Halfedge he = edges[stack.back()];
+        stack.pop_back();
+        for (const auto& v : {he->source(), he->target()}) {
+          const Point& p = v->point();
+          lo_x = CGAL::min(lo_x, p.x()), hi_x = CGAL::max(hi_x, p.x());
+          lo_y = CGAL::min(lo_y, p.y()), hi_y = CGAL::max(hi_y, p.y());
+          if (v->degree() == 1 && (!loose || CGAL::compare_xy(p, *loose) == CGAL::SMALLER)) loose = p;
+          auto around = v->incident_halfedges(), first = around;
+          do {
+            const auto it = index.find(&*around);
+            if (it != index.end() && !seen[it->second]) seen[it->second] = true, stack.push_back(it->second);
+          } while (++around != first);
+        }
+      }
+      const PlanPoint from = plan_point(Point(lo_x, lo_y)), to = plan_point(Point(hi_x, hi_y));
+      const PlanPoint at = loose ? plan_point(*loose) : from;
+      const std::int32_t region = edges[i]->face()->data();
+      const bool fold = k == PlanProblemKind::FoldInsideFace;
+      problem(k, at, from, to, region, 0,
+              std::string(fold ? "a fold" : "a cut") + " between " + point_text(from) + " and " + point_text(to) +
+                  " has the same face on both sides" +
+                  (loose ? ", with a loose end at " + point_text(at) : std::string(" (a slit)")) +
+                  (fold ? ": nothing folds there" : ""));
+    }
+  }
+
+  // BFS over the folds from the back plane V(0) and the floor H(0): crossing a fold on Y from V(d)
+  // gives H(Y + d), from H(h) gives V(h - Y).
+  void place_faces() {
+    std::deque<std::size_t> queue;
+    for (std::size_t r = 0; r < faces.size(); ++r)
+      if (place[r].placed) queue.push_back(r);
+    while (!queue.empty()) {
+      const std::size_t r = queue.front();
+      queue.pop_front();
+      for (const std::size_t e : folds_of[r]) {
+        const FoldEdge& fold = folds[e];
+        const auto s = static_cast<std::size_t>(fold.lower == static_cast<std::int32_t>(r) ? fold.upper : fold.lower);
+        if (place[s].placed) continue;
+        place[s] = place[r].orientation == Orientation::V ? Place{true, Orientation::H, fold.Y + place[r].depth}
+                                                          : Place{true, Orientation::V, place[r].depth - fold.Y};
+        queue.push_back(s);
+      }
+    }
+  }
+
+  // Every fold against the faces it joins: one V and one H face, on their line Y = h - d, mountain
+  // when the V face is below it. Consecutive edges with the same problem are reported together.
+  void check_folds() {
+    struct Group {
+      FT X_lo, X_hi;
+      double value = 0;
+      std::string what;
+    };
+    std::map<std::tuple<int, std::int32_t, std::int32_t, double>, Group> groups;
+    auto note = [&](PlanProblemKind k, const FoldEdge& fold, double value, std::string what) {
+      const auto key = std::make_tuple(static_cast<int>(k), fold.lower, fold.upper, nearest_double(fold.Y));
+      auto [it, fresh] = groups.try_emplace(key, Group{fold.X_lo, fold.X_hi, value, std::move(what)});
+      if (!fresh)
+        it->second.X_lo = CGAL::min(it->second.X_lo, fold.X_lo),
+        it->second.X_hi = CGAL::max(it->second.X_hi, fold.X_hi);
+    };
+    for (const FoldEdge& fold : folds) {
+      const Place &below = place[static_cast<std::size_t>(fold.lower)],
+                  &above = place[static_cast<std::size_t>(fold.upper)];
+      if (!below.placed || !above.placed) continue;  // a floating group: validity reports it
+      const std::string kind_name = fold.kind == LineKind::Mountain ? "mountain" : "valley";
+      if (below.orientation == above.orientation) {
+        note(PlanProblemKind::InconsistentFold, fold, 0,
+             kind_name + " fold joins " + face_text(below) + " below and " + face_text(above) +
+                 " above (placed along other folds): a fold joins a V and an H face");
+        continue;
+      }
+      const Place& v = below.orientation == Orientation::V ? below : above;
+      const Place& h = below.orientation == Orientation::H ? below : above;
+      const FT line = h.depth - v.depth, off = fold.Y - line;
+      if (CGAL::abs(off) > tolerance)
+        note(PlanProblemKind::InconsistentFold, fold, nearest_double(off),
+             kind_name + " fold joins " + face_text(below) + " below and " + face_text(above) +
+                 " above (placed along other folds), which fold on Y = " + num(nearest_double(line)) + ": it is " +
+                 num(nearest_double(off)) + " mm off that line");
+      const LineKind expected = below.orientation == Orientation::V ? LineKind::Mountain : LineKind::Valley;
+      if (fold.kind != expected)
+        note(PlanProblemKind::WrongFoldKind, fold, 0,
+             kind_name + " fold, but " + face_text(below) + " below and " + face_text(above) + " above make a " +
+                 (expected == LineKind::Mountain ? "mountain fold (V then H going up)"
+                                                 : "valley fold (H then V going up)"));
+    }
+    for (const auto& [key, group] : groups) {
+      const auto& [k, lower, upper, Y] = key;
+      const PlanPoint from{nearest_double(group.X_lo), Y}, to{nearest_double(group.X_hi), Y};
+      const PlanPoint at{nearest_double((group.X_lo + group.X_hi) / 2), Y};
+      problem(static_cast<PlanProblemKind>(k), at, from, to, lower, group.value,
+              "at Y = " + num(Y) + " from X = " + num(from.X) + " to " + num(to.X) + ": " + group.what);
+    }
+  }
+
+  // A V(d) face holds plan points Y at height Y + d >= 0, an H(h) face at depth h - Y >= 0.
+  void check_card() {
+    for (std::size_t r = 0; r < faces.size(); ++r) {
+      const Place& p = place[r];
+      if (!p.placed) continue;
+      const bool v = p.orientation == Orientation::V;
+      std::optional<Point> worst;
+      for (const Ring& ring : rings[r])
+        for (const Point& q : ring)
+          if (!worst || (v ? q.y() < worst->y() : q.y() > worst->y())) worst = q;
+      const FT beyond = v ? -(worst->y() + p.depth) : worst->y() - p.depth;
+      if (!(beyond > tolerance)) continue;
+      const PlanPoint at = plan_point(*worst);
+      problem(PlanProblemKind::OutsideCard, at, at, at, static_cast<std::int32_t>(r), nearest_double(beyond),
+              "face " + face_text(p) + " at " + point_text(result.regions[r].inside) + " reaches " +
+                  (v ? "below the floor" : "behind the back plane") + " by " + num(nearest_double(beyond)) + " mm at " +
+                  point_text(at));
+    }
+  }
+
+  void validate_graph() {
+    std::vector<FT> ys;
+    for (const FoldEdge& fold : folds) ys.push_back(fold.Y);
+    std::sort(ys.begin(), ys.end());
+    ys.erase(std::unique(ys.begin(), ys.end()), ys.end());
+    std::vector<std::int32_t> line_of(ys.size(), 0);
+    for (std::size_t i = 1; i < ys.size(); ++i) line_of[i] = line_of[i - 1] + (ys[i] - ys[i - 1] > tolerance ? 1 : 0);
+    result.graph.faces = result.faces + 2;
+    for (const FoldEdge& fold : folds) {
+      const std::int32_t a = result.node[static_cast<std::size_t>(fold.lower)],
+                         b = result.node[static_cast<std::size_t>(fold.upper)];
+      if (a == b) continue;
+      const auto y = static_cast<std::size_t>(std::lower_bound(ys.begin(), ys.end(), fold.Y) - ys.begin());
+      result.graph.folds.push_back({a, b, line_of[y]});
+    }
+    result.validity = validate(result.graph);
+    for (std::size_t r = 0; r < faces.size(); ++r) {
+      PlanRegion& region = result.regions[r];
+      region.placed = place[r].placed;
+      region.orientation = place[r].orientation;
+      region.depth_mm = place[r].placed ? nearest_double(place[r].depth) : 0;
+      region.status = result.validity.status[static_cast<std::size_t>(result.node[r])];
+      PlanProblemKind k;
+      std::string why;
+      switch (region.status) {
+        case FaceStatus::Floating:
+          k = PlanProblemKind::Floating, why = "no chain of folds joins it to the back plane or the floor";
+          break;
+        case FaceStatus::Dangling:
+          k = PlanProblemKind::Dangling, why = "all its folds lie on one line: it swings about it";
+          break;
+        case FaceStatus::Invalid:
+          k = PlanProblemKind::Invalid, why = "no two fold paths to the back plane and the floor hold it";
+          break;
+        default:
+          continue;
+      }
+      problem(k, region.inside, region.inside, region.inside, static_cast<std::int32_t>(r), 0,
+              std::string(to_string(region.status)) + " face " + (place[r].placed ? face_text(place[r]) + " " : "") +
+                  "at " + point_text(region.inside) + ": " + why);
+    }
+  }
+
+  void check_strips() {
+    for (std::size_t r = 0; r < faces.size(); ++r)
+      for (const bool along_Y : {true, false}) {
+        int narrow = 0;
+        const std::optional<Chord> chord = narrowest_chord(rings[r], along_Y, W, narrow);
+        if (!chord) continue;
+        const Point a = along_Y ? Point(chord->at, chord->lo) : Point(chord->lo, chord->at);
+        const Point b = along_Y ? Point(chord->at, chord->hi) : Point(chord->hi, chord->at);
+        const PlanPoint from = plan_point(a), to = plan_point(b);
+        const double width = nearest_double(chord->hi - chord->lo);
+        const std::string where = along_Y ? "at X = " + num(from.X) + " from Y = " + num(from.Y) + " to " + num(to.Y)
+                                          : "at Y = " + num(from.Y) + " from X = " + num(from.X) + " to " + num(to.X);
+        problem(PlanProblemKind::NarrowStrip, plan_point(CGAL::midpoint(a, b)), from, to, static_cast<std::int32_t>(r),
+                width,
+                "face " + (place[r].placed ? face_text(place[r]) + " " : "") + "at " +
+                    point_text(result.regions[r].inside) + " is " + num(width) + " mm wide along " +
+                    (along_Y ? "Y " : "X ") + where + ", under W = " + num(options.min_strip_mm) + " mm" +
+                    (narrow > 1 ? " (" + std::to_string(narrow) + " such places)" : ""));
+      }
+  }
+
+  void finish() {
+    std::stable_sort(result.problems.begin(), result.problems.end(), [](const PlanProblem& a, const PlanProblem& b) {
+      if (is_error(a.kind) != is_error(b.kind)) return is_error(a.kind);
+      if (a.kind != b.kind) return a.kind < b.kind;
+      if (a.at.Y != b.at.Y) return a.at.Y > b.at.Y;
+      return a.at.X < b.at.X;
+    });
+    for (const PlanProblem& p : result.problems) (is_error(p.kind) ? result.errors : result.warnings) += 1;
+  }
+};
+
+}  // namespace
+
+std::string_view to_string(PlanProblemKind kind) {
+  switch (kind) {
+    case PlanProblemKind::ConflictingLines:
+      return "conflicting_lines";
+    case PlanProblemKind::SheetNotSplit:
+      return "sheet_not_split";
+    case PlanProblemKind::FoldNotHorizontal:
+      return "fold_not_horizontal";
+    case PlanProblemKind::FoldInsideFace:
+      return "fold_inside_face";
+    case PlanProblemKind::InconsistentFold:
+      return "inconsistent_fold";
+    case PlanProblemKind::WrongFoldKind:
+      return "wrong_fold_kind";
+    case PlanProblemKind::Floating:
+      return "floating";
+    case PlanProblemKind::Dangling:
+      return "dangling";
+    case PlanProblemKind::Invalid:
+      return "invalid";
+    case PlanProblemKind::NarrowStrip:
+      return "narrow_strip";
+    case PlanProblemKind::OutsideCard:
+      return "outside_card";
+    case PlanProblemKind::CutInsideFace:
+      return "cut_inside_face";
+    case PlanProblemKind::OutsideSheet:
+      return "outside_sheet";
+  }
+  return "?";
+}
+
+bool is_error(PlanProblemKind kind) { return kind < PlanProblemKind::OutsideCard; }
+
+PlanAnalysis analyze_plan(const std::vector<PlanPolyline>& lines, const AnalysisOptions& options) {
+  if (!(std::isfinite(options.min_strip_mm) && options.min_strip_mm >= 0))
+    throw InputError("--min-strip: W must be zero (no check) or a positive number of mm");
+  if (!(std::isfinite(options.tolerance_mm) && options.tolerance_mm >= 0 && options.tolerance_mm <= 0.1))
+    throw InputError("--tolerance: must be between 0 and 0.1 mm");
+  Analyzer analyzer(options);
+  analyzer.run(lines);
+  return std::move(analyzer.result);
+}
+
+}  // namespace origamic

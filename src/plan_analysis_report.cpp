@@ -1,0 +1,109 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The verdict of a plan's analysis for the terminal and as JSON.
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "origamic/plan_analysis.hpp"
+
+namespace origamic {
+namespace {
+
+nlohmann::json point_json(PlanPoint p) { return nlohmann::json::array({p.X, p.Y}); }
+
+// "3 inconsistent folds", "1 dangling": the counts of the verdict line.
+std::string counted(PlanProblemKind kind, int count) {
+  const auto noun = [&](const char* one, const char* many) {
+    return std::to_string(count) + " " + (count == 1 ? one : many);
+  };
+  switch (kind) {
+    case PlanProblemKind::ConflictingLines:
+      return noun("conflicting line", "conflicting lines");
+    case PlanProblemKind::SheetNotSplit:
+      return noun("sheet not split", "sheets not split");
+    case PlanProblemKind::FoldNotHorizontal:
+      return noun("slanted fold", "slanted folds");
+    case PlanProblemKind::FoldInsideFace:
+      return noun("fold inside a face", "folds inside faces");
+    case PlanProblemKind::InconsistentFold:
+      return noun("inconsistent fold", "inconsistent folds");
+    case PlanProblemKind::WrongFoldKind:
+      return noun("wrong fold kind", "wrong fold kinds");
+    case PlanProblemKind::NarrowStrip:
+      return noun("narrow strip", "narrow strips");
+    default:
+      return std::to_string(count) + " " + std::string(to_string(kind));  // floating, dangling, invalid
+  }
+}
+
+}  // namespace
+
+std::string analysis_summary_line(const PlanAnalysis& analysis) {
+  std::string line = std::string("plan ") + (analysis.valid() ? "VALID" : "INVALID") + ": " +
+                     std::to_string(analysis.faces) + " faces";
+  std::map<PlanProblemKind, int> errors;
+  for (const PlanProblem& p : analysis.problems)
+    if (is_error(p.kind)) ++errors[p.kind];
+  std::string counts;
+  for (const auto& [kind, count] : errors) counts += (counts.empty() ? "" : ", ") + counted(kind, count);
+  if (!counts.empty()) line += "; " + counts;
+  if (analysis.warnings > 0)
+    line += " (" + std::to_string(analysis.warnings) + (analysis.warnings == 1 ? " warning)" : " warnings)");
+  return line;
+}
+
+std::string analysis_json(const PlanAnalysis& analysis, const std::string& file_name) {
+  const Validity& v = analysis.validity;
+  nlohmann::json problems = nlohmann::json::array();
+  for (const PlanProblem& p : analysis.problems)
+    problems.push_back({{"kind", std::string(to_string(p.kind))},
+                        {"severity", is_error(p.kind) ? "error" : "warning"},
+                        {"at", point_json(p.at)},
+                        {"from", point_json(p.from)},
+                        {"to", point_json(p.to)},
+                        {"face", p.region},
+                        {"value_mm", p.value_mm},
+                        {"message", p.message}});
+  nlohmann::json faces = nlohmann::json::array();
+  for (std::size_t r = 0; r < analysis.regions.size(); ++r) {
+    const PlanRegion& region = analysis.regions[r];
+    const std::int32_t node = analysis.node[r];
+    faces.push_back({{"node", node},
+                     {"role", node == 0   ? "back plane"
+                              : node == 1 ? "floor"
+                                          : "face"},
+                     {"placed", region.placed},
+                     {"orientation", region.placed ? (region.orientation == Orientation::V ? "V" : "H") : ""},
+                     {"depth_mm", region.depth_mm},
+                     {"status", std::string(to_string(region.status))},
+                     {"inside", point_json(region.inside)},
+                     {"area_mm2", analysis.area_mm2[r]},
+                     {"holes", region.rings.empty() ? 0 : region.rings.size() - 1}});
+  }
+  const nlohmann::json report = {
+      {"file", file_name},
+      {"units", "mm"},
+      {"verdict", analysis.valid() ? "valid" : "invalid"},
+      {"summary", analysis_summary_line(analysis)},
+      {"sheet",
+       {{"min_X", analysis.sheet.min_X},
+        {"min_Y", analysis.sheet.min_Y},
+        {"max_X", analysis.sheet.max_X},
+        {"max_Y", analysis.sheet.max_Y}}},
+      {"counts",
+       {{"faces", analysis.faces},
+        {"regions", analysis.regions.size()},
+        {"valid", v.valid},
+        {"indirect", v.indirect},
+        {"floating", v.floating},
+        {"dangling", v.dangling},
+        {"invalid", v.invalid},
+        {"errors", analysis.errors},
+        {"warnings", analysis.warnings}}},
+      {"length_mm", {{"cut", analysis.cut_mm}, {"mountain", analysis.mountain_mm}, {"valley", analysis.valley_mm}}},
+      {"arrangement_valid", analysis.arrangement_valid},
+      {"problems", problems},
+      {"faces", faces}};
+  return report.dump(2) + "\n";
+}
+
+}  // namespace origamic

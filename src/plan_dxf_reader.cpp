@@ -1,0 +1,276 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "origamic/plan_dxf_reader.hpp"
+
+#include <dxflib/dl_creationadapter.h>
+#include <dxflib/dl_dxf.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "origamic/error.hpp"
+
+namespace origamic {
+namespace {
+
+std::string upper(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return text;
+}
+
+std::string trimmed(const std::string& text) {
+  const auto first = text.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) return "";
+  return text.substr(first, text.find_last_not_of(" \t\r\n") - first + 1);
+}
+
+// The file's group pairs must start with `0 SECTION` (after comments) and end with `0 EOF`: dxflib
+// reads anything without complaint, so a text file or a truncated download is caught here.
+void check_structure(const std::string& bytes, const std::string& name) {
+  if (bytes.empty()) throw InputError(name + ": empty file");
+  if (bytes.rfind("AutoCAD Binary DXF", 0) == 0)
+    throw InputError(name + ": binary DXF is not supported; save it as ASCII DXF");
+  std::istringstream in(bytes);
+  std::string code, value;
+  bool started = false;
+  std::string last_code, last_value;
+  while (std::getline(in, code)) {
+    if (!std::getline(in, value)) break;
+    code = trimmed(code), value = trimmed(value);
+    if (!started) {
+      if (code == "999") continue;
+      if (code != "0" || value != "SECTION")
+        throw InputError(name + ": not a DXF file (it does not start with a SECTION)");
+      started = true;
+    }
+    if (!code.empty() || !value.empty()) last_code = code, last_value = value;
+  }
+  if (!started) throw InputError(name + ": not a DXF file (it does not start with a SECTION)");
+  if (last_code != "0" || last_value != "EOF") throw InputError(name + ": truncated DXF (no EOF at its end)");
+}
+
+class Reader : public DL_CreationAdapter {
+ public:
+  Reader(const LayerNames& layers, std::string name) : name_(std::move(name)) {
+    kinds_ = {{upper(layers.cut), LineKind::Cut},
+              {upper(layers.mountain), LineKind::Mountain},
+              {upper(layers.valley), LineKind::Valley},
+              {upper(layers.outline), LineKind::Outline}};
+  }
+
+  DxfDrawing drawing;
+
+  void setVariableInt(const std::string& key, int value, int) override {
+    if (key == "$INSUNITS") insunits_ = value;
+  }
+  void addBlock(const DL_BlockData&) override { in_block_ = true; }
+  void endBlock() override { in_block_ = false; }
+
+  void addLine(const DL_LineData& data) override {
+    const auto kind = kind_of_entity("LINE");
+    if (!kind) return;
+    check_finite({data.x1, data.y1, data.x2, data.y2}, "LINE");
+    drawing.lines.push_back({*kind, {{data.x1, data.y1}, {data.x2, data.y2}}});
+  }
+
+  void addPolyline(const DL_PolylineData& data) override {
+    finish_polyline();
+    const auto kind = kind_of_entity("POLYLINE");
+    if (!kind) return;
+    if (data.flags & (16 | 64))
+      throw InputError(name_ + ": a mesh POLYLINE on layer " + getAttributes().getLayer() + "; a plan is drawn in 2D");
+    // 2D polylines are in their object coordinate system; 3D ones (flag 8) in world coordinates.
+    const bool world = (data.flags & 8) != 0;
+    const double* direction = getExtrusion()->getDirection();
+    if (!world && (direction[0] != 0 || direction[1] != 0 || direction[2] == 0))
+      throw InputError(name_ + ": a POLYLINE on layer " + getAttributes().getLayer() +
+                       " is not in the XY plane (extrusion is not +-Z)");
+    polyline_ = PlanPolyline{*kind, {}};
+    closed_ = (data.flags & 1) != 0;
+    mirrored_ = !world && direction[2] < 0;
+  }
+
+  void addVertex(const DL_VertexData& data) override {
+    if (!polyline_) return;
+    if (data.bulge != 0)
+      throw InputError(name_ + ": an arc (bulge) in a polyline on layer " + layer_name(polyline_->kind) +
+                       "; arcs are not supported: flatten them into straight segments");
+    check_finite({data.x, data.y}, "VERTEX");
+    polyline_->points.push_back({mirrored_ ? -data.x : data.x, data.y});
+  }
+
+  void endEntity() override { finish_polyline(); }    // after an LWPOLYLINE
+  void endSequence() override { finish_polyline(); }  // SEQEND after a POLYLINE's VERTEXes
+
+  void addArc(const DL_ArcData&) override { reject_curve("ARC"); }
+  void addCircle(const DL_CircleData&) override { reject_curve("CIRCLE"); }
+  void addEllipse(const DL_EllipseData&) override { reject_curve("ELLIPSE"); }
+  void addSpline(const DL_SplineData&) override { reject_curve("SPLINE"); }
+  void addInsert(const DL_InsertData&) override {
+    if (in_block_ || getAttributes().isInPaperSpace()) return;
+    // A block reference may carry lines on any layer: its contents are not read.
+    throw InputError(name_ + ": a block reference (INSERT) on layer " + getAttributes().getLayer() +
+                     "; explode blocks before validating");
+  }
+  void addText(const DL_TextData&) override { ignore(); }
+  void addMText(const DL_MTextData&) override { ignore(); }
+  void addPoint(const DL_PointData&) override { ignore(); }
+
+  // Called once the whole file is read.
+  void finish() {
+    finish_polyline();
+    switch (insunits_) {
+      case 0:
+      case 4:
+        drawing.unit = DrawingUnit::Millimetre;
+        break;
+      case 1:
+        drawing.unit = DrawingUnit::Inch;
+        break;
+      case 2:
+        drawing.unit = DrawingUnit::Foot;
+        break;
+      case 5:
+        drawing.unit = DrawingUnit::Centimetre;
+        break;
+      case 6:
+        drawing.unit = DrawingUnit::Metre;
+        break;
+      default:
+        throw InputError(name_ + ": unsupported drawing unit $INSUNITS = " + std::to_string(insunits_) +
+                         " (mm, cm, m, inches and feet are read)");
+    }
+    drawing.other_layers.assign(other_layers_.begin(), other_layers_.end());
+    const bool any =
+        std::ranges::any_of(drawing.lines, [](const PlanPolyline& l) { return l.kind != LineKind::Outline; });
+    if (!any) {
+      std::string found;
+      for (const std::string& layer : other_layers_) found += (found.empty() ? "" : ", ") + layer;
+      throw InputError(name_ + ": no line on the layers " + layer_name(LineKind::Cut) + ", " +
+                       layer_name(LineKind::Mountain) + " or " + layer_name(LineKind::Valley) +
+                       (found.empty() ? std::string(" (the file has no other entity)")
+                                      : " (entities are on: " + found + "; see --cut-layer and the others)"));
+    }
+  }
+
+ private:
+  std::string name_;
+  std::vector<std::pair<std::string, LineKind>> kinds_;
+  std::set<std::string> other_layers_;
+  std::optional<PlanPolyline> polyline_;
+  bool closed_ = false, mirrored_ = false, in_block_ = false;
+  int insunits_ = 4;
+
+  std::string layer_name(LineKind kind) const {
+    for (const auto& [layer, k] : kinds_)
+      if (k == kind) return layer;
+    return "?";
+  }
+
+  // The kind of the current entity, or nothing for entities that are not part of the plan.
+  std::optional<LineKind> kind_of_entity(const char*) {
+    if (in_block_ || getAttributes().isInPaperSpace()) return std::nullopt;
+    const std::string layer = upper(getAttributes().getLayer());
+    for (const auto& [name, kind] : kinds_)
+      if (name == layer) return kind;
+    ignore();
+    return std::nullopt;
+  }
+
+  void ignore() {
+    if (in_block_ || getAttributes().isInPaperSpace()) return;
+    ++drawing.ignored_entities;
+    other_layers_.insert(getAttributes().getLayer());
+  }
+
+  void reject_curve(const char* entity) {
+    if (!kind_of_entity(entity)) return;
+    throw InputError(name_ + ": " + entity + " on layer " + getAttributes().getLayer() +
+                     "; curves are not supported: flatten them into straight segments");
+  }
+
+  void check_finite(std::initializer_list<double> values, const char* entity) const {
+    for (const double v : values)
+      if (!std::isfinite(v))
+        throw InputError(name_ + ": a " + std::string(entity) + " has a coordinate that is not finite");
+  }
+
+  void finish_polyline() {
+    if (!polyline_) return;
+    PlanPolyline line = std::move(*polyline_);
+    polyline_.reset();
+    if (closed_ && line.points.size() >= 2 &&
+        (line.points.front().X != line.points.back().X || line.points.front().Y != line.points.back().Y))
+      line.points.push_back(line.points.front());
+    if (!line.points.empty()) drawing.lines.push_back(std::move(line));
+  }
+};
+
+}  // namespace
+
+double mm_per_unit(DrawingUnit unit) {
+  switch (unit) {
+    case DrawingUnit::Millimetre:
+      return 1;
+    case DrawingUnit::Centimetre:
+      return 10;
+    case DrawingUnit::Metre:
+      return 1000;
+    case DrawingUnit::Inch:
+      return 25.4;
+    case DrawingUnit::Foot:
+      return 304.8;
+  }
+  return 1;
+}
+
+const char* to_string(DrawingUnit unit) {
+  switch (unit) {
+    case DrawingUnit::Millimetre:
+      return "mm";
+    case DrawingUnit::Centimetre:
+      return "cm";
+    case DrawingUnit::Metre:
+      return "m";
+    case DrawingUnit::Inch:
+      return "in";
+    case DrawingUnit::Foot:
+      return "ft";
+  }
+  return "?";
+}
+
+DxfDrawing read_dxf_drawing(const std::filesystem::path& file, const LayerNames& layers) {
+  const std::string name = file.string();
+  std::error_code error;
+  if (!std::filesystem::exists(file, error)) throw InputError(name + ": no such file");
+  if (std::filesystem::is_directory(file, error)) throw InputError(name + ": is a folder, not a DXF file");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(name + ": cannot open for reading");
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(name + ": read error");
+  check_structure(bytes, name);
+
+  Reader reader(layers, name);
+  std::istringstream stream(bytes);
+  DL_Dxf dxf;
+  if (!dxf.in(stream, &reader)) throw InputError(name + ": cannot read");
+  reader.finish();
+  return std::move(reader.drawing);
+}
+
+std::vector<PlanPolyline> read_plan_dxf(const std::filesystem::path& file, const LayerNames& layers) {
+  DxfDrawing drawing = read_dxf_drawing(file, layers);
+  const double scale = mm_per_unit(drawing.unit);
+  if (scale != 1)
+    for (PlanPolyline& line : drawing.lines)
+      for (PlanPoint& p : line.points) p = {p.X * scale, p.Y * scale};
+  return std::move(drawing.lines);
+}
+
+}  // namespace origamic

@@ -1,0 +1,156 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// `origamic validate` as a user runs it.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "helpers.hpp"
+
+namespace origamic {
+namespace {
+
+constexpr double kD = 37.3, kH = 61.7, kX0 = 40.2, kX1 = 151.9;
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::size_t start = 0;
+  for (std::size_t end; (end = text.find('\n', start)) != std::string::npos; start = end + 1)
+    lines.push_back(text.substr(start, end - start));
+  if (start < text.size()) lines.push_back(text.substr(start));
+  return lines;
+}
+
+// The box plan with its front-to-top fold drawn as a valley fold.
+std::vector<PlanPolyline> swapped_box() {
+  std::vector<PlanPolyline> lines = test::box_plan(kD, kH, kX0, kX1);
+  for (PlanPolyline& line : lines)
+    if (line.kind == LineKind::Mountain) line.kind = LineKind::Valley;
+  return lines;
+}
+
+TEST(CliValidate, ValidPlanPrintsItsVerdictAndExitsZero) {
+  const test::TempDir dir;
+  test::write_text(dir / "box.dxf", test::dxf_text(test::box_plan(kD, kH, kX0, kX1)));
+  const test::CommandRun r = test::run_origamic("validate " + test::quoted(dir / "box.dxf"));
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output, "plan VALID: 2 faces\n");
+}
+
+TEST(CliValidate, InvalidPlanListsEachProblemWithItsPlaceAndExitsThree) {
+  const test::TempDir dir;
+  test::write_text(dir / "swapped.dxf", test::dxf_text(swapped_box()));
+  const test::CommandRun r = test::run_origamic("validate " + test::quoted(dir / "swapped.dxf"));
+  EXPECT_EQ(r.status, 3) << r.output;
+  const std::vector<std::string> lines = lines_of(r.output);
+  ASSERT_EQ(lines.size(), 2u) << r.output;
+  EXPECT_EQ(lines[0], "plan INVALID: 2 faces; 1 wrong fold kind");
+  EXPECT_EQ(lines[1].rfind("error: wrong_fold_kind: at Y = 24.4 from X = 40.2 to 151.9: valley fold, but ", 0), 0u)
+      << lines[1];
+}
+
+TEST(CliValidate, JsonReportHasTheVerdictTheProblemsAndTheFaces) {
+  const test::TempDir dir;
+  test::write_text(dir / "swapped.dxf", test::dxf_text(swapped_box()));
+  const test::CommandRun r = test::run_origamic("validate --json " + test::quoted(dir / "swapped.dxf"), true);
+  EXPECT_EQ(r.status, 3);
+  const nlohmann::json report = nlohmann::json::parse(r.output);
+  EXPECT_EQ(report["verdict"], "invalid");
+  EXPECT_EQ(report["units"], "mm");
+  EXPECT_EQ(report["counts"]["faces"], 2);
+  EXPECT_EQ(report["counts"]["valid"], 2);
+  EXPECT_EQ(report["counts"]["errors"], 1);
+  EXPECT_EQ(report["sheet"]["max_X"], 210.0);
+  ASSERT_EQ(report["problems"].size(), 1u);
+  const auto& p = report["problems"][0];
+  EXPECT_EQ(p["kind"], "wrong_fold_kind");
+  EXPECT_EQ(p["severity"], "error");
+  EXPECT_EQ(p["from"], nlohmann::json::array({kX0, kH - kD}));
+  EXPECT_EQ(p["to"], nlohmann::json::array({kX1, kH - kD}));
+  ASSERT_EQ(report["faces"].size(), 4u);
+  int placed = 0;
+  for (const auto& face : report["faces"]) {
+    placed += face["placed"].get<bool>();
+    if (face["role"] == "face") {
+      EXPECT_EQ(face["depth_mm"], face["orientation"] == "V" ? kD : kH);
+    } else {
+      EXPECT_EQ(face["orientation"], face["role"] == "back plane" ? "V" : "H");
+      EXPECT_EQ(face["depth_mm"], 0.0);
+    }
+  }
+  EXPECT_EQ(placed, 4);
+
+  test::write_text(dir / "box.dxf", test::dxf_text(test::box_plan(kD, kH, kX0, kX1)));
+  const test::CommandRun valid = test::run_origamic("validate " + test::quoted(dir / "box.dxf") + " --json", true);
+  EXPECT_EQ(valid.status, 0);
+  EXPECT_EQ(nlohmann::json::parse(valid.output)["verdict"], "valid");
+}
+
+TEST(CliValidate, LayerNamesAndStripWidthAreOptions) {
+  const test::TempDir dir;
+  test::write_text(dir / "de.dxf", test::dxf_text(test::box_plan(kD, 2.5, kX0, kX1), 4, {"S", "B", "T", "R"}));
+  const std::string file = test::quoted(dir / "de.dxf");
+  const test::CommandRun unnamed = test::run_origamic("validate " + file);
+  EXPECT_EQ(unnamed.status, 2) << unnamed.output;
+  EXPECT_NE(unnamed.output.find("no line on the layers CUT, MOUNTAIN or VALLEY"), std::string::npos) << unnamed.output;
+  const std::string layers = " --cut-layer S --mountain-layer B --valley-layer T --outline-layer R";
+  const test::CommandRun named = test::run_origamic("validate " + file + layers);
+  EXPECT_EQ(named.status, 0) << named.output;
+  // The front is h = 2.5 mm high on the plan (from -d to h - d): under W = 3 mm.
+  const test::CommandRun narrow = test::run_origamic("validate " + file + layers + " --min-strip 3");
+  EXPECT_EQ(narrow.status, 3) << narrow.output;
+  EXPECT_NE(narrow.output.find("error: narrow_strip: face V(37.3)"), std::string::npos) << narrow.output;
+  EXPECT_NE(narrow.output.find("is 2.5 mm wide along Y at X = 40.2 from Y = -37.3 to -34.8"), std::string::npos)
+      << narrow.output;
+}
+
+TEST(CliValidate, DesignedPlanValidatesWithTheDesignsCounts) {
+  const test::TempDir dir;
+  const test::CommandRun designed =
+      test::run_origamic("design " + test::quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") +
+                         " --no-supports --out " + test::quoted(dir.path));
+  ASSERT_EQ(designed.status, 0) << designed.output;
+  std::ifstream in(dir / "house.json");
+  const auto design = nlohmann::json::parse(in)["plan"];
+  const test::CommandRun r = test::run_origamic("validate --json " + test::quoted(dir / "house.dxf"), true);
+  EXPECT_EQ(r.status, design["verdict"] == "valid" ? 0 : 3);
+  const auto report = nlohmann::json::parse(r.output);
+  EXPECT_EQ(report["verdict"], design["verdict"]);
+  for (const char* count : {"faces", "valid", "indirect", "floating", "dangling", "invalid"})
+    EXPECT_EQ(report["counts"][count], design["counts"][count]) << count;
+}
+
+TEST(CliValidate, BadFilesAndOptionsExitTwoWithOneLineNamingThem) {
+  const test::TempDir dir;
+  test::write_text(dir / "notes.dxf", "these are my notes, not a drawing\n");
+  test::write_text(dir / "box.dxf", test::dxf_text(test::box_plan(kD, kH, kX0, kX1)));
+  const struct {
+    std::string arguments, names, problem;
+  } cases[] = {{test::quoted(dir / "missing.dxf"), "missing.dxf", "no such file"},
+               {test::quoted(dir / "notes.dxf"), "notes.dxf", "not a DXF file"},
+               {test::quoted(dir.path), dir.path.filename().string(), "folder"},
+               {test::quoted(dir / "box.dxf") + " --min-strip -1", "--min-strip", ""},
+               {test::quoted(dir / "box.dxf") + " --tolerance 5", "--tolerance", "between 0 and 0.1 mm"},
+               {test::quoted(dir / "box.dxf") + " --bogus", "--bogus", ""}};
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.arguments);
+    const test::CommandRun r = test::run_origamic("validate " + c.arguments);
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_EQ(std::ranges::count(r.output, '\n'), 1) << r.output;
+    EXPECT_NE(r.output.find(c.names), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(c.problem), std::string::npos) << r.output;
+  }
+}
+
+TEST(CliValidate, HelpListsTheOptions) {
+  const test::CommandRun help = test::run_origamic("validate --help");
+  EXPECT_EQ(help.status, 0);
+  for (const char* option :
+       {"--min-strip", "--json", "--tolerance", "--cut-layer", "--mountain-layer", "--valley-layer", "--outline-layer"})
+    EXPECT_NE(help.output.find(option), std::string::npos) << option;
+  EXPECT_NE(test::run_origamic("--help").output.find("validate"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace origamic

@@ -1,0 +1,650 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "origamic/plan_analysis.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include "helpers.hpp"
+#include "origamic/design.hpp"
+#include "origamic/error.hpp"
+#include "origamic/output.hpp"
+#include "origamic/plan_export.hpp"
+
+namespace origamic {
+namespace {
+
+constexpr double kWidth = 210, kHalf = 148.5;  // the default sheet
+
+// The box against the back plane of plan_test.cpp, drawn by hand: front V(d), top H(h).
+struct Box {
+  double d = 37.3, h = 61.7, x0 = 40.2, x1 = 151.9;
+  double mid() const { return (x0 + x1) / 2; }
+};
+
+std::vector<PlanPolyline> box_plan(const Box& b) { return test::box_plan(b.d, b.h, b.x0, b.x1); }
+
+// The line of a box plan drawn at height Y (the first one found), to change it.
+PlanPolyline& line_at(std::vector<PlanPolyline>& lines, double Y) {
+  for (PlanPolyline& line : lines)
+    if (line.kind != LineKind::Outline && line.points.size() == 2 && line.points[0].Y == Y && line.points[1].Y == Y)
+      return line;
+  throw std::logic_error("no line at that height");
+}
+
+// Even-odd point in region, on doubles: the test points are far from every boundary.
+bool contains(const PlanRegion& region, PlanPoint p) {
+  bool inside = false;
+  for (const auto& ring : region.rings)
+    for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
+      if ((ring[i].Y > p.Y) != (ring[j].Y > p.Y) &&
+          p.X < ring[j].X + (ring[i].X - ring[j].X) * (p.Y - ring[j].Y) / (ring[i].Y - ring[j].Y))
+        inside = !inside;
+  return inside;
+}
+
+std::int32_t region_at(const PlanAnalysis& a, PlanPoint p) {
+  std::int32_t found = -1;
+  for (std::size_t i = 0; i < a.regions.size(); ++i)
+    if (contains(a.regions[i], p)) {
+      EXPECT_EQ(found, -1) << "two faces hold (" << p.X << ", " << p.Y << ")";
+      found = static_cast<std::int32_t>(i);
+    }
+  return found;
+}
+
+std::vector<PlanProblem> problems_of(const PlanAnalysis& a, PlanProblemKind kind) {
+  std::vector<PlanProblem> found;
+  for (const PlanProblem& p : a.problems)
+    if (p.kind == kind) found.push_back(p);
+  return found;
+}
+
+std::string listing(const PlanAnalysis& a) {
+  std::string text = analysis_summary_line(a) + "\n";
+  for (const PlanProblem& p : a.problems) text += std::string(to_string(p.kind)) + ": " + p.message + "\n";
+  return text;
+}
+
+double ring_area(const std::vector<PlanPoint>& ring) {
+  double twice = 0;
+  for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
+    twice += ring[j].X * ring[i].Y - ring[i].X * ring[j].Y;
+  return twice / 2;
+}
+
+// ----------------------------------------------------------------------------------------------
+// Plans drawn by hand.
+
+TEST(PlanAnalysis, BoxPlanIsValidWithItsFacesWhereItsFoldsPutThem) {
+  const Box b;
+  const PlanAnalysis a = analyze_plan(box_plan(b), {});
+  EXPECT_TRUE(a.valid()) << listing(a);
+  EXPECT_TRUE(a.problems.empty()) << listing(a);
+  EXPECT_TRUE(a.arrangement_valid);
+  EXPECT_EQ(a.faces, 2);
+  ASSERT_EQ(a.regions.size(), 4u);
+  EXPECT_EQ(analysis_summary_line(a), "plan VALID: 2 faces");
+  EXPECT_EQ(a.sheet.min_X, 0.0);
+  EXPECT_EQ(a.sheet.max_Y, kHalf);
+
+  const std::int32_t front = region_at(a, {b.mid(), 0}), top = region_at(a, {b.mid(), b.h - b.d / 2});
+  const std::int32_t back = region_at(a, {5, 140}), floor = region_at(a, {5, -140});
+  ASSERT_GE(front, 0);
+  ASSERT_GE(top, 0);
+  EXPECT_EQ(a.node[static_cast<std::size_t>(back)], 0);
+  EXPECT_EQ(a.node[static_cast<std::size_t>(floor)], 1);
+  EXPECT_EQ(region_at(a, {5, 1}), back) << "the back plane reaches down to the main fold beside the box";
+  const PlanRegion &f = a.regions[static_cast<std::size_t>(front)], &t = a.regions[static_cast<std::size_t>(top)];
+  EXPECT_TRUE(f.placed);
+  EXPECT_EQ(f.orientation, Orientation::V);
+  EXPECT_EQ(f.depth_mm, b.d);  // 0 - (-d), exactly
+  EXPECT_EQ(f.status, FaceStatus::Valid);
+  EXPECT_EQ(t.orientation, Orientation::H);
+  EXPECT_EQ(t.depth_mm, b.h);
+  EXPECT_EQ(t.status, FaceStatus::Valid);
+  EXPECT_TRUE(contains(f, f.inside));
+  EXPECT_TRUE(contains(t, t.inside));
+  // The front's ring: counter-clockwise, through the main fold's end at (x0, 0) on its left side.
+  ASSERT_EQ(f.rings.size(), 1u);
+  EXPECT_EQ(f.rings[0].size(), 6u);
+  EXPECT_NEAR(ring_area(f.rings[0]), (b.x1 - b.x0) * b.h, 1e-9);
+  EXPECT_NEAR(a.area_mm2[static_cast<std::size_t>(front)], (b.x1 - b.x0) * b.h, 1e-9);
+  double total = 0;
+  for (const double area : a.area_mm2) total += area;
+  EXPECT_NEAR(total, kWidth * 2 * kHalf, 1e-9);
+  EXPECT_NEAR(a.mountain_mm, b.x1 - b.x0, 1e-12);
+  EXPECT_NEAR(a.valley_mm, 2 * (b.x1 - b.x0) + b.x0 + (kWidth - b.x1), 1e-12);
+  EXPECT_NEAR(a.cut_mm, 2 * (b.h + b.d), 1e-12);
+  EXPECT_EQ(a.graph.folds.size(), 5u);  // the main fold in two pieces and the box's three folds
+  EXPECT_EQ(a.validity.fold_lines[static_cast<std::size_t>(a.node[static_cast<std::size_t>(front)])], 2);
+}
+
+TEST(PlanAnalysis, BoxPlanReadFromAHandWrittenDxfIsTheSame) {
+  const Box b;
+  const test::TempDir dir;
+  test::write_text(dir / "box.dxf", test::dxf_text(box_plan(b)));
+  const std::vector<PlanPolyline> lines = read_plan_dxf(dir / "box.dxf", {});
+  ASSERT_EQ(lines.size(), box_plan(b).size());
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    EXPECT_EQ(lines[i].kind, box_plan(b)[i].kind);
+    ASSERT_EQ(lines[i].points.size(), box_plan(b)[i].points.size()) << i;
+    for (std::size_t k = 0; k < lines[i].points.size(); ++k) {
+      EXPECT_EQ(lines[i].points[k].X, box_plan(b)[i].points[k].X);  // bit for bit
+      EXPECT_EQ(lines[i].points[k].Y, box_plan(b)[i].points[k].Y);
+    }
+  }
+  const PlanAnalysis a = analyze_plan(lines, {});
+  EXPECT_TRUE(a.valid()) << listing(a);
+  EXPECT_EQ(a.faces, 2);
+}
+
+TEST(PlanAnalysis, FoldDrawnAsACutLeavesTheTopDanglingAndTheFrontInvalid) {
+  const Box b;
+  std::vector<PlanPolyline> lines = box_plan(b);
+  line_at(lines, b.h).kind = LineKind::Cut;  // the top's fold to the back plane is not scored
+  const PlanAnalysis a = analyze_plan(lines, {});
+  EXPECT_FALSE(a.valid());
+  const std::int32_t front = region_at(a, {b.mid(), 0}), top = region_at(a, {b.mid(), b.h - b.d / 2});
+  const auto dangling = problems_of(a, PlanProblemKind::Dangling), invalid = problems_of(a, PlanProblemKind::Invalid);
+  ASSERT_EQ(dangling.size(), 1u) << listing(a);
+  ASSERT_EQ(invalid.size(), 1u) << listing(a);
+  EXPECT_EQ(dangling[0].region, top);
+  EXPECT_EQ(invalid[0].region, front);
+  // Located inside the top face (x0..x1, h - d..h) and the front face.
+  EXPECT_GT(dangling[0].at.X, b.x0);
+  EXPECT_LT(dangling[0].at.X, b.x1);
+  EXPECT_GT(dangling[0].at.Y, b.h - b.d);
+  EXPECT_LT(dangling[0].at.Y, b.h);
+  EXPECT_GT(invalid[0].at.Y, -b.d);
+  EXPECT_LT(invalid[0].at.Y, b.h - b.d);
+  EXPECT_EQ(a.errors, 2) << listing(a);  // nothing else is wrong: the faces sit where their folds say
+  EXPECT_EQ(a.regions[static_cast<std::size_t>(top)].depth_mm, b.h);
+  EXPECT_EQ(analysis_summary_line(a), "plan INVALID: 2 faces; 1 dangling, 1 invalid");
+}
+
+TEST(PlanAnalysis, MissingFoldJoinsTheTopToTheBackPlaneAndTheFoldsNoLongerAgree) {
+  const Box b;
+  std::vector<PlanPolyline> lines = box_plan(b);
+  lines.erase(lines.begin() + (&line_at(lines, b.h) - lines.data()));
+  const PlanAnalysis a = analyze_plan(lines, {});
+  EXPECT_FALSE(a.valid());
+  EXPECT_EQ(a.faces, 1) << "the top is part of the back plane now";
+  // The cuts beside the top now run inside the back plane: slits from h - d up to their loose ends.
+  const auto slits = problems_of(a, PlanProblemKind::CutInsideFace);
+  ASSERT_EQ(slits.size(), 2u) << listing(a);
+  for (const PlanProblem& slit : slits) {
+    EXPECT_TRUE(slit.from.X == b.x0 || slit.from.X == b.x1);
+    EXPECT_EQ(slit.from.Y, b.h - b.d);
+    EXPECT_EQ(slit.to.Y, b.h);
+    EXPECT_EQ(slit.at.Y, b.h) << "the loose end";
+  }
+  // The front, between the floor and the back plane, cannot be both V(d) and H(h - d): one of its
+  // two folds is reported, on its line across the box.
+  std::vector<PlanProblem> folds = problems_of(a, PlanProblemKind::InconsistentFold);
+  for (const PlanProblem& p : problems_of(a, PlanProblemKind::WrongFoldKind)) folds.push_back(p);
+  ASSERT_FALSE(folds.empty()) << listing(a);
+  for (const PlanProblem& p : folds) {
+    EXPECT_TRUE(p.from.Y == -b.d || p.from.Y == b.h - b.d) << p.message;
+    EXPECT_EQ(p.from.X, b.x0);
+    EXPECT_EQ(p.to.X, b.x1);
+  }
+}
+
+TEST(PlanAnalysis, SwappedMountainAndValleyIsReportedWhereItIs) {
+  const Box b;
+  std::vector<PlanPolyline> lines = box_plan(b);
+  line_at(lines, b.h - b.d).kind = LineKind::Valley;
+  const PlanAnalysis a = analyze_plan(lines, {});
+  ASSERT_EQ(a.problems.size(), 1u) << listing(a);
+  const PlanProblem& p = a.problems[0];
+  EXPECT_EQ(p.kind, PlanProblemKind::WrongFoldKind);
+  EXPECT_EQ(p.from.X, b.x0);
+  EXPECT_EQ(p.to.X, b.x1);
+  EXPECT_EQ(p.from.Y, b.h - b.d);
+  EXPECT_EQ(p.to.Y, b.h - b.d);
+  EXPECT_NE(p.message.find("mountain fold (V then H going up)"), std::string::npos) << p.message;
+  EXPECT_EQ(analysis_summary_line(a), "plan INVALID: 2 faces; 1 wrong fold kind");
+  // Still every face where the geometry says: the kinds are checked, never followed.
+  EXPECT_EQ(a.regions[static_cast<std::size_t>(region_at(a, {b.mid(), 0}))].depth_mm, b.d);
+}
+
+TEST(PlanAnalysis, ClosedCutLoopInTheBackPlaneIsAFloatingPiece) {
+  std::vector<PlanPolyline> lines = box_plan(Box{});
+  lines.push_back({LineKind::Cut, {{170, 100}, {190, 100}, {190, 120}, {170, 120}, {170, 100}}});
+  const PlanAnalysis a = analyze_plan(lines, {});
+  EXPECT_EQ(a.faces, 3);
+  const auto floating = problems_of(a, PlanProblemKind::Floating);
+  ASSERT_EQ(floating.size(), 1u) << listing(a);
+  EXPECT_EQ(a.errors, 1);
+  const PlanProblem& p = floating[0];
+  EXPECT_EQ(p.region, region_at(a, {180, 110}));
+  EXPECT_GT(p.at.X, 170);
+  EXPECT_LT(p.at.X, 190);
+  EXPECT_GT(p.at.Y, 100);
+  EXPECT_LT(p.at.Y, 120);
+  const PlanRegion& piece = a.regions[static_cast<std::size_t>(p.region)];
+  EXPECT_FALSE(piece.placed);
+  EXPECT_EQ(piece.status, FaceStatus::Floating);
+  // The back plane has the loop as a hole: clockwise, after its outer ring.
+  const PlanRegion& back = a.regions[static_cast<std::size_t>(region_at(a, {5, 140}))];
+  ASSERT_EQ(back.rings.size(), 2u);
+  EXPECT_GT(ring_area(back.rings[0]), 0);
+  EXPECT_NEAR(ring_area(back.rings[1]), -400, 1e-9);
+}
+
+TEST(PlanAnalysis, BoxCutOutInMidAirFloatsWithBothFaces) {
+  // Front V(20) from Y = 20 to 40 and top H(60) from 40 to 60: cut all round, folded only in between.
+  std::vector<PlanPolyline> lines = {box_plan(Box{})[0],
+                                     {LineKind::Valley, {{0, 0}, {kWidth, 0}}},
+                                     {LineKind::Cut, {{60, 20}, {150, 20}, {150, 60}, {60, 60}, {60, 20}}},
+                                     {LineKind::Mountain, {{60, 40}, {150, 40}}}};
+  const PlanAnalysis a = analyze_plan(lines, {});
+  const auto floating = problems_of(a, PlanProblemKind::Floating);
+  EXPECT_EQ(floating.size(), 2u) << listing(a);
+  EXPECT_EQ(a.errors, 2) << listing(a);
+  EXPECT_EQ(a.validity.floating, 2);
+}
+
+TEST(PlanAnalysis, FoldOffItsLineByAHundredthOfAMillimetreIsCaught) {
+  const Box b;
+  std::vector<PlanPolyline> lines = box_plan(b);
+  PlanPolyline& fold = line_at(lines, b.h - b.d);
+  const double off_Y = b.h - b.d + 0.01;
+  fold.points[0].Y = fold.points[1].Y = off_Y;
+  const PlanAnalysis a = analyze_plan(lines, {});
+  ASSERT_EQ(a.problems.size(), 1u) << listing(a);
+  const PlanProblem& p = a.problems[0];
+  EXPECT_EQ(p.kind, PlanProblemKind::InconsistentFold);
+  EXPECT_EQ(p.from.X, b.x0);
+  EXPECT_EQ(p.to.X, b.x1);
+  EXPECT_EQ(p.from.Y, off_Y);
+  EXPECT_NEAR(p.value_mm, 0.01, 1e-12);  // how far off its line: exact, then rounded once
+  EXPECT_NE(p.message.find("on Y = 24.4:"), std::string::npos) << p.message;
+
+  // A hundred times closer is still caught; a tolerance above the offset accepts it.
+  fold.points[0].Y = fold.points[1].Y = b.h - b.d + 1e-4;
+  EXPECT_EQ(problems_of(analyze_plan(lines, {}), PlanProblemKind::InconsistentFold).size(), 1u);
+  EXPECT_TRUE(analyze_plan(lines, {.tolerance_mm = 2e-4}).valid());
+}
+
+TEST(PlanAnalysis, FoldLineInTwoPiecesAtDifferentHeightsIsCaughtOnTheWrongPiece) {
+  const Box b;
+  const double xm = 100, Y = b.h - b.d, off_Y = Y + 0.01;
+  std::vector<PlanPolyline> lines = box_plan(b);
+  line_at(lines, Y) = {LineKind::Mountain, {{b.x0, Y}, {xm, Y}}};
+  lines.push_back({LineKind::Mountain, {{xm, off_Y}, {b.x1, off_Y}}});
+  lines.push_back({LineKind::Cut, {{xm, Y}, {xm, off_Y}}});  // the step between the pieces
+  const PlanAnalysis a = analyze_plan(lines, {});
+  EXPECT_EQ(a.faces, 2);
+  ASSERT_EQ(a.problems.size(), 1u) << listing(a);
+  const PlanProblem& p = a.problems[0];
+  EXPECT_EQ(p.kind, PlanProblemKind::InconsistentFold);
+  EXPECT_EQ(p.from.X, xm);
+  EXPECT_EQ(p.to.X, b.x1);
+  EXPECT_EQ(p.from.Y, off_Y);
+}
+
+TEST(PlanAnalysis, StripNarrowerThanWIsReportedWithItsPlace) {
+  Box b;
+  b.d = 2;  // the top face is d high on the plan: 2 mm
+  const std::vector<PlanPolyline> lines = box_plan(b);
+  EXPECT_TRUE(analyze_plan(lines, {}).valid()) << "no strip check without W";
+  EXPECT_TRUE(analyze_plan(lines, {.min_strip_mm = 2}).valid()) << "exactly W is not narrower";
+  const PlanAnalysis a = analyze_plan(lines, {.min_strip_mm = 3});
+  const auto narrow = problems_of(a, PlanProblemKind::NarrowStrip);
+  ASSERT_EQ(narrow.size(), 1u) << listing(a);
+  const PlanProblem& p = narrow[0];
+  EXPECT_EQ(p.region, region_at(a, {b.mid(), b.h - 1}));
+  EXPECT_EQ(p.value_mm, 2.0);
+  EXPECT_EQ(p.from.X, b.x0);  // the first of its vertices' columns
+  EXPECT_EQ(p.to.X, b.x0);
+  EXPECT_EQ(p.from.Y, b.h - b.d);
+  EXPECT_EQ(p.to.Y, b.h);
+  EXPECT_EQ(a.errors, 1) << listing(a);
+
+  // A box 2.5 mm wide: front and top are narrow along X.
+  const Box thin{.d = 37.3, .h = 61.7, .x0 = 100, .x1 = 102.5};
+  const PlanAnalysis c = analyze_plan(box_plan(thin), {.min_strip_mm = 3});
+  const auto across = problems_of(c, PlanProblemKind::NarrowStrip);
+  ASSERT_EQ(across.size(), 2u) << listing(c);
+  for (const PlanProblem& q : across) {
+    EXPECT_EQ(q.value_mm, 2.5);
+    EXPECT_EQ(q.from.X, 100);
+    EXPECT_EQ(q.to.X, 102.5);
+    EXPECT_EQ(q.from.Y, q.to.Y);
+  }
+}
+
+TEST(PlanAnalysis, FoldEndingInsideAFaceIsReportedAtItsLooseEnd) {
+  const Box b;
+  std::vector<PlanPolyline> lines = box_plan(b);
+  lines.push_back({LineKind::Mountain, {{10, 100}, {30, 100}}});  // a stray score in the back plane
+  const PlanAnalysis a = analyze_plan(lines, {});
+  const auto stray = problems_of(a, PlanProblemKind::FoldInsideFace);
+  ASSERT_EQ(stray.size(), 1u) << listing(a);
+  EXPECT_EQ(stray[0].at.X, 10);
+  EXPECT_EQ(stray[0].at.Y, 100);
+  EXPECT_EQ(stray[0].to.X, 30);
+  EXPECT_EQ(a.errors, 1);
+  // The back plane's boundary leaves the stray line out.
+  const PlanRegion& back = a.regions[static_cast<std::size_t>(region_at(a, {5, 140}))];
+  ASSERT_EQ(back.rings.size(), 1u);
+  for (const PlanPoint& p : back.rings[0]) EXPECT_NE(p.Y, 100);
+}
+
+TEST(PlanAnalysis, SlantedFoldAndAFoldOverACutAreErrors) {
+  const Box b;
+  std::vector<PlanPolyline> slanted = box_plan(b);
+  line_at(slanted, b.h - b.d).points[1].Y += 1;
+  const PlanAnalysis a = analyze_plan(slanted, {});
+  const auto p = problems_of(a, PlanProblemKind::FoldNotHorizontal);
+  ASSERT_EQ(p.size(), 1u) << listing(a);
+  EXPECT_EQ(p[0].from.X, b.x0);
+  EXPECT_EQ(p[0].to.Y, b.h - b.d + 1);
+
+  std::vector<PlanPolyline> doubled = box_plan(b);
+  doubled.push_back({LineKind::Cut, {{b.x0, b.h}, {b.x1, b.h}}});  // the top's fold also cut
+  const PlanAnalysis c = analyze_plan(doubled, {});
+  const auto conflicts = problems_of(c, PlanProblemKind::ConflictingLines);
+  ASSERT_EQ(conflicts.size(), 1u) << listing(c);
+  EXPECT_EQ(conflicts[0].from.Y, b.h);
+  EXPECT_EQ(problems_of(c, PlanProblemKind::Dangling).size(), 1u) << "taken as a cut, the top hangs from the front";
+}
+
+TEST(PlanAnalysis, LineLeavingTheSheetIsClippedWithAWarning) {
+  std::vector<PlanPolyline> lines = box_plan(Box{});
+  lines.push_back({LineKind::Cut, {{200, 100}, {230, 100}}});  // overshoots the outline by 20 mm
+  const PlanAnalysis a = analyze_plan(lines, {});
+  EXPECT_TRUE(a.valid()) << listing(a);
+  const auto outside = problems_of(a, PlanProblemKind::OutsideSheet);
+  ASSERT_EQ(outside.size(), 1u);
+  EXPECT_EQ(outside[0].at.X, 230);
+  EXPECT_EQ(a.warnings, 2) << listing(a);  // and the clipped cut is a slit into the back plane
+  EXPECT_EQ(a.sheet.max_X, kWidth);
+  const auto slit = problems_of(a, PlanProblemKind::CutInsideFace);
+  ASSERT_EQ(slit.size(), 1u);
+  EXPECT_EQ(slit[0].at.X, 200) << "its loose end";
+  // The back plane's outer ring goes past the slit's foot on the sheet's edge, not round the slit.
+  const PlanRegion& back = a.regions[static_cast<std::size_t>(region_at(a, {5, 140}))];
+  ASSERT_EQ(back.rings.size(), 1u);
+  for (const PlanPoint& p : back.rings[0]) EXPECT_NE(p.X, 200);
+}
+
+TEST(PlanAnalysis, PlanWithoutMainFoldOrAcrossIt) {
+  std::vector<PlanPolyline> lines = box_plan(Box{});
+  lines.erase(lines.begin() + 1, lines.begin() + 3);  // no main fold beside the box
+  const PlanAnalysis a = analyze_plan(lines, {});
+  EXPECT_EQ(problems_of(a, PlanProblemKind::SheetNotSplit).size(), 1u) << listing(a);
+  EXPECT_FALSE(a.valid());
+
+  std::vector<PlanPolyline> shifted = box_plan(Box{});
+  for (PlanPolyline& line : shifted)
+    for (PlanPoint& p : line.points) p.Y += 200;
+  EXPECT_THROW(analyze_plan(shifted, {}), InputError);
+  EXPECT_THROW(analyze_plan({box_plan(Box{})[0]}, {}), InputError) << "an outline alone is no plan";
+  EXPECT_THROW(analyze_plan(box_plan(Box{}), {.min_strip_mm = -1}), InputError);
+}
+
+TEST(PlanAnalysis, MirroredPlanHasTheMirroredFaces) {
+  DesignOptions options;
+  options.supports.enabled = false;
+  const DesignResult r = design(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj", options);
+  std::vector<PlanPolyline> lines = r.plan.lines, mirrored = r.plan.lines;
+  for (PlanPolyline& line : mirrored)
+    for (PlanPoint& p : line.points) p.X = kWidth - p.X;
+  const PlanAnalysis a = analyze_plan(lines, {}), m = analyze_plan(mirrored, {});
+  ASSERT_EQ(a.regions.size(), m.regions.size());
+  for (std::size_t i = 0; i < a.regions.size(); ++i) {
+    const PlanRegion& region = a.regions[i];
+    const PlanPoint image{kWidth - region.inside.X, region.inside.Y};
+    const std::int32_t j = region_at(m, image);
+    ASSERT_GE(j, 0);
+    const PlanRegion& other = m.regions[static_cast<std::size_t>(j)];
+    EXPECT_EQ(other.placed, region.placed);
+    EXPECT_EQ(other.orientation, region.orientation);
+    EXPECT_EQ(other.depth_mm, region.depth_mm);
+    EXPECT_EQ(other.status, region.status);
+    EXPECT_NEAR(m.area_mm2[static_cast<std::size_t>(j)], a.area_mm2[i], 1e-9 * kWidth * kHalf);
+  }
+  EXPECT_EQ(a.errors, m.errors);
+}
+
+// ----------------------------------------------------------------------------------------------
+// The DXF reader.
+
+std::string dxf_of(const std::string& header_and_entities) {
+  return "0\nSECTION\n2\nENTITIES\n" + header_and_entities + "0\nENDSEC\n0\nEOF\n";
+}
+
+TEST(PlanDxfReader, LinesPolylinesAndLightweightPolylinesOnTheirLayersAnyCase) {
+  const test::TempDir dir;
+  const std::string text =
+      "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n"
+      "0\nSECTION\n2\nBLOCKS\n0\nBLOCK\n8\n0\n2\nframe\n70\n0\n10\n0\n20\n0\n30\n0\n3\nframe\n"
+      "0\nLINE\n8\nCUT\n10\n1\n20\n1\n11\n2\n21\n2\n0\nENDBLK\n8\n0\n0\nENDSEC\n"  // inside a block: not the plan
+      "0\nSECTION\n2\nENTITIES\n"
+      "0\nLINE\n8\ncut\n10\n0.1\n20\n-0.30000000000000004\n30\n5\n11\n7\n21\n8\n31\n0\n"
+      "0\nLWPOLYLINE\n8\nMountain\n90\n3\n70\n1\n10\n1\n20\n2\n10\n3\n20\n4\n10\n5\n20\n-6\n"
+      "0\nPOLYLINE\n8\nVALLEY\n66\n1\n70\n0\n0\nVERTEX\n8\nVALLEY\n10\n9\n20\n9\n0\nVERTEX\n8\nVALLEY\n10\n10\n20\n-9\n"
+      "0\nVERTEX\n8\nVALLEY\n10\n11\n20\n9\n0\nSEQEND\n8\nVALLEY\n"
+      "0\nLWPOLYLINE\n8\nCUT\n90\n2\n70\n0\n210\n0\n220\n0\n230\n-1\n10\n1\n20\n1\n10\n2\n20\n1\n"  // mirrored OCS
+      "0\nLINE\n8\nCUT\n67\n1\n10\n0\n20\n0\n11\n9\n21\n9\n"  // paper space: not the plan
+      "0\nTEXT\n8\nNOTES\n10\n0\n20\n0\n40\n2\n1\nhello\n"
+      "0\nLINE\n8\nFRAME\n10\n0\n20\n0\n11\n9\n21\n9\n"
+      "0\nENDSEC\n0\nEOF\n";
+  test::write_text(dir / "mixed.dxf", text);
+  const DxfDrawing d = read_dxf_drawing(dir / "mixed.dxf", {});
+  EXPECT_EQ(d.unit, DrawingUnit::Millimetre);
+  ASSERT_EQ(d.lines.size(), 4u);
+  EXPECT_EQ(d.lines[0].kind, LineKind::Cut);
+  EXPECT_EQ(d.lines[0].points[0].X, 0.1);
+  EXPECT_EQ(d.lines[0].points[0].Y, -0.30000000000000004);  // taken exactly
+  EXPECT_EQ(d.lines[0].points[1].Y, 8.0);
+  EXPECT_EQ(d.lines[1].kind, LineKind::Mountain);
+  ASSERT_EQ(d.lines[1].points.size(), 4u) << "closed: the first point repeats";
+  EXPECT_EQ(d.lines[1].points[2].Y, -6.0);
+  EXPECT_EQ(d.lines[1].points[3].X, 1.0);
+  EXPECT_EQ(d.lines[2].kind, LineKind::Valley);
+  ASSERT_EQ(d.lines[2].points.size(), 3u);
+  EXPECT_EQ(d.lines[2].points[1].Y, -9.0);
+  ASSERT_EQ(d.lines[3].points.size(), 2u);
+  EXPECT_EQ(d.lines[3].points[0].X, -1.0) << "extrusion (0, 0, -1) mirrors X";
+  EXPECT_EQ(d.lines[3].points[1].X, -2.0);
+  EXPECT_EQ(d.ignored_entities, 2);
+  EXPECT_EQ(d.other_layers, (std::vector<std::string>{"FRAME", "NOTES"}));
+}
+
+TEST(PlanDxfReader, LayerNamesAreOptions) {
+  const test::TempDir dir;
+  test::write_text(dir / "de.dxf", test::dxf_text(box_plan(Box{}), 4, {"Schnitt", "Berg", "Tal", "Rand"}));
+  EXPECT_THROW(read_plan_dxf(dir / "de.dxf", {}), InputError);
+  const LayerNames german{.cut = "schnitt", .mountain = "BERG", .valley = "Tal", .outline = "rand"};
+  EXPECT_TRUE(analyze_plan(read_plan_dxf(dir / "de.dxf", german), {}).valid());
+}
+
+TEST(PlanDxfReader, PlanInInchesIsConvertedExactly) {
+  const test::TempDir dir;
+  // A 5.5 x 8.5 inch card, main fold across: box 1.5 in deep, 2.25 in high.
+  const Box b{.d = 1.5, .h = 2.25, .x0 = 1.1, .x1 = 4.3};
+  std::vector<PlanPolyline> lines = box_plan(b);
+  lines[0] = {LineKind::Outline, {{0, -4.25}, {5.5, -4.25}, {5.5, 4.25}, {0, 4.25}, {0, -4.25}}};
+  for (PlanPolyline& line : lines)
+    for (PlanPoint& p : line.points) p.X = std::min(p.X, 5.5);
+  test::write_text(dir / "inch.dxf", test::dxf_text(lines, 1));
+  const DxfDrawing d = read_dxf_drawing(dir / "inch.dxf", {});
+  EXPECT_EQ(d.unit, DrawingUnit::Inch);
+  const PlanAnalysis a = analyze_plan(d.lines, {.unit = d.unit});
+  EXPECT_TRUE(a.valid()) << listing(a);
+  EXPECT_EQ(a.sheet.max_X, 139.7);
+  EXPECT_EQ(a.sheet.max_Y, 107.95);
+  const PlanRegion& front = a.regions[static_cast<std::size_t>(region_at(a, {b.mid() * 25.4, 0}))];
+  EXPECT_EQ(front.depth_mm, 38.1);  // 1.5 x 254/10 exactly, rounded once
+  const std::vector<PlanPolyline> mm = read_plan_dxf(dir / "inch.dxf", {});
+  EXPECT_EQ(mm[0].points[1].X, 5.5 * 25.4);
+}
+
+TEST(PlanDxfReader, BadFilesAreRejectedNamingTheFile) {
+  const test::TempDir dir;
+  auto expect_rejected = [&](const std::string& name, const std::string& text, const std::string& problem) {
+    SCOPED_TRACE(name);
+    test::write_text(dir / name, text);
+    try {
+      read_plan_dxf(dir / name, {});
+      ADD_FAILURE() << "accepted";
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find(name), std::string::npos) << message;
+      EXPECT_NE(message.find(problem), std::string::npos) << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+  };
+  const std::string box = test::dxf_text(box_plan(Box{}));
+  expect_rejected("empty.dxf", "", "empty");
+  expect_rejected("text.dxf", "hello, this is not a drawing\n", "not a DXF");
+  expect_rejected("truncated.dxf", box.substr(0, box.size() / 2), "truncated");
+  expect_rejected("binary.dxf", std::string("AutoCAD Binary DXF\r\n\x1a\0", 22), "binary");
+  expect_rejected("bulge.dxf", dxf_of("0\nLWPOLYLINE\n8\nCUT\n90\n2\n70\n0\n10\n0\n20\n0\n42\n1\n10\n5\n20\n0\n"),
+                  "arc");
+  expect_rejected("circle.dxf", dxf_of("0\nCIRCLE\n8\nCUT\n10\n0\n20\n0\n40\n5\n"), "CIRCLE");
+  expect_rejected("insert.dxf", dxf_of("0\nINSERT\n8\n0\n2\nframe\n10\n0\n20\n0\n"), "INSERT");
+  expect_rejected("layers.dxf", dxf_of("0\nLINE\n8\nSCHNITT\n10\n0\n20\n0\n11\n9\n21\n9\n"), "SCHNITT");
+  expect_rejected("miles.dxf", test::dxf_text(box_plan(Box{}), 3), "$INSUNITS = 3");
+  try {
+    read_plan_dxf(dir / "missing.dxf", {});
+    ADD_FAILURE() << "accepted a missing file";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.dxf: no such file"), std::string::npos) << e.what();
+  }
+  // Curves on other layers are none of the plan's business.
+  test::write_text(dir / "notes.dxf", test::dxf_text(box_plan(Box{})));
+  EXPECT_NO_THROW(read_plan_dxf(dir / "notes.dxf", {}));
+}
+
+// ----------------------------------------------------------------------------------------------
+// Plans written by origamic read back as the design made them.
+
+// The raster face under a plan point.
+std::int32_t label_at(const DesignResult& r, PlanPoint p) {
+  const PixelGrid& g = r.maps.grid;
+  const int col = static_cast<int>(std::floor(p.X * g.px_per_mm));
+  const int row = static_cast<int>(std::floor(g.rows_above_fold - p.Y * g.px_per_mm));
+  return r.slices.face.contains(col, row) ? r.slices.face(col, row) : kNoFace;
+}
+
+struct Comparison {
+  bool sound = true;                // the design's exact plan passed its own checks
+  bool one_region_per_face = true;  // every design face is one piece of paper in the file
+};
+
+// Writes the design's plan as DXF with the project's writer, reads it back and analyses it. Each
+// region is matched to the design face under its inside point: their areas add up to the face's,
+// and each placed region has the face's orientation and depth. When every design face is one region,
+// the verdict, face count and every status are the design's own.
+Comparison expect_read_back_matches(const DesignResult& r, const test::TempDir& dir) {
+  // Arrangement faces without a clear label (label_conflicts) carry a label that their folds may
+  // contradict: the design's faces are then no reference (plan_test requires none of them).
+  if (r.plan.label_conflicts != 0 || r.plan.lost_faces != 0 || r.plan.unresolved_crossings != 0) return {false, false};
+  write_files({{dir / "plan.dxf", plan_dxf(r.plan, ExportOptions{})}});
+  const PlanAnalysis a = analyze_plan(read_plan_dxf(dir / "plan.dxf", {}), {});
+  EXPECT_TRUE(a.arrangement_valid);
+  const std::size_t n = r.plan.faces.size();
+  std::vector<std::vector<std::size_t>> regions_of(n);
+  std::vector<double> area(n, 0.0);
+  for (std::size_t i = 0; i < a.regions.size(); ++i) {
+    const PlanRegion& region = a.regions[i];
+    const std::int32_t label = label_at(r, region.inside);
+    EXPECT_GE(label, 0) << "region at (" << region.inside.X << ", " << region.inside.Y << ")";
+    if (label < 0) continue;
+    const PlanFace& face = r.plan.faces[static_cast<std::size_t>(label)];
+    regions_of[static_cast<std::size_t>(label)].push_back(i);
+    area[static_cast<std::size_t>(label)] += a.area_mm2[i];
+    if (!region.placed) continue;
+    EXPECT_EQ(region.orientation, face.orientation) << "face " << label;
+    EXPECT_NEAR(region.depth_mm, face.depth_mm, 1e-9) << "face " << label;
+  }
+  Comparison c;
+  for (std::size_t f = 0; f < n; ++f) {
+    EXPECT_NEAR(area[f], r.plan.faces[f].area_mm2, 1e-6 * (1 + r.plan.faces[f].area_mm2)) << "face " << f;
+    if (f >= 2 && regions_of[f].size() != 1) c.one_region_per_face = false;
+  }
+  for (const std::size_t i : regions_of[0]) c.one_region_per_face &= a.node[i] == 0;
+  for (const std::size_t i : regions_of[1]) c.one_region_per_face &= a.node[i] == 1;
+  if (!c.one_region_per_face) return c;
+  EXPECT_EQ(a.faces, static_cast<int>(n) - 2);
+  for (std::size_t f = 2; f < n; ++f) {
+    const PlanRegion& region = a.regions[regions_of[f][0]];
+    EXPECT_TRUE(region.placed || r.plan.faces[f].status == FaceStatus::Floating) << "face " << f;
+    EXPECT_EQ(region.status, r.plan.faces[f].status) << "face " << f;
+  }
+  const Validity &mine = a.validity, &theirs = r.plan.validity;
+  EXPECT_EQ(std::tie(mine.valid, mine.indirect, mine.floating, mine.dangling, mine.invalid),
+            std::tie(theirs.valid, theirs.indirect, theirs.floating, theirs.dangling, theirs.invalid));
+  // The design's verdict is the seed's validity; everything else in the file must be sound.
+  std::vector<PlanProblemKind> others;
+  for (const PlanProblem& p : a.problems)
+    if (is_error(p.kind) && p.kind != PlanProblemKind::Floating && p.kind != PlanProblemKind::Dangling &&
+        p.kind != PlanProblemKind::Invalid)
+      others.push_back(p.kind);
+  EXPECT_TRUE(others.empty()) << listing(a);
+  EXPECT_EQ(a.valid(), theirs.ok()) << listing(a);
+  return c;
+}
+
+TEST(PlanAnalysis, PlansOfBoxesAndStairsReadBackAsDesigned) {
+  const test::TempDir dir;
+  for (const bool supports : {false, true}) {
+    DesignOptions options;
+    options.supports.enabled = supports;
+    for (const auto& [name, mesh] :
+         {std::pair{"box", test::box({0, 0, -1}, {2, 1, 0})},
+          {"floating box", test::box({0, 1, -1}, {2, 2, 0})},
+          {"stairs", test::merged(test::box({0, 0, -2}, {4, 1, 0}), test::box({0, 1, -1}, {4, 2, 0}))}}) {
+      SCOPED_TRACE(std::string(name) + (supports ? " with supports" : ""));
+      test::write_obj(dir / "model.obj", mesh);
+      const Comparison c = expect_read_back_matches(design(dir / "model.obj", options), dir);
+      EXPECT_TRUE(c.sound);
+      EXPECT_TRUE(c.one_region_per_face);
+    }
+  }
+}
+
+TEST(PlanAnalysis, HousePlanReadsBackAsDesigned) {
+  const test::TempDir dir;
+  DesignOptions options;
+  options.supports.enabled = false;
+  const DesignResult r = design(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj", options);
+  const Comparison c = expect_read_back_matches(r, dir);
+  EXPECT_TRUE(c.sound);
+  EXPECT_TRUE(c.one_region_per_face);
+}
+
+TEST(PlanAnalysis, EverySeedlikePlanReadsBackAsDesigned) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  const test::TempDir dir;
+  int whole = 0, split = 0, unsound = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(test::models_dir() / "seedlike")) {
+    if (entry.path().extension() != ".stl") continue;
+    for (const bool supports : {false, true}) {
+      SCOPED_TRACE(entry.path().filename().string() + (supports ? " with supports" : ""));
+      DesignOptions options;
+      options.placement.up = UpAxis::Z;
+      options.supports.enabled = supports;
+      const Comparison c = expect_read_back_matches(design(entry.path(), options), dir);
+      (!c.sound ? unsound : c.one_region_per_face ? whole : split) += 1;
+      if (!c.sound || !c.one_region_per_face)
+        std::printf(
+            "%s%s: %s\n", entry.path().filename().c_str(), supports ? " with supports" : "",
+            c.sound ? "a design face is several pieces of paper in the plan" : "design plan has label conflicts");
+    }
+  }
+  EXPECT_GT(whole, 0);
+  std::printf("seedlike plans: %d read back face for face, %d with a design face in several pieces, %d not compared\n",
+              whole, split, unsound);
+}
+
+}  // namespace
+}  // namespace origamic
