@@ -135,6 +135,8 @@ Layer layer_of(LineKind kind, FoldStyle style) {
       return style == FoldStyle::Perforated ? Layer::PerfValley : Layer::Valley;
     case LineKind::Cut:
       return Layer::Cut;
+    case LineKind::CutOut:
+      return Layer::CutOut;
     case LineKind::Outline:
       return Layer::Outline;
   }
@@ -214,11 +216,11 @@ DrawnPlan draw_plan(const Plan& plan, const FoldStyleOptions& options) {
   drawn.style = options.style;
   std::vector<PlanPolyline> cuts;
   for (const PlanPolyline& line : plan.lines)
-    if (line.kind == LineKind::Cut || line.kind == LineKind::Outline) cuts.push_back(line);
+    if (is_cut(line.kind)) cuts.push_back(line);
   for (const PlanPolyline& line : plan.lines) {
     if (line.points.size() < 2) continue;
     const Layer layer = layer_of(line.kind, options.style);
-    if (line.kind == LineKind::Cut || line.kind == LineKind::Outline) {
+    if (is_cut(line.kind)) {
       drawn.lines.push_back({layer, line.points, {}});
       continue;
     }

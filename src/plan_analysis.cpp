@@ -332,6 +332,7 @@ struct Analyzer {
   std::vector<Face> faces;
   std::vector<std::vector<Ring>> rings;
   std::vector<Place> place;
+  std::vector<std::uint8_t> cut_out;  // per region: every side on the CUTOUT layer
   std::vector<FoldEdge> folds;
   std::vector<std::vector<std::size_t>> folds_of;
   PlanAnalysis result;
@@ -410,15 +411,20 @@ struct Analyzer {
   // Each edge inside the sheet: a cut, a fold between two faces, or a problem.
   void classify_edges() {
     std::vector<Halfedge> cut_inside, fold_inside;
+    cut_out.assign(faces.size(), 1);
     for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
       Halfedge he = e;
       if (he->direction() != CGAL::ARR_LEFT_TO_RIGHT) he = he->twin();  // he->face() is above or left
       if (he->face()->is_unbounded() || he->twin()->face()->is_unbounded()) continue;
-      bool cut = false, mountain = false, valley = false;
+      bool cut = false, mountain = false, valley = false, only_cut_out = true;
       for (const std::int32_t d : he->curve().data()) {
         const LineKind k = kind[static_cast<std::size_t>(d)];
         (k == LineKind::Mountain ? mountain : k == LineKind::Valley ? valley : cut) = true;
+        only_cut_out &= k == LineKind::CutOut;
       }
+      // A face whose every side is on the CUTOUT layer is declared cut out: it falls out.
+      if (!only_cut_out)
+        for (const Face f : {he->face(), he->twin()->face()}) cut_out[static_cast<std::size_t>(f->data())] = 0;
       const Point &p = he->source()->point(), &q = he->target()->point();
       const double length = std::hypot(CGAL::to_double(q.x() - p.x()), CGAL::to_double(q.y() - p.y()));
       const std::int32_t upper = he->face()->data(), lower = he->twin()->face()->data();
@@ -595,6 +601,9 @@ struct Analyzer {
     std::vector<std::int32_t> line_of(ys.size(), 0);
     for (std::size_t i = 1; i < ys.size(); ++i) line_of[i] = line_of[i - 1] + (ys[i] - ys[i - 1] > tolerance ? 1 : 0);
     result.graph.faces = result.faces + 2;
+    result.graph.holes.assign(static_cast<std::size_t>(result.graph.faces), 0);
+    for (std::size_t r = 0; r < faces.size(); ++r)
+      if (cut_out[r] && result.node[r] >= 2) result.graph.holes[static_cast<std::size_t>(result.node[r])] = 1;
     for (const FoldEdge& fold : folds) {
       const std::int32_t a = result.node[static_cast<std::size_t>(fold.lower)],
                          b = result.node[static_cast<std::size_t>(fold.upper)];
@@ -633,6 +642,7 @@ struct Analyzer {
   void check_strips() {
     for (std::size_t r = 0; r < faces.size(); ++r)
       for (const bool along_Y : {true, false}) {
+        if (cut_out[r]) continue;
         int narrow = 0;
         const std::optional<Chord> chord = narrowest_chord(rings[r], along_Y, W, narrow);
         if (!chord) continue;

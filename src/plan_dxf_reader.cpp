@@ -60,7 +60,8 @@ class Reader : public DL_CreationAdapter {
     kinds_ = {{upper(layers.cut), LineKind::Cut},
               {upper(layers.mountain), LineKind::Mountain},
               {upper(layers.valley), LineKind::Valley},
-              {upper(layers.outline), LineKind::Outline}};
+              {upper(layers.outline), LineKind::Outline},
+              {upper(layers.cut_out), LineKind::CutOut}};
   }
 
   DxfDrawing drawing;

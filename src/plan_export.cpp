@@ -79,6 +79,8 @@ LayerStyle layer_style(Layer layer, ColourPreset preset) {
   const bool laser = preset == ColourPreset::Laser;
   switch (layer) {
     case Layer::Cut: return laser ? LayerStyle{"CUT", 7, "#000000"} : LayerStyle{"CUT", 5, "#0000ff"};
+    // Cut like CUT, in its colour; a layer of its own names the pieces that fall out.
+    case Layer::CutOut: return laser ? LayerStyle{"CUTOUT", 7, "#000000"} : LayerStyle{"CUTOUT", 5, "#0000ff"};
     case Layer::Mountain: return laser ? LayerStyle{"MOUNTAIN", 1, "#ff0000"} : LayerStyle{"MOUNTAIN", 3, "#00e000"};
     case Layer::Valley: return laser ? LayerStyle{"VALLEY", 5, "#0000ff"} : LayerStyle{"VALLEY", 1, "#ff0000"};
     case Layer::PerfMountain: return LayerStyle{"PERF_MOUNTAIN", 6, "#ff00ff"};
@@ -91,6 +93,7 @@ LayerStyle layer_style(Layer layer, ColourPreset preset) {
 LayerStyle layer_style(LineKind kind, ColourPreset preset) {
   switch (kind) {
     case LineKind::Cut: return layer_style(Layer::Cut, preset);
+    case LineKind::CutOut: return layer_style(Layer::CutOut, preset);
     case LineKind::Mountain: return layer_style(Layer::Mountain, preset);
     case LineKind::Valley: return layer_style(Layer::Valley, preset);
     case LineKind::Outline: return layer_style(Layer::Outline, preset);
@@ -281,7 +284,7 @@ std::string plan_png(const Plan& plan, const ExportOptions& options) {
   cairo_scale(cr, scale, -scale);
   cairo_set_line_width(cr, 1.0 / scale);
   for (const Layer layer : kLayerOrder) {
-    if (layer == Layer::Cut) cairo_set_source_rgb(cr, 0.86, 0, 0);
+    if (layer == Layer::Cut || layer == Layer::CutOut) cairo_set_source_rgb(cr, 0.86, 0, 0);
     else if (layer == Layer::Outline) cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
     else cairo_set_source_rgb(cr, 0, 0.63, 0);
     for (const DrawnLine& line : drawn.lines) {

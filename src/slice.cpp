@@ -333,7 +333,11 @@ void merge_coplanar_faces(SliceResult& result) {
   result.faces = std::move(faces);
 }
 
-void align_folds_to_lines(SliceResult& result, const PixelGrid& grid, double tolerance_mm) {
+namespace {
+
+// One sweep of align_folds_to_lines; returns how many pixels changed face.
+std::int64_t align_sweep(SliceResult& result, const PixelGrid& grid, double tolerance_mm) {
+  std::int64_t moved = 0;
   Grid<std::int32_t>& face = result.face;
   auto count = [&](std::int32_t f, int delta) { result.faces[static_cast<std::size_t>(f)].pixels += delta; };
   for (int col = 0; col < face.cols; ++col)
@@ -351,15 +355,25 @@ void align_folds_to_lines(SliceResult& result, const PixelGrid& grid, double tol
         bool free = t >= 0 && face(col, t) == a;
         for (int k = t + 1; free && k <= r; ++k) free = face(col, k) == a;
         if (!free) continue;
-        for (int k = t + 1; k <= r; ++k) face(col, k) = b, count(a, -1), count(b, 1);
+        for (int k = t + 1; k <= r; ++k) face(col, k) = b, count(a, -1), count(b, 1), ++moved;
       } else if (t > r) {  // down: a takes rows r + 1 .. t if they are all b and b keeps row t + 1
         bool free = t + 1 < face.rows && face(col, t + 1) == b;
         for (int k = r + 1; free && k <= t; ++k) free = face(col, k) == b;
         if (!free) continue;
-        for (int k = r + 1; k <= t; ++k) face(col, k) = a, count(b, -1), count(a, 1);
+        for (int k = r + 1; k <= t; ++k) face(col, k) = a, count(b, -1), count(a, 1), ++moved;
         r = t;  // continue below the moved boundary
       }
     }
+  return moved;
+}
+
+}  // namespace
+
+void align_folds_to_lines(SliceResult& result, const PixelGrid& grid, double tolerance_mm) {
+  // A moved boundary can free another one: sweep until nothing moves, so that aligning an aligned
+  // plan changes nothing (build_plan aligns what it is given). Two sweeps suffice in practice.
+  for (int sweep = 0; sweep < 8 && align_sweep(result, grid, tolerance_mm) > 0; ++sweep) {
+  }
 }
 
 Grid<float> shape_error_map(const RasterMaps& maps, const Grid<std::int32_t>& face, const std::vector<RasterFace>& faces) {

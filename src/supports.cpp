@@ -364,6 +364,7 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
         ++report.cut_out;
       }
     merge_coplanar_faces(slices);
+    align_folds_to_lines(slices, maps.grid, tolerance);
     settle();
   }
   report.converged = report.cut_out == 0 && unsupported(standing, options.allow_dangling).empty();

@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <sstream>
 #include <cstdio>
 #include <fstream>
 
@@ -279,6 +280,46 @@ TEST(Cli, FabricationOptionsReachTheFiles) {
   const std::string text{std::istreambuf_iterator<char>(dxf), std::istreambuf_iterator<char>()};
   EXPECT_NE(text.find("PERF_MOUNTAIN"), std::string::npos);
   EXPECT_EQ(text.find("\nMOUNTAIN\n"), std::string::npos) << "no score layer when perforating";
+}
+
+// Reads the vertices of an OBJ file.
+std::vector<std::array<double, 3>> obj_vertices(const std::filesystem::path& file) {
+  std::vector<std::array<double, 3>> vertices;
+  std::ifstream in(file);
+  std::string tag;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line);
+    std::array<double, 3> v{};
+    if (words >> tag && tag == "v" && words >> v[0] >> v[1] >> v[2]) vertices.push_back(v);
+  }
+  return vertices;
+}
+
+TEST(Cli, FoldTurnsAnyPlanIntoItsPopUpFlatAt180AndStandingAt90) {
+  const test::TempDir dir;
+  test::write_obj(dir / "box.obj", test::box({0, 0, -1}, {2, 1, 0}));
+  ASSERT_EQ(run("design " + quoted(dir / "box.obj") + " --out " + quoted(dir / "plan")).status, 0);
+  const CommandRun flat = run("fold " + quoted(dir / "plan" / "box.dxf") + " --angle 180 -o " + quoted(dir / "flat.obj"));
+  ASSERT_EQ(flat.status, 0) << flat.output;
+  const auto flat_vertices = obj_vertices(dir / "flat.obj");
+  ASSERT_GT(flat_vertices.size(), 8u);
+  for (const auto& v : flat_vertices) EXPECT_NEAR(v[1], 0.0, 1e-3) << "at 180 degrees the card lies flat";
+  const CommandRun standing = run("fold " + quoted(dir / "plan" / "box.dxf") + " -o " + quoted(dir / "standing.ply"));
+  ASSERT_EQ(standing.status, 0) << standing.output;
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir / "standing.ply"));
+  const CommandRun up = run("fold " + quoted(dir / "plan" / "box.dxf") + " --angle 90 -o " + quoted(dir / "up.obj"));
+  ASSERT_EQ(up.status, 0) << up.output;
+  double highest = 0;
+  for (const auto& v : obj_vertices(dir / "up.obj")) highest = std::max(highest, v[1]);
+  EXPECT_NEAR(highest, 148.5, 1e-3) << "the back half stands up to the sheet's top edge";
+
+  const CommandRun bad = run("fold " + quoted(dir / "plan" / "box.dxf") + " -o " + quoted(dir / "box.stl"));
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.output.find("--out"), std::string::npos) << bad.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "box.stl"));
+  const CommandRun angle = run("fold " + quoted(dir / "plan" / "box.dxf") + " --angle 200 -o " + quoted(dir / "a.obj"));
+  EXPECT_EQ(angle.status, 2) << angle.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "a.obj"));
 }
 
 }  // namespace

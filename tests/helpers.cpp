@@ -287,6 +287,7 @@ std::string dxf_text(const std::vector<PlanPolyline>& lines, int insunits, const
       case LineKind::Mountain: return layers.mountain;
       case LineKind::Valley: return layers.valley;
       case LineKind::Outline: return layers.outline;
+      case LineKind::CutOut: return layers.cut_out;
     }
     return std::string("0");
   };

@@ -80,7 +80,7 @@ std::string quoted(const std::filesystem::path& path);
 
 /// The layer names a hand-written DXF puts each kind of line on.
 struct DxfLayers {
-  std::string cut = "CUT", mountain = "MOUNTAIN", valley = "VALLEY", outline = "OUTLINE";
+  std::string cut = "CUT", mountain = "MOUNTAIN", valley = "VALLEY", outline = "OUTLINE", cut_out = "CUTOUT";
 };
 
 /// The plan of a box against the back plane drawn by hand on the default sheet (210 x 297 mm): the

@@ -215,7 +215,7 @@ TEST(Plan, EverySeedlikeModelGivesAnExactPlanAndItsFilesCarryTheSameSegments) {
     ASSERT_FALSE(back.is_null()) << "the reader rejected the files";
     EXPECT_EQ(back["insunits"], 4);
     EXPECT_EQ(back["measurement"], 1);
-    for (const LineKind kind : {LineKind::Cut, LineKind::Mountain, LineKind::Valley, LineKind::Outline}) {
+    for (const LineKind kind : {LineKind::Cut, LineKind::Mountain, LineKind::Valley, LineKind::Outline, LineKind::CutOut}) {
       const std::string layer = layer_style(kind, ColourPreset::Laser).name;
       const std::multiset<SegmentKey> expected = keys_of(plan, kind);
       EXPECT_EQ(keys_of(back["dxf"].value(layer, nlohmann::json::array())), expected) << layer << " in the DXF";

@@ -33,9 +33,11 @@ struct FoldStyleOptions {
 
 /// The layers of a drawn plan, in the order a laser should run them: score and perforate first,
 /// then the inner cuts, the sheet outline last.
-enum class Layer : std::uint8_t { Mountain, Valley, PerfMountain, PerfValley, Cut, Outline };
-inline constexpr Layer kLayerOrder[] = {Layer::Mountain,   Layer::Valley, Layer::PerfMountain,
-                                        Layer::PerfValley, Layer::Cut,    Layer::Outline};
+enum class Layer : std::uint8_t { Mountain, Valley, PerfMountain, PerfValley, CutOut, Cut, Outline };
+// Scores first, then the pieces that fall out (inner cuts before the ones that free a face), the
+// outline last.
+inline constexpr Layer kLayerOrder[] = {Layer::Mountain,   Layer::Valley, Layer::PerfMountain, Layer::PerfValley,
+                                        Layer::CutOut,     Layer::Cut,    Layer::Outline};
 
 /// A line to draw: a polyline (closed ones repeat their first point), solid or dashed.
 struct DrawnLine {

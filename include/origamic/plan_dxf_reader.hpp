@@ -18,6 +18,7 @@ struct LayerNames {
   std::string mountain = "MOUNTAIN";  // mountain folds
   std::string valley = "VALLEY";      // valley folds
   std::string outline = "OUTLINE";    // the sheet's edge (optional)
+  std::string cut_out = "CUTOUT";     // cuts around pieces cut out of the sheet: they fall out
 };
 
 /// The drawing unit a DXF declares in $INSUNITS.

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The origamic command: parses options, calls the library, reports. No algorithm lives here.
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +12,8 @@
 #include <CLI/CLI.hpp>
 
 #include "origamic/design.hpp"
+#include "origamic/plan_dxf_reader.hpp"
+#include "origamic/fold3d.hpp"
 #include "origamic/error.hpp"
 #include "origamic/output.hpp"
 #include "origamic/plan_analysis.hpp"
@@ -324,6 +327,49 @@ int run_validate(const ValidateArgs& args) {
   return analysis.valid() ? 0 : 3;
 }
 
+// `origamic fold PLAN.dxf`: any plan, read and placed as `validate` does, folded at an angle.
+struct FoldArgs {
+  std::string plan;
+  double angle_deg = 90;
+  double thickness_mm = 0;
+  std::string out;
+  origamic::LayerNames layers;
+};
+
+void add_fold_options(CLI::App& fold, FoldArgs& args) {
+  fold.add_option("PLAN", args.plan, "plan as ASCII DXF (cuts, mountain and valley folds on their layers, in mm)")
+      ->required();
+  fold.add_option("--angle", args.angle_deg, "opening angle in degrees: 0 closed, 90 standing, 180 flat")
+      ->capture_default_str();
+  fold.add_option("--thickness", args.thickness_mm, "paper thickness in mm (0: zero-thickness sheets)")
+      ->capture_default_str();
+  fold.add_option("-o,--out", args.out, "the folded pop-up as a mesh: .obj (with its .mat) or .ply")->required();
+  fold.add_option("--cut-layer", args.layers.cut, "layer of the cuts")->capture_default_str();
+  fold.add_option("--mountain-layer", args.layers.mountain, "layer of the mountain folds")->capture_default_str();
+  fold.add_option("--valley-layer", args.layers.valley, "layer of the valley folds")->capture_default_str();
+}
+
+int run_fold(const FoldArgs& args) {
+  const std::string extension = std::filesystem::path(args.out).extension().string();
+  if (extension != ".obj" && extension != ".ply")
+    throw InputError("--out: expected a .obj or .ply file, not '" + args.out + "'");
+  const origamic::DxfDrawing drawing = origamic::read_dxf_drawing(args.plan, args.layers);
+  origamic::AnalysisOptions options;
+  options.unit = drawing.unit;
+  const origamic::PlanAnalysis analysis = origamic::analyze_plan(drawing.lines, options);
+  const origamic::PlanBox& box = analysis.sheet;
+  const origamic::Sheet sheet{box.max_X - box.min_X, 2 * std::max(box.max_Y, -box.min_Y)};
+  const origamic::FoldedPopup popup =
+      origamic::fold_popup(analysis.regions, sheet, {.angle_deg = args.angle_deg, .thickness_mm = args.thickness_mm});
+  origamic::write_files(origamic::folded_mesh_files(
+      popup, args.out, extension == ".ply" ? origamic::MeshFormat::Ply : origamic::MeshFormat::Obj));
+  int unplaced = 0;
+  for (const origamic::PlanRegion& region : analysis.regions) unplaced += !region.placed;
+  std::printf("%s\nfolded at %g degrees: %s (%d faces not reached by any fold left out)\n",
+              origamic::analysis_summary_line(analysis).c_str(), args.angle_deg, args.out.c_str(), unplaced);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -341,6 +387,9 @@ int main(int argc, char** argv) {
   CLI::App* validate = app.add_subcommand("validate", "check a plan (DXF), made by origamic or by hand: faces, folds, "
                                                       "validity; exit 0 valid, 3 invalid");
   add_validate_options(*validate, validate_args);
+  FoldArgs fold_args;
+  CLI::App* fold = app.add_subcommand("fold", "fold a plan (DXF) into its 3D pop-up at an opening angle: a mesh");
+  add_fold_options(*fold, fold_args);
 
   try {
     app.parse(argc, argv);
@@ -357,6 +406,7 @@ int main(int argc, char** argv) {
 
   try {
     if (*validate) return run_validate(validate_args);
+    if (*fold) return run_fold(fold_args);
     if (*design) return run_design(design_args, fabrication_args, popup_args);
     return 2;  // CLI11 requires one subcommand
   } catch (const origamic::InputError& e) {
