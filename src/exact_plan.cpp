@@ -592,7 +592,7 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
     if (fresh) vertex_points.push_back({nearest_double(v->point().x()), nearest_double(v->point().y())});
     return it->second;
   };
-  std::vector<std::pair<std::size_t, std::size_t>> by_kind[3];
+  std::vector<std::pair<std::size_t, std::size_t>> by_kind[5];
   std::map<FT, std::int32_t> fold_line_ids;
   FaceGraph graph;
   graph.faces = static_cast<std::int32_t>(n);
@@ -619,11 +619,12 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
         fold_on_bottom[static_cast<std::size_t>(upper)] = true;
       }
     }
+    if (fu.hole || fl.hole) kind = LineKind::CutOut;
     const double length = length_of(he);
-    (kind == LineKind::Cut ? plan.cut_mm : kind == LineKind::Mountain ? plan.mountain_mm : plan.valley_mm) += length;
+    (kind == LineKind::Cut || kind == LineKind::CutOut ? plan.cut_mm : kind == LineKind::Mountain ? plan.mountain_mm : plan.valley_mm) += length;
     by_kind[static_cast<int>(kind)].emplace_back(index_of(he->source()), index_of(he->target()));
   }
-  for (const LineKind kind : {LineKind::Cut, LineKind::Mountain, LineKind::Valley}) {
+  for (const LineKind kind : {LineKind::Cut, LineKind::Mountain, LineKind::Valley, LineKind::CutOut}) {
     std::vector<PlanPolyline> lines = chain_segments(kind, by_kind[static_cast<int>(kind)], vertex_points);
     plan.lines.insert(plan.lines.end(), std::make_move_iterator(lines.begin()), std::make_move_iterator(lines.end()));
   }

@@ -15,7 +15,16 @@
 
 namespace origamic {
 
-enum class LineKind : std::uint8_t { Cut, Mountain, Valley, Outline };
+enum class LineKind : std::uint8_t {
+  Cut,
+  Mountain,
+  Valley,
+  Outline,
+  CutOut,  // a cut around a piece cut out of the sheet (a hole): it falls out, nothing holds it
+};
+
+/// Cut, cut-out and outline lines are all cut through the card.
+inline bool is_cut(LineKind kind) { return kind == LineKind::Cut || kind == LineKind::CutOut || kind == LineKind::Outline; }
 
 /// A chain of plan segments of one kind; closed chains repeat their first point at the end.
 struct PlanPolyline {
