@@ -10,6 +10,10 @@
 #error "define CGAL_HAS_NO_THREADS before including exact_kernel.hpp"
 #endif
 
+#include <CGAL/Arr_consolidated_curve_data_traits_2.h>
+#include <CGAL/Arr_extended_dcel.h>
+#include <CGAL/Arr_segment_traits_2.h>
+#include <CGAL/Arrangement_2.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 
 #include <bit>
@@ -22,6 +26,12 @@ namespace origamic::exact {
 using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
 using FT = Kernel::FT;
 using Point = Kernel::Point_2;
+using SegmentTraits = CGAL::Arr_segment_traits_2<Kernel>;
+// Each inserted segment carries an index (into its caller's table of what the segment is);
+// overlapping pieces keep every index. Each face carries one label.
+using Traits = CGAL::Arr_consolidated_curve_data_traits_2<SegmentTraits, std::int32_t>;
+using Dcel = CGAL::Arr_face_extended_dcel<Traits, std::int32_t>;
+using Arrangement = CGAL::Arrangement_2<Traits, Dcel>;
 
 // The exact rational behind a lazy number (gmpxx: store expressions in a typed variable before use).
 using Rational = std::remove_cvref_t<decltype(std::declval<FT>().exact())>;

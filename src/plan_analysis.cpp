@@ -15,10 +15,6 @@
 #include <unordered_map>
 #include <utility>
 
-#include <CGAL/Arr_consolidated_curve_data_traits_2.h>
-#include <CGAL/Arr_extended_dcel.h>
-#include <CGAL/Arr_segment_traits_2.h>
-#include <CGAL/Arrangement_2.h>
 #include <CGAL/intersections.h>
 
 #include "exact_kernel.hpp"
@@ -31,11 +27,9 @@ using exact::FT;
 using exact::Kernel;
 using exact::nearest_double;
 using exact::Point;
-using SegmentTraits = CGAL::Arr_segment_traits_2<Kernel>;
-// Each inserted segment carries the index of its kind; overlapping pieces keep every index.
-using Traits = CGAL::Arr_consolidated_curve_data_traits_2<SegmentTraits, std::int32_t>;
-using Dcel = CGAL::Arr_face_extended_dcel<Traits, std::int32_t>;
-using Arrangement = CGAL::Arrangement_2<Traits, Dcel>;
+// Each inserted segment carries the index of its kind.
+using exact::Arrangement;
+using exact::Traits;
 using Face = Arrangement::Face_const_handle;
 using Halfedge = Arrangement::Halfedge_const_handle;
 using Ring = std::vector<Point>;
