@@ -11,6 +11,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <numeric>
 #include <utility>
 
 
@@ -514,6 +515,104 @@ std::vector<PlanRegion> regions_of(const Arrangement& arr, const std::vector<Pla
   return regions;
 }
 
+// The pieces of paper: sets of arrangement faces of one label joined across edges with that label on
+// both sides (those edges are no lines of the plan).
+struct Pieces {
+  std::map<Arrangement::Face_const_handle, std::int32_t> of;  // bounded labelled face -> piece
+  std::vector<std::int32_t> label;                            // per piece
+};
+
+Pieces pieces_of(const Arrangement& arr) {
+  std::vector<Arrangement::Face_const_handle> faces;
+  std::map<Arrangement::Face_const_handle, std::int32_t> index;
+  for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f)
+    if (!f->is_unbounded() && f->data() >= 0) index[f] = static_cast<std::int32_t>(faces.size()), faces.push_back(f);
+  std::vector<std::int32_t> parent(faces.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&](std::int32_t i) {
+    while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+    return i;
+  };
+  for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
+    const auto a = e->face(), b = e->twin()->face();
+    if (a == b || a->is_unbounded() || b->is_unbounded() || a->data() < 0 || a->data() != b->data()) continue;
+    const std::int32_t ra = root(index.at(a)), rb = root(index.at(b));
+    parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
+  }
+  Pieces pieces;
+  std::map<std::int32_t, std::int32_t> piece_of_root;
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    const auto [it, fresh] = piece_of_root.try_emplace(root(static_cast<std::int32_t>(i)), static_cast<std::int32_t>(pieces.label.size()));
+    if (fresh) pieces.label.push_back(faces[i]->data());
+    pieces.of[faces[i]] = it->second;
+  }
+  return pieces;
+}
+
+// How badly a status falls short, for the worst piece of a face.
+int shortfall(FaceStatus s) {
+  switch (s) {
+    case FaceStatus::Valid: return 0;
+    case FaceStatus::Indirect: return 1;
+    case FaceStatus::Removed: return 2;
+    case FaceStatus::Dangling: return 3;
+    case FaceStatus::Invalid: return 4;
+    case FaceStatus::Floating: return 5;
+  }
+  return 5;
+}
+
+// The verdict per raster face from the verdict per piece: a face stands when every piece of it does.
+// A floating crumb (a piece under W x W / 8, cut off where a snapped fold met a slanted cut) falls
+// out when the card is cut and is no part of the likeness: it is cut out (a hole) and does not count.
+// Pieces of the back plane and the floor that came loose count as faces of their own.
+struct PieceVerdict {
+  Validity validity;                   // per raster face
+  int loose_card_pieces = 0;           // pieces of the back plane or the floor no fold holds
+  std::vector<std::uint8_t> cut_out;   // per piece: a floating crumb, cut out
+};
+
+PieceVerdict face_validity(const Validity& by_node, const Pieces& pieces, const std::vector<std::int32_t>& node,
+                           const std::vector<double>& piece_area, std::size_t faces, double min_strip_mm) {
+  const double crumb = min_strip_mm * min_strip_mm / 8;
+  PieceVerdict verdict;
+  verdict.cut_out.assign(pieces.label.size(), 0);
+  Validity& v = verdict.validity;
+  v.status.assign(faces, FaceStatus::Valid);
+  v.in_X.assign(faces, true);
+  v.in_Y.assign(faces, true);
+  v.fold_lines.assign(faces, 2);
+  std::vector<int> worst(faces, -1);
+  for (std::size_t p = 0; p < pieces.label.size(); ++p) {
+    const auto f = static_cast<std::size_t>(pieces.label[p]), k = static_cast<std::size_t>(node[p]);
+    if (k < 2) continue;  // the card's halves themselves
+    if (piece_area[p] < crumb && by_node.status[k] == FaceStatus::Floating) {
+      verdict.cut_out[p] = 1;
+      continue;
+    }
+    if (f < 2) {  // a loose piece of the back plane or the floor
+      if (by_node.status[k] == FaceStatus::Valid || by_node.status[k] == FaceStatus::Indirect) continue;
+      ++verdict.loose_card_pieces;
+      v.floating += by_node.status[k] == FaceStatus::Floating, v.dangling += by_node.status[k] == FaceStatus::Dangling;
+      v.invalid += by_node.status[k] == FaceStatus::Invalid;
+      continue;
+    }
+    if (shortfall(by_node.status[k]) <= worst[f]) continue;
+    worst[f] = shortfall(by_node.status[k]);
+    v.status[f] = by_node.status[k];
+    v.in_X[f] = by_node.in_X[k], v.in_Y[f] = by_node.in_Y[k], v.fold_lines[f] = by_node.fold_lines[k];
+  }
+  for (std::size_t f = 2; f < faces; ++f) switch (v.status[f]) {
+      case FaceStatus::Valid: ++v.valid; break;
+      case FaceStatus::Indirect: ++v.indirect; break;
+      case FaceStatus::Floating: ++v.floating; break;
+      case FaceStatus::Dangling: ++v.dangling; break;
+      case FaceStatus::Invalid: ++v.invalid; break;
+      case FaceStatus::Removed: ++v.removed; break;
+    }
+  return verdict;
+}
+
 }  // namespace
 
 Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& sheet, const PlanOptions& options) {
@@ -564,6 +663,8 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
   const std::size_t n = slices.faces.size();
   std::vector<double> area(n, 0.0);
   double total = 0;
+  const Pieces pieces = pieces_of(arr);
+  std::vector<double> piece_area(pieces.label.size(), 0.0);
   for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
     if (f->is_unbounded()) continue;
     ++plan.arrangement_faces;
@@ -573,7 +674,20 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
     if (f->data() < 0) continue;  // an unlabelled face leaves a hole in the tiling
     total += a;
     area[static_cast<std::size_t>(f->data())] += a;
+    piece_area[static_cast<std::size_t>(pieces.of.at(f))] += a;
   }
+  // Validity is decided on pieces of paper: the back plane and the floor are their largest pieces.
+  std::vector<std::int32_t> node(pieces.label.size(), -1);
+  std::int32_t nodes = 2;
+  for (const std::int32_t card : {0, 1}) {
+    std::int32_t largest = -1;
+    for (std::size_t p = 0; p < pieces.label.size(); ++p)
+      if (pieces.label[p] == card && (largest < 0 || piece_area[p] > piece_area[static_cast<std::size_t>(largest)]))
+        largest = static_cast<std::int32_t>(p);
+    if (largest >= 0) node[static_cast<std::size_t>(largest)] = card;
+  }
+  for (auto& id : node)
+    if (id < 0) id = nodes++;
   // The arrangement is a subdivision by construction; this guards the labelling and the outline.
   const double sheet_area = sheet.width_mm * sheet.height_mm;
   plan.faces_tile_sheet = std::abs(total - sheet_area) <= 1e-9 * sheet_area;
@@ -589,9 +703,13 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
   std::vector<std::pair<std::size_t, std::size_t>> by_kind[5];
   std::map<FT, std::int32_t> fold_line_ids;
   FaceGraph graph;
-  graph.faces = static_cast<std::int32_t>(n);
-  for (const RasterFace& face : slices.faces) graph.holes.push_back(face.hole);
+  graph.faces = nodes;
+  graph.holes.assign(static_cast<std::size_t>(nodes), 0);
+  for (std::size_t p = 0; p < pieces.label.size(); ++p)
+    graph.holes[static_cast<std::size_t>(node[p])] = slices.faces[static_cast<std::size_t>(pieces.label[p])].hole;
+  auto node_of = [&](Arrangement::Face_const_handle f) { return node[static_cast<std::size_t>(pieces.of.at(f))]; };
   std::vector<bool> fold_on_top(n, false), fold_on_bottom(n, false);
+  std::vector<std::pair<Arrangement::Halfedge_const_handle, LineKind>> edges;  // inner edges, upper face first
   for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
     Arrangement::Halfedge_const_handle he = e;
     if (he->direction() != CGAL::ARR_LEFT_TO_RIGHT) he = he->twin();  // he->face() is above or left
@@ -608,12 +726,22 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
         // Going up the plan: V then H is a mountain fold, H then V a valley fold.
         kind = fu.orientation == Orientation::H ? LineKind::Mountain : LineKind::Valley;
         const auto [it, fresh] = fold_line_ids.try_emplace(p.y(), static_cast<std::int32_t>(fold_line_ids.size()));
-        graph.folds.push_back({upper, lower, it->second});
+        graph.folds.push_back({node_of(he->face()), node_of(he->twin()->face()), it->second});
         fold_on_top[static_cast<std::size_t>(lower)] = true;
         fold_on_bottom[static_cast<std::size_t>(upper)] = true;
       }
     }
     if (fu.hole || fl.hole) kind = LineKind::CutOut;
+    edges.push_back({he, kind});
+  }
+  const PieceVerdict verdict = face_validity(validate(graph), pieces, node, piece_area, n, slices.min_strip_mm);
+  plan.validity = verdict.validity;
+  plan.loose_card_pieces = verdict.loose_card_pieces;
+  plan.crumbs_cut_out = static_cast<int>(std::ranges::count(verdict.cut_out, 1));
+  for (auto [he, kind] : edges) {
+    if ((verdict.cut_out[static_cast<std::size_t>(pieces.of.at(he->face()))] ||
+                                  verdict.cut_out[static_cast<std::size_t>(pieces.of.at(he->twin()->face()))]))
+      kind = LineKind::CutOut;
     const double length = length_of(he);
     (kind == LineKind::Cut || kind == LineKind::CutOut ? plan.cut_mm : kind == LineKind::Mountain ? plan.mountain_mm : plan.valley_mm) += length;
     by_kind[static_cast<int>(kind)].emplace_back(index_of(he->source()), index_of(he->target()));
@@ -625,14 +753,22 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
   plan.lines.push_back({LineKind::Outline,
                         {{0, sheet.min_Y()}, {sheet.width_mm, sheet.min_Y()}, {sheet.width_mm, sheet.max_Y()},
                          {0, sheet.max_Y()}, {0, sheet.min_Y()}}});
-
-  plan.validity = validate(graph);
+  plan.pieces = static_cast<int>(pieces.label.size());
   // A point inside each face: its pixel nearest the centroid of its pixels.
   std::vector<double> sum_col(n, 0), sum_row(n, 0), count(n, 0);
   for (int row = 0; row < labels.rows; ++row)
     for (int col = 0; col < labels.cols; ++col) {
       const auto f = static_cast<std::size_t>(labels(col, row));
       sum_col[f] += col, sum_row[f] += row, count[f] += 1;
+    }
+  // A face at most two pixels tall in every column may vanish when the folds on both its sides
+  // snap onto their lines (up to a pixel each): collapsed, not lost.
+  std::vector<int> tallest(n, 0);
+  for (int col = 0; col < labels.cols; ++col)
+    for (int row = 0, run = 0; row < labels.rows; ++row) {
+      run = row > 0 && labels(col, row) == labels(col, row - 1) ? run + 1 : 1;
+      auto& t = tallest[static_cast<std::size_t>(labels(col, row))];
+      t = std::max(t, run);
     }
   std::vector<double> best(n, 1e300);
   plan.faces.resize(n);
@@ -650,7 +786,7 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
     face.fold_on_top = fold_on_top[f];
     face.fold_on_bottom = fold_on_bottom[f];
     face.support = slices.faces[f].support;
-    if (f >= 2 && slices.faces[f].pixels > 0 && !(area[f] > 0)) ++plan.lost_faces;
+    if (f >= 2 && slices.faces[f].pixels > 0 && !(area[f] > 0)) ++(tallest[f] <= 2 ? plan.collapsed_faces : plan.lost_faces);
     face.status = plan.validity.status[f];
   }
   plan.regions = regions_of(arr, plan.faces);

@@ -84,7 +84,8 @@ nlohmann::json plan_json(const Plan& plan, bool allow_dangling) {
                       {"floating", v.floating},
                       {"dangling", v.dangling},
                       {"invalid", v.invalid},
-                      {"removed", v.removed}}},
+                      {"removed", v.removed},
+                      {"loose_card_pieces", plan.loose_card_pieces}}},
           {"length_mm", {{"cut", plan.cut_mm}, {"mountain", plan.mountain_mm}, {"valley", plan.valley_mm}}},
           {"exact_checks", {{"arrangement_valid", plan.arrangement_valid},
                             {"faces_tile_sheet", plan.faces_tile_sheet},
@@ -94,7 +95,11 @@ nlohmann::json plan_json(const Plan& plan, bool allow_dangling) {
                             {"raw_chains", plan.raw_chains},
                             {"unsnapped_chains", plan.unsnapped_chains},
                             {"unresolved_crossings", plan.unresolved_crossings},
-                            {"lost_faces", plan.lost_faces}}},
+                            {"lost_faces", plan.lost_faces},
+                            {"collapsed_faces", plan.collapsed_faces},
+                            {"crumbs_cut_out", plan.crumbs_cut_out},
+                            {"loose_card_pieces", plan.loose_card_pieces},
+                            {"pieces", plan.pieces}}},
           {"faces", faces}};
 }
 

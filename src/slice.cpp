@@ -2,8 +2,10 @@
 #include "origamic/slice.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <string>
 
@@ -331,6 +333,86 @@ void merge_coplanar_faces(SliceResult& result) {
   for (auto& f : face.values)
     if (f >= 0) f = new_id[root(f)];
   result.faces = std::move(faces);
+}
+
+std::vector<FacePart> split_disconnected_faces(SliceResult& result, const std::vector<std::int32_t>& faces,
+                                              std::int64_t min_part_px, int min_part_cols) {
+  Grid<std::int32_t>& face = result.face;
+  std::vector<std::uint8_t> wanted(result.faces.size(), 0);
+  for (const std::int32_t f : faces)
+    if (f >= 0 && !result.faces[static_cast<std::size_t>(f)].hole) wanted[static_cast<std::size_t>(f)] = 1;
+  // Flood-fill every part of the wanted faces; part[i] holds the pixels of part i.
+  Grid<std::int32_t> part(face.cols, face.rows, -1);
+  std::vector<std::vector<std::size_t>> parts;
+  std::vector<std::int32_t> part_face;
+  std::vector<std::size_t> stack;
+  for (int row = 0; row < face.rows; ++row)
+    for (int col = 0; col < face.cols; ++col) {
+      const std::int32_t f = face(col, row);
+      if (f < 0 || !wanted[static_cast<std::size_t>(f)] || part(col, row) >= 0) continue;
+      const auto id = static_cast<std::int32_t>(parts.size());
+      parts.emplace_back();
+      part_face.push_back(f);
+      part(col, row) = id;
+      stack.assign(1, face.index(col, row));
+      while (!stack.empty()) {
+        const std::size_t i = stack.back();
+        stack.pop_back();
+        parts.back().push_back(i);
+        const int c = static_cast<int>(i % face.cols), r = static_cast<int>(i / face.cols);
+        for (const auto& [dc, dr] : kStep)
+          if (face.contains(c + dc, r + dr) && face(c + dc, r + dr) == f && part(c + dc, r + dr) < 0)
+            part(c + dc, r + dr) = id, stack.push_back(face.index(c + dc, r + dr));
+      }
+    }
+  // The largest part of each face keeps its id (the first of equals, for determinism).
+  std::vector<std::int32_t> keeper(result.faces.size(), -1);
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    std::int32_t& k = keeper[static_cast<std::size_t>(part_face[i])];
+    if (k < 0 || parts[i].size() > parts[static_cast<std::size_t>(k)].size()) k = static_cast<std::int32_t>(i);
+  }
+  std::vector<FacePart> created;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const auto f = static_cast<std::size_t>(part_face[i]);
+    const auto size = static_cast<std::int64_t>(parts[i].size());
+    const bool kept = keeper[f] == static_cast<std::int32_t>(i);
+    if (kept && (f < 2 || size >= min_part_px)) {
+      result.faces[f].pixels = size;
+      continue;
+    }
+    int lo = INT_MAX, hi = -1;
+    for (const std::size_t p : parts[i]) lo = std::min(lo, static_cast<int>(p % face.cols)), hi = std::max(hi, static_cast<int>(p % face.cols));
+    if (size < min_part_px || (!kept && hi - lo + 1 < min_part_cols)) {
+      // A crumb joins the face it shares the most pixel sides with.
+      std::map<std::int32_t, int> sides;
+      for (const std::size_t p : parts[i]) {
+        const int c = static_cast<int>(p % face.cols), r = static_cast<int>(p / face.cols);
+        for (const auto& [dc, dr] : kStep)
+          if (face.contains(c + dc, r + dr)) {
+            const std::int32_t g = face(c + dc, r + dr);
+            if (g >= 0 && g != static_cast<std::int32_t>(f) && !result.faces[static_cast<std::size_t>(g)].hole) ++sides[g];
+          }
+      }
+      if (!sides.empty()) {
+        const std::int32_t into = std::ranges::max_element(sides, {}, [](const auto& s) { return s.second; })->first;
+        for (const std::size_t p : parts[i]) face.values[p] = into;
+        result.faces[static_cast<std::size_t>(into)].pixels += size;
+        if (kept) result.faces[f].pixels = 0;
+        continue;
+      }
+      if (kept) {
+        result.faces[f].pixels = size;
+        continue;
+      }
+    }
+    const auto id = static_cast<std::int32_t>(result.faces.size());
+    RasterFace piece = result.faces[f];
+    piece.pixels = static_cast<std::int64_t>(parts[i].size());
+    result.faces.push_back(piece);
+    for (const std::size_t p : parts[i]) face.values[p] = id;
+    created.push_back({id, static_cast<std::int32_t>(f)});
+  }
+  return created;
 }
 
 namespace {

@@ -6,9 +6,11 @@
 #include <cmath>
 #include <random>
 #include <map>
+#include <numeric>
 #include <optional>
 #include <set>
 #include <tuple>
+#include <utility>
 
 namespace origamic {
 namespace {
@@ -37,7 +39,7 @@ class CandidateFinder {
       : grid_(maps.grid), face_(slices.face), faces_(slices.faces), split_cost_(split_cost),
         px_mm_(1 / maps.grid.px_per_mm), block_(slices.block_px),
         first_(slices.faces.size() * static_cast<std::size_t>(face_.cols), -1),
-        last_(first_.size(), -1) {
+        last_(first_.size(), -1), columns_(slices.faces.size(), {INT_MAX, -1}) {
     for (int r = 0; r < face_.rows; ++r)
       for (int c = 0; c < face_.cols; ++c) {
         const std::int32_t f = face_(c, r);
@@ -45,6 +47,8 @@ class CandidateFinder {
         const std::size_t k = static_cast<std::size_t>(f) * face_.cols + c;
         if (first_[k] < 0) first_[k] = r;
         last_[k] = r;
+        auto& [lo, hi] = columns_[static_cast<std::size_t>(f)];
+        lo = std::min(lo, c), hi = std::max(hi, c);
       }
   }
 
@@ -54,7 +58,14 @@ class CandidateFinder {
   std::vector<Candidate> from_edge(std::int32_t f, bool up) const {
     std::vector<Candidate> candidates;
     const RasterFace& face = faces_[static_cast<std::size_t>(f)];
-    for (int c0 = 0; c0 + block_ <= face_.cols; c0 += block_) {
+    // The block columns, and the two flush with the face's ends: a support there trims the faces it
+    // crosses where they end with the face, instead of cutting them in two.
+    std::vector<int> starts;
+    for (int c0 = 0; c0 + block_ <= face_.cols; c0 += block_) starts.push_back(c0);
+    const auto [lo, hi] = columns_[static_cast<std::size_t>(f)];
+    for (const int c0 : {lo, hi + 1 - block_})
+      if (c0 >= 0 && c0 + block_ <= face_.cols && c0 % block_ != 0) starts.push_back(c0);
+    for (const int c0 : starts) {
       const int c1 = c0 + block_;
       // The edge row: f's top (bottom) at the block column's centre. A support needs f along at
       // least half of its near side and its target along half of its far side: slices of curved
@@ -74,6 +85,16 @@ class CandidateFinder {
     int n = 0;
     for (int c = c0; c < c1; ++c) n += face_(c, r) == f;
     return 2 * n >= c1 - c0;
+  }
+  // Whether support s cuts face x in two: x lies on both sides of it, within its rows. A support
+  // that only trims x's end leaves it one piece of paper.
+  bool splits(std::int32_t x, const Candidate& s) const {
+    bool left = false, right = false;
+    for (int r = s.r0; r < s.r1; ++r) {
+      left |= s.c0 > 0 && face_(s.c0 - 1, r) == x;
+      right |= s.c1 < face_.cols && face_(s.c1, r) == x;
+    }
+    return left && right;
   }
   int first_row(std::int32_t f, int c) const { return first_[static_cast<std::size_t>(f) * face_.cols + c]; }
   int last_row(std::int32_t f, int c) const { return last_[static_cast<std::size_t>(f) * face_.cols + c]; }
@@ -103,7 +124,7 @@ class CandidateFinder {
           s.depth_mm = v_hit ? h : d;
           s.cost = (s.r1 - s.r0) * px_mm_;
           for (const std::int32_t x : crossed)
-            if (x != g) s.cost += split_cost_;
+            if (x != g && splits(x, s)) s.cost += split_cost_;
           return s;
         }
       }
@@ -119,6 +140,7 @@ class CandidateFinder {
   double split_cost_, px_mm_;
   int block_;
   std::vector<int> first_, last_;  // per face and column: its first and last row, -1 if none
+  std::vector<std::pair<int, int>> columns_;  // per face: its first and last column
 };
 
 bool claimed_anywhere(const Grid<std::uint8_t>& claimed, int c0, int c1, int r0, int r1) {
@@ -155,10 +177,19 @@ std::vector<NarrowStrip> narrow_strips(const SliceResult& slices, const PixelGri
       hi[i] = std::max(hi[i], c);
     }
   std::vector<NarrowStrip> narrow;
-  for (std::size_t f = 2; f < n; ++f)
-    if (hi[f] >= 0 && !slices.faces[f].hole && hi[f] - lo[f] + 1 < slices.block_px)
-      narrow.push_back({static_cast<std::int32_t>(f), slices.faces[f].support, (hi[f] - lo[f] + 1) / grid.px_per_mm,
-                        {grid.X(lo[f]) + (hi[f] - lo[f]) / (2 * grid.px_per_mm), grid.Y(lo_row[f])}});
+  for (std::size_t f = 2; f < n; ++f) {
+    if (hi[f] < 0 || slices.faces[f].hole || hi[f] - lo[f] + 1 >= slices.block_px) continue;
+    // Its place: its top pixel in its middle column, or its leftmost pixel if it has none there.
+    int col = lo[f], row = lo_row[f];
+    const int mid = (lo[f] + hi[f]) / 2;
+    for (int r = 0; r < slices.face.rows; ++r)
+      if (slices.face(mid, r) == static_cast<std::int32_t>(f)) {
+        col = mid, row = r;
+        break;
+      }
+    narrow.push_back({static_cast<std::int32_t>(f), slices.faces[f].support, (hi[f] - lo[f] + 1) / grid.px_per_mm,
+                      {grid.X(col), grid.Y(row)}});
+  }
   return narrow;
 }
 
@@ -227,7 +258,8 @@ std::vector<std::int32_t> unsupported(const Standing& standing, bool allow_dangl
 // One round of seed §4.4: supports for the given invalid faces, chosen greedily in their order,
 // widened, never overlapping. Returns the chosen supports (not yet painted).
 std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const Standing& standing,
-                                       const std::vector<std::int32_t>& invalid, const SupportOptions& options) {
+                                       const std::vector<std::int32_t>& invalid, const SupportOptions& options,
+                                       bool allow_splits) {
   const CandidateFinder finder(maps, slices, options.split_cost_mm);
   Grid<std::uint8_t> claimed(slices.face.cols, slices.face.rows, 0);
   std::vector<Candidate> chosen;
@@ -252,6 +284,7 @@ std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult
           return a.cost != b.cost ? a.cost < b.cost : a.c0 < b.c0;
         });
         for (Candidate& s : candidates) {
+          if (!allow_splits && s.cost >= options.split_cost_mm) break;  // sorted: no cheaper one follows
           if (claimed_anywhere(claimed, s.c0, s.c1, s.r0, s.r1)) continue;
           widen(slices.face, claimed, s);
           for (int r = s.r0; r < s.r1; ++r)
@@ -267,13 +300,59 @@ std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult
   return chosen;
 }
 
-void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid, double tolerance, SliceResult& slices) {
+// Paints the chosen supports as faces of their own. A support crossing a face can leave a strip of
+// it beside the support, narrower than W and within the support's rows: a piece of paper too thin
+// to hold, which becomes part of the support (a wider support, the same folds).
+void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid, double tolerance, std::int64_t crumb_px,
+                    SliceResult& slices) {
+  Grid<std::int32_t>& face = slices.face;
+  const auto first_support = static_cast<std::int32_t>(slices.faces.size());
+  std::set<std::int32_t> crossed;
   for (const Candidate& s : chosen) {
     const auto id = static_cast<std::int32_t>(slices.faces.size());
     slices.faces.push_back({s.orientation, s.depth_mm, slices.faces[static_cast<std::size_t>(s.face)].segment, 0, true});
     for (int r = s.r0; r < s.r1; ++r)
-      for (int c = s.c0; c < s.c1; ++c) slices.face(c, r) = id;
+      for (int c = s.c0; c < s.c1; ++c) crossed.insert(std::exchange(face(c, r), id));
+    crossed.insert(s.face), crossed.insert(s.target);  // what is left of them may be a crumb
   }
+  const std::vector<FacePart> parts =
+      split_disconnected_faces(slices, std::vector<std::int32_t>(crossed.begin(), crossed.end()), crumb_px, 0);
+  // The faces and parts a support crossed: their extent, and the support they touch (-1 none, -2
+  // several).
+  const std::size_t n = slices.faces.size();
+  std::vector<std::uint8_t> candidate(n, 0);
+  for (const std::int32_t f : crossed)
+    if (f >= 2 && f < first_support) candidate[static_cast<std::size_t>(f)] = 1;
+  for (const FacePart& p : parts) candidate[static_cast<std::size_t>(p.face)] = 1;
+  std::vector<int> c_lo(n, INT_MAX), c_hi(n, -1), r_lo(n, INT_MAX), r_hi(n, -1);
+  std::vector<std::int32_t> touches(n, -1);
+  const auto supports_end = static_cast<std::int32_t>(first_support + chosen.size());
+  for (int r = 0; r < face.rows; ++r)
+    for (int c = 0; c < face.cols; ++c) {
+      const std::int32_t f = face(c, r);
+      if (f < 0 || !candidate[static_cast<std::size_t>(f)]) continue;
+      const auto i = static_cast<std::size_t>(f);
+      c_lo[i] = std::min(c_lo[i], c), c_hi[i] = std::max(c_hi[i], c);
+      r_lo[i] = std::min(r_lo[i], r), r_hi[i] = std::max(r_hi[i], r);
+      for (const auto& [dc, dr] : {std::pair{-1, 0}, {1, 0}, {0, -1}, {0, 1}}) {
+        if (!face.contains(c + dc, r + dr)) continue;
+        const std::int32_t g = face(c + dc, r + dr);
+        if (g < first_support || g >= supports_end) continue;
+        touches[i] = touches[i] == -1 || touches[i] == g ? g : -2;
+      }
+    }
+  // A narrow one within the rows of the support it touches joins it; other parts go back to their
+  // face: the exact plan decides whether they stand.
+  std::vector<std::int32_t> into(n);
+  std::iota(into.begin(), into.end(), 0);
+  for (const FacePart& p : parts) into[static_cast<std::size_t>(p.face)] = p.from;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!candidate[i] || touches[i] < 0 || c_hi[i] - c_lo[i] + 1 >= slices.block_px) continue;
+    const Candidate& s = chosen[static_cast<std::size_t>(touches[i] - first_support)];
+    if (r_lo[i] >= s.r0 && r_hi[i] < s.r1) into[i] = touches[i];
+  }
+  for (auto& f : face.values)
+    if (f >= 0) f = into[static_cast<std::size_t>(f)];
   merge_coplanar_faces(slices);
   align_folds_to_lines(slices, grid, tolerance);
 }
@@ -287,9 +366,13 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
   report.round_bound = slices.face.cols / std::max(1, slices.block_px) + 1;
   std::mt19937 random(options.seed);
   const double tolerance = fold_snap_tolerance_mm(plan_options, slices, maps.grid);
+  // A part of a face under W x W / 8 (a crumb left where a support or a slanted cut met it) joins a
+  // neighbour rather than become a face to be supported.
+  const std::int64_t crumb_px = std::int64_t{slices.block_px} * slices.block_px / 8;
   // The verdict of the raster graph, confirmed by the exact plan whenever the raster graph sees
   // nothing left to do: the exact plan always has the last word.
   bool exact = false;
+  bool allow_splits = true;
   Standing standing;
   // Rounds run on the raster graph; the exact plan, built when they end, has the last word and
   // the next rounds start from its verdict.
@@ -320,10 +403,10 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
                " rounds (the loop's bound)";
       ++report.rounds;
       std::shuffle(invalid.begin(), invalid.end(), random);
-      const std::vector<Candidate> chosen = choose_supports(maps, slices, standing, invalid, options);
+      const std::vector<Candidate> chosen = choose_supports(maps, slices, standing, invalid, options, allow_splits);
       if (chosen.empty()) return std::to_string(invalid.size()) + " faces invalid and no support reaches them";
       report.supports += static_cast<int>(chosen.size());
-      paint_supports(chosen, maps.grid, tolerance, slices);
+      paint_supports(chosen, maps.grid, tolerance, crumb_px, slices);
       settle();
     }
   };
@@ -336,12 +419,27 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
     const std::string why = support_rounds();
     confirm();
     std::vector<std::int32_t> invalid = unsupported(standing, options.allow_dangling);
-    if (invalid.empty()) break;
+    const int loose = result.plan.loose_card_pieces;
+    if (invalid.empty() && loose == 0) break;
     report.stop_reason = why.empty() ? std::to_string(invalid.size()) + " faces invalid in the exact plan" : why;
+    if (loose > 0) report.stop_reason += "; " + std::to_string(loose) + " loose pieces of the back plane or the floor";
+    std::vector<std::int32_t> apart = invalid;
+    if (loose > 0) apart.insert(apart.end(), {kBackFace, kFloorFace});
+    // The exact plan decides on pieces of paper: a face it finds invalid may be in pieces the raster
+    // graph took for one. Those become faces of their own, and the rounds go on.
+    // From then on no support may cut a face in two: the pieces it made would need supports of
+    // their own, whose supports cut more faces, without end.
+    if (report.rounds < report.round_bound && !split_disconnected_faces(slices, apart, crumb_px, slices.block_px).empty()) {
+      allow_splits = false;
+      merge_coplanar_faces(slices);
+      settle();
+      continue;
+    }
     // The exact plan found fewer invalid faces than last time: another pass of rounds from its word.
     const bool progress = invalid.size() < fewest_exact;
     fewest_exact = std::min(fewest_exact, invalid.size());
     if (progress && report.rounds < report.round_bound) continue;
+    if (invalid.empty()) break;  // only loose pieces the raster plan cannot tell apart
     // The last resort: the smaller half of the faces no support holds are cut out of the sheet
     // (holes, reported as "removed"). That can open the way for supports to the larger ones, so
     // the rounds resume. A card missing more than a quarter of its model is no likeness: then the
@@ -367,7 +465,7 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
     align_folds_to_lines(slices, maps.grid, tolerance);
     settle();
   }
-  report.converged = report.cut_out == 0 && unsupported(standing, options.allow_dangling).empty();
+  report.converged = report.cut_out == 0 && unsupported(standing, options.allow_dangling).empty() && result.plan.loose_card_pieces == 0;
   if (report.converged) report.stop_reason.clear();
   report.narrow = narrow_strips(slices, maps.grid);
   result.slices = std::move(slices);

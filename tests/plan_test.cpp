@@ -14,6 +14,7 @@
 #include "helpers.hpp"
 #include "origamic/design.hpp"
 #include "origamic/output.hpp"
+#include "origamic/plan_analysis.hpp"
 #include "origamic/plan_export.hpp"
 
 namespace origamic {
@@ -101,6 +102,38 @@ TEST(Plan, BoxAgainstTheBackPlaneFoldsExactlyOnItsLines) {
     }
   }
   EXPECT_NEAR(plan.mountain_mm, x1 - x0, 0.5);
+}
+
+// Validity is decided on pieces of paper: pixels of a face drawn apart from it, in the middle of the
+// back plane, are a piece that nothing holds, and the face does not stand; a crumb of a piece falls
+// out of the card and is cut out instead.
+TEST(Plan, AFacesPieceApartFromItIsFloatingAndACrumbIsCutOut) {
+  const RayScene scene(test::box({40, 0, 0}, {150, 60, 40}));
+  const Sheet sheet;
+  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
+  const SliceResult sliced = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const Plan whole = build_plan(maps, sliced, sheet, PlanOptions{});
+  ASSERT_EQ(whole.faces.size(), 4u);
+  ASSERT_TRUE(whole.validity.ok());
+  const int col = maps.grid.cols / 2, row = maps.grid.rows_above_fold / 4;  // on the back plane, above the box
+  ASSERT_EQ(sliced.face(col, row), kBackFace);
+  auto with_island = [&](int size) {
+    SliceResult s = sliced;
+    for (int r = row; r < row + size; ++r)
+      for (int c = col; c < col + size; ++c) s.face(c, r) = 2;
+    return build_plan(maps, s, sheet, PlanOptions{});
+  };
+  const Plan apart = with_island(20);  // 5 mm square
+  expect_exact_construction(apart);
+  EXPECT_EQ(apart.pieces, whole.pieces + 1);
+  EXPECT_EQ(apart.faces[2].status, FaceStatus::Floating);
+  EXPECT_EQ(apart.validity.floating, 1);
+  EXPECT_FALSE(analyze_plan(apart.lines, AnalysisOptions{}).valid()) << "its lines say so too";
+  const Plan crumb = with_island(3);  // 0.75 mm square: under W x W / 8
+  EXPECT_TRUE(crumb.validity.ok());
+  EXPECT_EQ(crumb.crumbs_cut_out, 1);
+  EXPECT_EQ(std::ranges::count_if(crumb.lines, [](const PlanPolyline& l) { return l.kind == LineKind::CutOut; }), 1);
+  EXPECT_TRUE(analyze_plan(crumb.lines, AnalysisOptions{}).valid()) << "its lines declare it a hole";
 }
 
 TEST(Plan, BoxFloatingInMidAirIsFloating) {

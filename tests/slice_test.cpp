@@ -160,3 +160,35 @@ TEST(Slice, OrientedBoxOfADiagonalLineIsOnePixelThin) {
 
 }  // namespace
 }  // namespace origamic
+
+namespace origamic {
+namespace {
+
+// A face cut in three by a column of another face: the largest part keeps its id, the other
+// becomes a face of its own with the same plane, and a crumb joins the face it touches most.
+TEST(Slice, FacesInPartsBecomeOneFacePerPartAndCrumbsJoinANeighbour) {
+  SliceResult s;
+  s.face = Grid<std::int32_t>(12, 6, kBackFace);
+  s.faces = {{Orientation::V, 0}, {Orientation::H, 0}, {Orientation::H, 7.5}, {Orientation::V, 3}};
+  for (int r = 1; r < 5; ++r) {
+    for (int c = 0; c < 5; ++c) s.face(c, r) = 2;   // 20 px
+    for (int c = 6; c < 9; ++c) s.face(c, r) = 2;   // 12 px
+    s.face(5, r) = s.face(9, r) = 3;
+  }
+  s.face(10, 2) = 2;  // a crumb, touching face 3 on one side and the back plane on three
+  const std::vector<FacePart> parts = split_disconnected_faces(s, {2}, 2, 0);
+  ASSERT_EQ(parts.size(), 1u);
+  EXPECT_EQ(parts[0].face, 4);
+  EXPECT_EQ(parts[0].from, 2);
+  ASSERT_EQ(s.faces.size(), 5u);
+  EXPECT_EQ(s.faces[4].orientation, Orientation::H);
+  EXPECT_EQ(s.faces[4].depth_mm, 7.5);
+  EXPECT_EQ(s.faces[2].pixels, 20);
+  EXPECT_EQ(s.faces[4].pixels, 12);
+  EXPECT_EQ(s.face(7, 3), 4);
+  EXPECT_EQ(s.face(0, 1), 2);
+  EXPECT_EQ(s.face(10, 2), kBackFace);
+}
+
+}  // namespace
+}  // namespace origamic

@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Designs every model in a models folder (MANIFEST.tsv gives the up axis) at the default options and
 # checks each plan: it stands (--strict exit 0), or it is reported invalid with the reason
-# (exit 3 and a stop reason in the report); the exact construction's own checks hold either way.
+# (exit 3 and a stop reason in the report); the exact construction's own checks hold either way, and
+# `origamic validate` reading the DXF back agrees with the design's verdict.
 # Prints one line per model: faces, supports, removed faces, verdict, time. Exit 77 without models.
 # usage: tools/check_models.sh ORIGAMIC_EXE MODELS_DIR
 set -uo pipefail
@@ -25,9 +26,12 @@ for file in "$models"/seedlike/*.stl "$models"/*.obj "$models"/*.stl "$models"/*
   status=$?
   ms=$(( ($(date +%s%N) - start) / 1000000 ))
   report=$(ls "$out/$name"/*.json 2>/dev/null | head -1)
-  verdict=$(/usr/bin/python3 - "$report" "$status" <<'PY'
+  dxf=$(ls "$out/$name"/*.dxf 2>/dev/null | head -1)
+  validated=2
+  [ -n "$dxf" ] && { "$exe" validate "$dxf" >"$out/$name.validate" 2>&1; validated=$?; }
+  verdict=$(/usr/bin/python3 - "$report" "$status" "$validated" <<'PY'
 import json, sys
-path, status = sys.argv[1], int(sys.argv[2])
+path, status, validated = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
 if not path:
     print("FAIL no report"); sys.exit()
 r = json.load(open(path))
@@ -38,6 +42,7 @@ problems += [k for k in ("lost_faces", "unresolved_crossings") if x[k] != 0]
 if status == 0 and c["floating"] + c["dangling"] + c["invalid"] != 0: problems.append("exit 0 but invalid faces")
 if status == 3 and not s["stop_reason"]: problems.append("invalid without a reason")
 if status not in (0, 3): problems.append(f"exit {status}")
+elif (status == 0) != (validated == 0): problems.append(f"design exit {status} but validate exit {validated}")
 head = f'{c["faces"]} faces, {s["added"]} supports, {c["removed"]} removed'
 if problems: print("FAIL " + head + ": " + ", ".join(problems))
 elif status == 0: print("VALID " + head)
@@ -45,6 +50,6 @@ else: print(f'INVALID {head}: {c["floating"]} floating, {c["dangling"]} dangling
 PY
 )
   printf '%-30s %6d ms  %s\n' "$name" "$ms" "$verdict"
-  case $verdict in FAIL*) failures=$((failures + 1)); tail -3 "$out/$name.log" ;; esac
+  case $verdict in FAIL*) failures=$((failures + 1)); tail -3 "$out/$name.log"; head -4 "$out/$name.validate" ;; esac
 done
 exit $(( failures > 0 ))

@@ -65,11 +65,15 @@ struct Plan {
   bool arrangement_valid = false;       // CGAL's is_valid
   bool faces_tile_sheet = false;        // face areas sum to the sheet's (to 1e-9 of it)
   int arrangement_faces = 0;
+  int pieces = 0;                       // pieces of paper: validity is decided on them
+  int loose_card_pieces = 0;            // pieces of the back plane or the floor no fold holds
+  int crumbs_cut_out = 0;               // floating pieces under W x W / 8: on the CUTOUT layer
   int label_conflicts = 0;              // arrangement faces without a clear majority label
   int raw_chains = 0;                   // boundaries left unsimplified to avoid a crossing
   int unsnapped_chains = 0;             // boundaries kept as pixel contours (no fold snapping) for it
   int unresolved_crossings = 0;         // boundaries that still touch another: must be 0
   int lost_faces = 0;                   // raster faces that no arrangement face carries
+  int collapsed_faces = 0;              // faces at most 2 px tall whose folds met when snapped
   int folds_snapped = 0;                // V/H boundaries moved onto their fold line
   bool simplified = false;              // every cut simplified, every fold candidate snapped
 };

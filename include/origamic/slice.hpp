@@ -64,6 +64,18 @@ SliceResult slice(const RasterMaps& maps, const Segmentation& segmentation, cons
 /// the back plane and the floor; ids are renumbered in order and pixel counts recomputed.
 void merge_coplanar_faces(SliceResult& result);
 
+/// A face whose pixels fall apart into several 4-connected parts (a support cut through it, or the
+/// exact plan found it in pieces) is that many pieces of paper: each part but the largest becomes a
+/// face of its own, with the same plane, appended in order; a part under `min_part_px` pixels or
+/// `min_part_cols` columns wide (a crumb, a sliver; a whole face under `min_part_px`, the back
+/// plane and the floor aside) joins the neighbouring face it shares the most pixel sides with. Returns the new faces.
+struct FacePart {
+  std::int32_t face = 0;  // the new face
+  std::int32_t from = 0;  // the face it was part of
+};
+std::vector<FacePart> split_disconnected_faces(SliceResult& result, const std::vector<std::int32_t>& faces,
+                                              std::int64_t min_part_px, int min_part_cols);
+
 /// Seed §4.5 on the raster: where a V(d) face and an H(h) face meet one above the other within
 /// `tolerance_mm` of their fold line Y = h - d, the boundary moves to the pixel boundary nearest
 /// that line, column by column, as long as both faces keep a pixel in the column. The exact plan

@@ -2,7 +2,8 @@
 // Supports (seed §4.4, second half): strips added to the raster plan until the exact plan has no
 // floating, dangling or other invalid face. Each round proposes, for every invalid face, supports
 // from its unconnected top and bottom edges to the first face behind/above or in front/below,
-// chooses greedily in a seeded random order, widens them, and rebuilds the exact plan from scratch.
+// chooses greedily in a seeded random order and widens them. The exact plan, rebuilt from scratch,
+// judges pieces of paper: a face it finds in pieces becomes one face per piece.
 #pragma once
 
 #include <cstdint>
@@ -32,7 +33,7 @@ struct NarrowStrip {
   std::int32_t face = 0;
   bool support = false;
   double width_mm = 0;  // its extent along X
-  PlanPoint at;         // the middle of its narrowest side, in plan mm
+  PlanPoint at;         // a pixel centre of it (in its middle column where it has one), in plan mm
 };
 
 struct SupportReport {
@@ -47,8 +48,7 @@ struct SupportReport {
 };
 
 struct Supported {
-  SliceResult slices;
-  std::vector<NarrowStrip> narrow;  // faces and supports narrower than W, reported with their place  // the raster plan with the supports painted in (RasterFace::support)
+  SliceResult slices;  // the raster plan with the supports painted in (RasterFace::support)
   Plan plan;           // the exact plan of it, validated from scratch
   SupportReport report;
 };
