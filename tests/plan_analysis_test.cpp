@@ -548,14 +548,16 @@ Comparison expect_read_back_matches(const DesignResult& r, const test::TempDir& 
   // Arrangement faces without a clear label (label_conflicts) carry a label that their folds may
   // contradict: the design's faces are then no reference (plan_test requires none of them).
   if (r.plan.label_conflicts != 0 || r.plan.lost_faces != 0 || r.plan.unresolved_crossings != 0) return {false, false};
-  // Likewise when the design itself has a face in several pieces of paper (its exact regions say
-  // so): its per-face data is then no reference for each piece. Counted and printed by the callers.
-  std::size_t pieces_expected = 0;
-  for (std::size_t f = 0; f < r.plan.faces.size(); ++f) pieces_expected += r.plan.faces[f].area_mm2 > 0;
-  if (r.plan.regions.size() != pieces_expected) return {true, false};
   write_files({{dir / "plan.dxf", plan_dxf(r.plan, ExportOptions{})}});
   const PlanAnalysis a = analyze_plan(read_plan_dxf(dir / "plan.dxf", {}), {});
   EXPECT_TRUE(a.arrangement_valid);
+  // The design decides validity on pieces of paper, as the file's reader does: same verdict.
+  EXPECT_EQ(a.valid(), plan_stands(r.plan.validity, false)) << listing(a);
+  // When the design has a face in several pieces of paper (its exact regions say so), its per-face
+  // data is no reference for each piece. Counted and printed by the callers.
+  std::size_t pieces_expected = 0;
+  for (std::size_t f = 0; f < r.plan.faces.size(); ++f) pieces_expected += r.plan.faces[f].area_mm2 > 0;
+  if (r.plan.regions.size() != pieces_expected) return {true, false};
   const std::size_t n = r.plan.faces.size();
   std::vector<std::vector<std::size_t>> regions_of(n);
   std::vector<double> area(n, 0.0);
