@@ -602,14 +602,7 @@ PieceVerdict face_validity(const Validity& by_node, const Pieces& pieces, const 
     v.status[f] = by_node.status[k];
     v.in_X[f] = by_node.in_X[k], v.in_Y[f] = by_node.in_Y[k], v.fold_lines[f] = by_node.fold_lines[k];
   }
-  for (std::size_t f = 2; f < faces; ++f) switch (v.status[f]) {
-      case FaceStatus::Valid: ++v.valid; break;
-      case FaceStatus::Indirect: ++v.indirect; break;
-      case FaceStatus::Floating: ++v.floating; break;
-      case FaceStatus::Dangling: ++v.dangling; break;
-      case FaceStatus::Invalid: ++v.invalid; break;
-      case FaceStatus::Removed: ++v.removed; break;
-    }
+  count_statuses(v);
   return verdict;
 }
 

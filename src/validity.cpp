@@ -130,7 +130,12 @@ Validity validate(const FaceGraph& graph) {
     }
     s = to_valid && via_connective ? FaceStatus::Indirect : FaceStatus::Invalid;
   }
-  for (std::size_t f = 2; f < n; ++f) switch (v.status[f]) {
+  count_statuses(v);
+  return v;
+}
+
+void count_statuses(Validity& v) {
+  for (std::size_t f = 2; f < v.status.size(); ++f) switch (v.status[f]) {
       case FaceStatus::Valid: ++v.valid; break;
       case FaceStatus::Indirect: ++v.indirect; break;
       case FaceStatus::Floating: ++v.floating; break;
@@ -138,7 +143,6 @@ Validity validate(const FaceGraph& graph) {
       case FaceStatus::Invalid: ++v.invalid; break;
       case FaceStatus::Removed: ++v.removed; break;
     }
-  return v;
 }
 
 }  // namespace origamic

@@ -53,4 +53,7 @@ struct Validity {
 /// are computed as the seed grows them; faces outside the valid set are classified as it says.
 Validity validate(const FaceGraph& graph);
 
+/// Adds the status of every face but the back plane and the floor to the counts.
+void count_statuses(Validity& validity);
+
 }  // namespace origamic
