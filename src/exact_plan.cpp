@@ -14,7 +14,6 @@
 #include <numeric>
 #include <utility>
 
-
 #include "exact_kernel.hpp"
 
 namespace origamic {

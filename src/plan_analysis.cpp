@@ -19,6 +19,7 @@
 
 #include "exact_kernel.hpp"
 #include "origamic/error.hpp"
+#include "origamic/mm_text.hpp"
 
 namespace origamic {
 namespace {
@@ -38,17 +39,10 @@ constexpr std::int32_t kOutside = -1;
 
 // Numbers in messages: plan mm to 1e-6, small amounts with three significant digits.
 std::string num(double value) {
+  if (value == 0 || std::abs(value) >= 1e-3) return mm_text(value);
   char text[64];
-  if (value != 0 && std::abs(value) < 1e-3) {
-    std::snprintf(text, sizeof text, "%.3g", value);
-    return text;
-  }
-  std::snprintf(text, sizeof text, "%.6f", value);
-  std::string s = text;
-  s.erase(s.find_last_not_of('0') + 1);
-  if (s.back() == '.') s.pop_back();
-  if (s == "-0") s = "0";
-  return s;
+  std::snprintf(text, sizeof text, "%.3g", value);
+  return text;
 }
 
 std::string point_text(PlanPoint p) { return "(" + num(p.X) + ", " + num(p.Y) + ")"; }

@@ -19,23 +19,12 @@
 #include <vector>
 
 #include "origamic/error.hpp"
+#include "origamic/mm_text.hpp"
 #include "origamic/version.hpp"
 #include "png_image.hpp"
 
 namespace origamic {
 namespace {
-
-
-// Coordinates with fixed decimals: 1e-6 mm keeps every exact value to far better than 0.001 mm.
-std::string mm(double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.6f", value);
-  std::string s = text;
-  s.erase(s.find_last_not_of('0') + 1);
-  if (s.back() == '.') s.pop_back();
-  if (s == "-0") s = "0";
-  return s;
-}
 
 std::string xml_escaped(std::string_view text) {
   std::string out;
@@ -104,7 +93,7 @@ LayerStyle layer_style(LineKind kind, ColourPreset preset) {
 std::string plan_description(const Plan& plan, const ExportOptions& options) {
   std::string text = "origamic " + std::string(version) + " plan of " + (options.model.empty() ? "a model" : options.model) +
                      "; units mm, 1:1 (plan X along the main fold from the sheet's left edge, Y up from the main fold);"
-                     " sheet " + mm(plan.sheet.width_mm) + " x " + mm(plan.sheet.height_mm) + " mm";
+                     " sheet " + mm_text(plan.sheet.width_mm) + " x " + mm_text(plan.sheet.height_mm) + " mm";
   if (!options.settings.empty()) text += "; " + options.settings;
   return one_line(text + "; " + fold_style_summary(options.folds));
 }
@@ -130,7 +119,7 @@ std::string plan_dxf(const Plan& plan, const ExportOptions& options) {
     dw->dxfString(999, "origamic plan of " + one_line(options.model.empty() ? "a model" : options.model));
     dw->dxfString(999, "units: mm ($INSUNITS 4, $MEASUREMENT 1), scale 1:1; X along the main fold from the sheet's "
                        "left edge, Y up from the main fold");
-    dw->dxfString(999, "sheet " + mm(plan.sheet.width_mm) + " x " + mm(plan.sheet.height_mm) + " mm");
+    dw->dxfString(999, "sheet " + mm_text(plan.sheet.width_mm) + " x " + mm_text(plan.sheet.height_mm) + " mm");
     if (!options.settings.empty()) dw->dxfString(999, "settings: " + one_line(options.settings));
     dw->dxfString(999, fold_style_summary(options.folds));
     std::string order = "layers, in cutting order:";
@@ -230,15 +219,15 @@ std::string plan_svg(const Plan& plan, const ExportOptions& options) {
   const double width = plan.sheet.width_mm, height = plan.sheet.height_mm, top = plan.sheet.max_Y();
   const std::string title = "origamic plan: " + xml_escaped(options.model);
   const std::string description = xml_escaped(plan_description(plan, options)) +
-                                  ". SVG: 1 user unit = 1 mm; SVG y = " + mm(top) + " - plan Y (the main fold is at y = " +
-                                  mm(top) + ").";
+                                  ". SVG: 1 user unit = 1 mm; SVG y = " + mm_text(top) + " - plan Y (the main fold is at y = " +
+                                  mm_text(top) + ").";
   std::ostringstream svg;
   svg << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       << "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\""
       << " xmlns:rdf=\"http://www.w3.org/1999/02/22-rdf-syntax-ns#\" xmlns:cc=\"http://creativecommons.org/ns#\""
       << " xmlns:dc=\"http://purl.org/dc/elements/1.1/\""
-      << " width=\"" << mm(width) << "mm\" height=\"" << mm(height) << "mm\" viewBox=\"0 0 " << mm(width) << ' '
-      << mm(height) << "\">\n"
+      << " width=\"" << mm_text(width) << "mm\" height=\"" << mm_text(height) << "mm\" viewBox=\"0 0 " << mm_text(width) << ' '
+      << mm_text(height) << "\">\n"
       << "<title>" << title << "</title>\n"
       << "<desc>" << description << "</desc>\n"
       // Dublin Core in Inkscape's form, so its Document Metadata dialog shows it.
@@ -253,11 +242,11 @@ std::string plan_svg(const Plan& plan, const ExportOptions& options) {
       if (line.layer != layer) continue;
       svg << "<polyline points=\"";
       for (std::size_t i = 0; i < line.points.size(); ++i)
-        svg << (i ? " " : "") << mm(line.points[i].X) << ',' << mm(top - line.points[i].Y);
+        svg << (i ? " " : "") << mm_text(line.points[i].X) << ',' << mm_text(top - line.points[i].Y);
       svg << '"';
       if (!line.dash_mm.empty()) {
         svg << " stroke-dasharray=\"";
-        for (std::size_t i = 0; i < line.dash_mm.size(); ++i) svg << (i ? " " : "") << mm(line.dash_mm[i]);
+        for (std::size_t i = 0; i < line.dash_mm.size(); ++i) svg << (i ? " " : "") << mm_text(line.dash_mm[i]);
         svg << '"';
       }
       svg << "/>\n";
@@ -318,7 +307,7 @@ std::string plan_png(const Plan& plan, const ExportOptions& options) {
   cairo_surface_destroy(surface);
   return encode_png("plan PNG", w, h, rgb,
                     {{"Title", one_line("origamic plan: " + options.model)},
-                     {"Description", plan_description(plan, options) + "; preview at " + mm(scale) +
+                     {"Description", plan_description(plan, options) + "; preview at " + mm_text(scale) +
                                          " px/mm: cuts red, folds green (mountain dash-dot, valley dashed)"},
                      {"Software", std::string("origamic ") + version}},
                     scale);
