@@ -28,6 +28,7 @@
 #include <glm/geometric.hpp>
 
 #include "origamic/error.hpp"
+#include "quiet_openmesh.hpp"
 
 namespace origamic {
 namespace {
@@ -50,22 +51,6 @@ struct OmTraits : OpenMesh::DefaultTraits {
   using Color = OpenMesh::Vec3uc;
 };
 using OmMesh = OpenMesh::TriMesh_ArrayKernelT<OmTraits>;
-
-// OpenMesh reports through global streams (a refused face, every file written): keep it quiet.
-struct QuietOpenMesh {
-  QuietOpenMesh() {
-    omerr().disable();
-    omlog().disable();
-    omout().disable();
-  }
-  ~QuietOpenMesh() {
-    omerr().enable();
-    omlog().enable();
-    omout().enable();
-  }
-  QuietOpenMesh(const QuietOpenMesh&) = delete;
-  QuietOpenMesh& operator=(const QuietOpenMesh&) = delete;
-};
 
 void check_options(const FoldOptions& options) {
   if (!(options.angle_deg >= 0 && options.angle_deg <= 180))

@@ -17,6 +17,7 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 #include "origamic/error.hpp"
+#include "quiet_openmesh.hpp"
 
 namespace origamic {
 namespace {
@@ -152,20 +153,6 @@ Promised promised_counts(const std::string& format, const std::string& bytes) {
   }
   return promised;
 }
-
-// OpenMesh reports through global streams; keep its chatter off the user's terminal while we read.
-struct QuietOpenMesh {
-  QuietOpenMesh() {
-    omerr().disable();
-    omlog().disable();
-    omout().disable();
-  }
-  ~QuietOpenMesh() {
-    omerr().enable();
-    omlog().enable();
-    omout().enable();
-  }
-};
 
 // The faces of the OpenMesh mesh as triangles over the vertices they use (unused vertices would
 // otherwise count in the model's extent).
