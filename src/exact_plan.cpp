@@ -7,6 +7,7 @@
 #include "origamic/plan.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -509,7 +510,7 @@ std::vector<PlanRegion> regions_of(const Arrangement& arr, const std::vector<Pla
     std::ranges::stable_sort(rings, std::greater<>(), twice_area);
     const PlanFace& face = faces[static_cast<std::size_t>(label)];
     regions.push_back({.rings = std::move(rings), .orientation = face.orientation, .depth_mm = face.depth_mm,
-                       .placed = true, .status = face.status, .inside = face.inside});
+                       .placed = true, .status = face.status, .inside = face.inside, .face = label});
   }
   return regions;
 }
@@ -520,6 +521,12 @@ struct Pieces {
   std::map<Arrangement::Face_const_handle, std::int32_t> of;  // bounded labelled face -> piece
   std::vector<std::int32_t> label;                            // per piece
 };
+
+// An edge under a micrometre joins nothing: paper does not hang by it, and the plan's files, whose
+// coordinates are doubles, may not even keep it apart from its end points.
+bool negligible(Arrangement::Halfedge_const_handle he) {
+  return CGAL::compare_squared_distance(he->source()->point(), he->target()->point(), FT(1e-12)) == CGAL::SMALLER;
+}
 
 Pieces pieces_of(const Arrangement& arr) {
   std::vector<Arrangement::Face_const_handle> faces;
@@ -534,7 +541,7 @@ Pieces pieces_of(const Arrangement& arr) {
   };
   for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
     const auto a = e->face(), b = e->twin()->face();
-    if (a == b || a->is_unbounded() || b->is_unbounded() || a->data() < 0 || a->data() != b->data()) continue;
+    if (a == b || a->is_unbounded() || b->is_unbounded() || a->data() < 0 || a->data() != b->data() || negligible(e)) continue;
     const std::int32_t ra = root(index.at(a)), rb = root(index.at(b));
     parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
   }
@@ -564,6 +571,7 @@ int shortfall(FaceStatus s) {
 // The verdict per raster face from the verdict per piece: a face stands when every piece of it does.
 // A floating crumb (a piece under W x W / 8, cut off where a snapped fold met a slanted cut) falls
 // out when the card is cut and is no part of the likeness: it is cut out (a hole) and does not count.
+// So does a floating piece with holes all round it: it falls out with them.
 // Pieces of the back plane and the floor that came loose count as faces of their own.
 struct PieceVerdict {
   Validity validity;                   // per raster face
@@ -572,7 +580,8 @@ struct PieceVerdict {
 };
 
 PieceVerdict face_validity(const Validity& by_node, const Pieces& pieces, const std::vector<std::int32_t>& node,
-                           const std::vector<double>& piece_area, std::size_t faces, double min_strip_mm) {
+                           const std::vector<double>& piece_area, const std::vector<std::uint8_t>& among_holes,
+                           std::size_t faces, double min_strip_mm) {
   const double crumb = min_strip_mm * min_strip_mm / 8;
   PieceVerdict verdict;
   verdict.cut_out.assign(pieces.label.size(), 0);
@@ -582,13 +591,15 @@ PieceVerdict face_validity(const Validity& by_node, const Pieces& pieces, const 
   v.in_Y.assign(faces, true);
   v.fold_lines.assign(faces, 2);
   std::vector<int> worst(faces, -1);
+  std::vector<std::uint8_t> kept(faces, 0);  // some piece of the face stays in the sheet
   for (std::size_t p = 0; p < pieces.label.size(); ++p) {
     const auto f = static_cast<std::size_t>(pieces.label[p]), k = static_cast<std::size_t>(node[p]);
     if (k < 2) continue;  // the card's halves themselves
-    if (piece_area[p] < crumb && by_node.status[k] == FaceStatus::Floating) {
+    if ((piece_area[p] < crumb || among_holes[p]) && by_node.status[k] == FaceStatus::Floating) {
       verdict.cut_out[p] = 1;
       continue;
     }
+    kept[f] = 1;
     if (f < 2) {  // a loose piece of the back plane or the floor
       if (by_node.status[k] == FaceStatus::Valid || by_node.status[k] == FaceStatus::Indirect) continue;
       ++verdict.loose_card_pieces;
@@ -601,6 +612,10 @@ PieceVerdict face_validity(const Validity& by_node, const Pieces& pieces, const 
     v.status[f] = by_node.status[k];
     v.in_X[f] = by_node.in_X[k], v.in_Y[f] = by_node.in_Y[k], v.fold_lines[f] = by_node.fold_lines[k];
   }
+  // A face all of whose pieces fell out is a hole.
+  for (std::size_t p = 0; p < pieces.label.size(); ++p)
+    if (const auto f = static_cast<std::size_t>(pieces.label[p]); f >= 2 && verdict.cut_out[p] && !kept[f])
+      v.status[f] = FaceStatus::Removed;
   count_statuses(v);
   return verdict;
 }
@@ -711,7 +726,7 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
     const Point &p = he->source()->point(), &q = he->target()->point();
     const RasterFace &fu = slices.faces[static_cast<std::size_t>(upper)], &fl = slices.faces[static_cast<std::size_t>(lower)];
     LineKind kind = LineKind::Cut;
-    if (p.y() == q.y() && fu.orientation != fl.orientation && !fu.hole && !fl.hole) {
+    if (p.y() == q.y() && fu.orientation != fl.orientation && !fu.hole && !fl.hole && !negligible(he)) {
       const RasterFace& v = fu.orientation == Orientation::V ? fu : fl;
       const RasterFace& h = fu.orientation == Orientation::H ? fu : fl;
       if (p.y() == FT(h.depth_mm) - FT(v.depth_mm)) {
@@ -726,7 +741,28 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
     if (fu.hole || fl.hole) kind = LineKind::CutOut;
     edges.push_back({he, kind});
   }
-  const PieceVerdict verdict = face_validity(validate(graph), pieces, node, piece_area, n, slices.min_strip_mm);
+  // Folds under a micrometre apart are one line: the face between them swings about it. (Depths
+  // reached along different paths can differ in the last bits of a double.) As validate reads them.
+  {
+    std::vector<std::int32_t> line_of(fold_line_ids.size());
+    std::int32_t line = -1;
+    const FT* previous = nullptr;
+    for (const auto& [Y, id] : fold_line_ids) {
+      if (!previous || Y - *previous > FT(1e-6)) ++line;
+      line_of[static_cast<std::size_t>(id)] = line;
+      previous = &Y;
+    }
+    for (Fold& fold : graph.folds) fold.line = line_of[static_cast<std::size_t>(fold.line)];
+  }
+  std::vector<std::uint8_t> among_holes(pieces.label.size(), 1);
+  for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e)
+    for (const auto& [side, other] : {std::pair{e->face(), e->twin()->face()}, {e->twin()->face(), e->face()}}) {
+      if (side->is_unbounded() || side->data() < 0 || side->data() == other->data()) continue;
+      if (other->is_unbounded() || other->data() < 0 || !slices.faces[static_cast<std::size_t>(other->data())].hole)
+        among_holes[static_cast<std::size_t>(pieces.of.at(side))] = 0;
+    }
+  const PieceVerdict verdict =
+      face_validity(validate(graph), pieces, node, piece_area, among_holes, n, slices.min_strip_mm);
   plan.validity = verdict.validity;
   plan.loose_card_pieces = verdict.loose_card_pieces;
   plan.crumbs_cut_out = static_cast<int>(std::ranges::count(verdict.cut_out, 1));

@@ -73,109 +73,158 @@ struct Blocks {
 struct Subsegment {
   std::int32_t segment = 0;
   double depth_mm = 0;
+  Orientation orientation = Orientation::V;
 };
 
-// §4.3.2: point-sample the centre pixel of each block, then group 4-connected blocks of one segment
-// whose depth (d for V, h for H) stays within tol of the group's running mean.
-std::vector<Subsegment> downsample(const RasterMaps& maps, const Segmentation& seg,
-                                   const std::vector<Orientation>& orientation, const Blocks& blocks,
-                                   double tol_mm, Grid<std::int32_t>& block_subsegment) {
-  Grid<std::int32_t> sampled_segment(blocks.cols, blocks.rows, -1);
-  Grid<double> sampled_depth(blocks.cols, blocks.rows, 0.0);
-  for (int br = 0; br < blocks.rows; ++br)
-    for (int bc = 0; bc < blocks.cols; ++bc) {
-      const int col = blocks.centre_col(bc), row = blocks.centre_row(br);
-      if (!seg.segment.contains(col, row) || seg.segment(col, row) < 2) continue;
-      const std::int32_t s = seg.segment(col, row);
-      sampled_segment(bc, br) = s;
-      sampled_depth(bc, br) = orientation[s] == Orientation::V ? maps.d_mm(col, row) : maps.h_mm(col, row);
-    }
-
-  block_subsegment = Grid<std::int32_t>(blocks.cols, blocks.rows, -1);
-  std::vector<Subsegment> subsegments;
-  std::vector<std::pair<int, int>> queue;
-  for (int br0 = 0; br0 < blocks.rows; ++br0)
-    for (int bc0 = 0; bc0 < blocks.cols; ++bc0) {
-      if (sampled_segment(bc0, br0) < 0 || block_subsegment(bc0, br0) >= 0) continue;
-      const auto id = static_cast<std::int32_t>(subsegments.size());
-      const std::int32_t s = sampled_segment(bc0, br0);
-      // Mean as base + mean offset, so equal depths give exactly that depth.
-      const double base = sampled_depth(bc0, br0);
-      double offset_sum = 0;
-      int count = 0;
-      queue.assign(1, {bc0, br0});
-      block_subsegment(bc0, br0) = id;
-      for (std::size_t head = 0; head < queue.size(); ++head) {
-        const auto [bc, br] = queue[head];
-        offset_sum += sampled_depth(bc, br) - base;
-        ++count;
-        for (const auto& step : kStep) {
-          const int c = bc + step[0], r = br + step[1];
-          if (!sampled_segment.contains(c, r) || sampled_segment(c, r) != s || block_subsegment(c, r) >= 0) continue;
-          if (std::abs(sampled_depth(c, r) - (base + offset_sum / count)) > tol_mm) continue;
-          block_subsegment(c, r) = id;
-          queue.emplace_back(c, r);
+// Where a surface runs steeper than 45 degrees across the slicing direction, its levels are strips
+// narrower than W: each joins the neighbouring subsegment of its segment nearest in depth, pass after
+// pass, until it is W wide or has no such neighbour. Levels thus merge into wider steps exactly where
+// the surface is steep: the quantization adapts to it (seed Figure 4.6).
+void merge_thin_subsegments(const Grid<std::int32_t>& segment, double min_side_px, std::vector<double>& pixels,
+                            std::vector<Subsegment>& subsegments, Grid<std::int32_t>& subsegment) {
+  for (;;) {
+    const std::size_t n = subsegments.size();
+    std::vector<std::vector<std::pair<int, int>>> members(n);
+    for (int row = 0; row < subsegment.rows; ++row)
+      for (int col = 0; col < subsegment.cols; ++col)
+        if (const std::int32_t k = subsegment(col, row); k >= 0) members[static_cast<std::size_t>(k)].emplace_back(col, row);
+    std::vector<std::uint8_t> thin(n, 0);
+    for (std::size_t k = 0; k < n; ++k) thin[k] = !members[k].empty() && oriented_box_min_side_px(members[k]) < min_side_px;
+    // Each thin subsegment's neighbour nearest in depth (ties: the lower id).
+    // Pairs merge, the thinnest first, each subsegment in at most one pair per pass: a run of slivers
+    // becomes steps about W wide, not one wide step.
+    std::vector<std::int32_t> into(n);
+    std::iota(into.begin(), into.end(), 0);
+    std::vector<std::size_t> order;
+    for (std::size_t k = 0; k < n; ++k)
+      if (thin[k]) order.push_back(k);
+    std::ranges::stable_sort(order, {}, [&](std::size_t k) { return pixels[k]; });
+    std::vector<std::uint8_t> paired(n, 0);
+    bool merged = false;
+    for (const std::size_t k : order) {
+      if (paired[k]) continue;
+      auto gap = [&](std::int32_t x) {
+        // Of another orientation, a neighbour is as far as can be: chosen only when no other is.
+        const Subsegment& other = subsegments[static_cast<std::size_t>(x)];
+        return other.orientation != subsegments[k].orientation ? std::numeric_limits<double>::max()
+                                                               : std::abs(other.depth_mm - subsegments[k].depth_mm);
+      };
+      std::int32_t best = -1;
+      for (const auto& [col, row] : members[k])
+        for (const auto& [dc, dr] : kStep) {
+          if (!subsegment.contains(col + dc, row + dr)) continue;
+          const std::int32_t j = subsegment(col + dc, row + dr);
+          if (j < 0 || static_cast<std::size_t>(j) == k || paired[static_cast<std::size_t>(j)] ||
+              segment(col + dc, row + dr) != subsegments[k].segment)
+            continue;
+          if (best < 0 || gap(j) < gap(best) || (gap(j) == gap(best) && j < best)) best = j;
         }
-      }
-      subsegments.push_back({s, base + offset_sum / count});
+      if (best < 0) continue;
+      into[k] = best, paired[k] = paired[static_cast<std::size_t>(best)] = 1, merged = true;
     }
-  return subsegments;
+    if (!merged) return;
+    auto root = [&](std::int32_t k) { return into[static_cast<std::size_t>(k)]; };
+    std::vector<double> sum(n, 0), count(n, 0);
+    // A part of another orientation takes the plane of the subsegment it joins.
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto r = static_cast<std::size_t>(root(static_cast<std::int32_t>(k)));
+      if (subsegments[k].orientation == subsegments[r].orientation) sum[r] += subsegments[k].depth_mm * pixels[k], count[r] += pixels[k];
+    }
+    std::vector<std::int32_t> renumber(n, -1);
+    std::vector<Subsegment> next;
+    std::vector<double> next_pixels;
+    for (std::size_t k = 0; k < n; ++k)
+      if (root(static_cast<std::int32_t>(k)) == static_cast<std::int32_t>(k) && count[k] > 0) {
+        renumber[k] = static_cast<std::int32_t>(next.size());
+        next.push_back({subsegments[k].segment, sum[k] / count[k], subsegments[k].orientation});
+        next_pixels.push_back(count[k]);
+      }
+    for (auto& v : subsegment.values)
+      if (v >= 0) v = renumber[static_cast<std::size_t>(root(v))];
+    subsegments = std::move(next);
+    pixels = std::move(next_pixels);
+  }
 }
 
-// §4.3.3: each subsegment grows over its mother segment from the centre pixels of its blocks, a
-// pixel at a time, always extending next the front whose depth gap (|pixel depth - subsegment
-// depth|, the largest met on the way) is smallest: a seeded priority flood. A pixel thus joins the
-// subsegment that reaches it through pixels of the closest depth: slices stay connected, and where
-// two meet, the boundary lies on the model's iso-depth contour halfway between their depths, not on
-// the block grid. (Choosing the nearest depth pixel by pixel instead scatters slivers wherever many
-// subsegments of nearly equal depth sample a dome.) Gaps are bucketed in W/64 steps, first in first
-// out within a bucket, which keeps the flood linear in the pixels and deterministic.
-Grid<std::int32_t> upsample(const RasterMaps& maps, const Segmentation& seg, const std::vector<Orientation>& orientation,
-                            const Blocks& blocks, const Grid<std::int32_t>& block_subsegment,
-                            const std::vector<Subsegment>& subsegments, double W) {
-  const int cols = maps.grid.cols;
-  Grid<std::int32_t> result(cols, maps.grid.rows, -1);
-  constexpr std::size_t kBuckets = 64 * 16;  // gaps of 16 W and more share the last bucket
-  const double buckets_per_mm = 64 / W;
-  struct Entry {
-    std::uint32_t pixel;
-    std::int32_t subsegment;
-  };
-  std::vector<std::vector<Entry>> bucket(kBuckets);
-  auto bucket_of = [&](std::size_t i, std::int32_t k) {
+// The depth quantization at full resolution: each segment's depth range is cut into the most levels
+// at least W deep that fit, and each 4-connected run of pixels of one segment within one level is a
+// subsegment at their mean depth. A slice's boundaries are then the model's iso-depth contours, and
+// a V slice is at least W tall in the plan wherever it is not cut short by the segment's outline
+// (Y = h - d changes by at least as much as d). Point sampling W x W blocks instead aliases: on a
+// dome, neighbouring rows of blocks sample the same level or skip one, and slivers result.
+std::vector<Subsegment> level_subsegments(const RasterMaps& maps, const Segmentation& seg,
+                                          const std::vector<Orientation>& orientation, double W,
+                                          Grid<std::int32_t>& subsegment) {
+  // A curved segment is sliced where it is steep into V slices (levels of d) and where it is flat
+  // into H slices (levels of h): a slice is then at least 2 W tall in the plan, room for the support
+  // that joins it to the next. Within 10 degrees of 45 the segment's own orientation holds.
+  const float tan_35 = 0.7002075f;
+  const std::size_t n = 2 * orientation.size();
+  std::vector<std::uint8_t> part_of(seg.segment.size(), 0);  // 2 * segment + (H ? 1 : 0)
+  for (std::size_t i = 0; i < seg.segment.size(); ++i) {
     const std::int32_t s = seg.segment.values[i];
-    const double depth = orientation[static_cast<std::size_t>(s)] == Orientation::V ? maps.d_mm.values[i] : maps.h_mm.values[i];
-    const double gap = std::abs(depth - subsegments[static_cast<std::size_t>(k)].depth_mm) * buckets_per_mm;
-    return std::min(static_cast<std::size_t>(gap), kBuckets - 1);
-  };
-  for (int br = 0; br < blocks.rows; ++br)
-    for (int bc = 0; bc < blocks.cols; ++bc)
-      if (const std::int32_t k = block_subsegment(bc, br); k >= 0) {
-        const std::size_t i = result.index(blocks.centre_col(bc), blocks.centre_row(br));
-        bucket[bucket_of(i, k)].push_back({static_cast<std::uint32_t>(i), k});
-      }
-  for (std::size_t level = 0; level < kBuckets; ++level) {
-    std::vector<Entry>& front = bucket[level];
-    for (std::size_t head = 0; head < front.size(); ++head) {
-      const Entry e = front[head];
-      if (result.values[e.pixel] >= 0) continue;
-      result.values[e.pixel] = e.subsegment;
-      const std::int32_t s = seg.segment.values[e.pixel];
-      const int col = static_cast<int>(e.pixel % static_cast<std::uint32_t>(cols));
-      const int row = static_cast<int>(e.pixel / static_cast<std::uint32_t>(cols));
-      for (const auto& step : kStep) {
-        const int c = col + step[0], r = row + step[1];
-        if (!result.contains(c, r)) continue;
-        const std::size_t j = result.index(c, r);
-        if (result.values[j] >= 0 || seg.segment.values[j] != s) continue;
-        bucket[std::max(level, bucket_of(j, e.subsegment))].push_back({static_cast<std::uint32_t>(j), e.subsegment});
+    if (s < 2) continue;
+    const glm::vec3& normal = maps.normal.values[i];
+    const float steep = std::abs(normal.z), flat = std::abs(normal.y);
+    Orientation o = orientation[static_cast<std::size_t>(s)];
+    if (flat < steep * tan_35) o = Orientation::V;
+    else if (steep < flat * tan_35) o = Orientation::H;
+    part_of[i] = o == Orientation::H;
+  }
+  auto part = [&](std::size_t i) { return 2 * static_cast<std::size_t>(seg.segment.values[i]) + part_of[i]; };
+  auto depth_at = [&](std::size_t i) { return part_of[i] ? maps.h_mm.values[i] : maps.d_mm.values[i]; };
+  std::vector<double> nearest(n, std::numeric_limits<double>::infinity()), farthest(n, -nearest[0]);
+  for (std::size_t i = 0; i < seg.segment.size(); ++i)
+    if (seg.segment.values[i] >= 2) {
+      nearest[part(i)] = std::min(nearest[part(i)], depth_at(i));
+      farthest[part(i)] = std::max(farthest[part(i)], depth_at(i));
+    }
+  // The most levels at least W deep that fit the part's depth range.
+  std::vector<double> step(n, W), levels(n, 1);
+  for (std::size_t k = 0; k < n; ++k)
+    if (farthest[k] > nearest[k]) {
+      levels[k] = std::max(1.0, std::floor((farthest[k] - nearest[k]) / W));
+      step[k] = (farthest[k] - nearest[k]) / levels[k];
+    }
+  const int cols = seg.segment.cols;
+  Grid<std::int32_t> level(cols, seg.segment.rows, -1);
+  for (std::size_t i = 0; i < level.size(); ++i)
+    if (seg.segment.values[i] >= 2) {
+      const std::size_t k = part(i);
+      level.values[i] = static_cast<std::int32_t>(std::min(levels[k] - 1, std::floor((depth_at(i) - nearest[k]) / step[k])));
+    }
+  subsegment = Grid<std::int32_t>(cols, seg.segment.rows, -1);
+  std::vector<Subsegment> subsegments;
+  std::vector<double> pixels;
+  std::vector<std::size_t> run;
+  for (std::size_t i0 = 0; i0 < level.size(); ++i0) {
+    if (level.values[i0] < 0 || subsegment.values[i0] >= 0) continue;
+    const auto id = static_cast<std::int32_t>(subsegments.size());
+    const std::size_t k = part(i0);
+    const std::int32_t l = level.values[i0];
+    run.assign(1, i0);
+    subsegment.values[i0] = id;
+    // Mean as base + mean offset, so equal depths give exactly that depth.
+    const double base = depth_at(i0);
+    double offset_sum = 0;
+    for (std::size_t head = 0; head < run.size(); ++head) {
+      const std::size_t i = run[head];
+      offset_sum += depth_at(i) - base;
+      const int col = static_cast<int>(i % static_cast<std::size_t>(cols)), row = static_cast<int>(i / static_cast<std::size_t>(cols));
+      for (const auto& [dc, dr] : kStep) {
+        if (!level.contains(col + dc, row + dr)) continue;
+        const std::size_t j = level.index(col + dc, row + dr);
+        if (subsegment.values[j] >= 0 || level.values[j] != l || part(j) != k) continue;
+        subsegment.values[j] = id;
+        run.push_back(j);
       }
     }
-    std::vector<Entry>().swap(front);
+    subsegments.push_back({seg.segment.values[i0], base + offset_sum / static_cast<double>(run.size()),
+                           part_of[i0] ? Orientation::H : Orientation::V});
+    pixels.push_back(static_cast<double>(run.size()));
   }
-  for (std::size_t i = 0; i < result.size(); ++i)
-    if (result.values[i] < 0 && seg.segment.values[i] >= 2) result.values[i] = kUnassigned;
-  return result;
+  merge_thin_subsegments(seg.segment, W * maps.grid.px_per_mm, pixels, subsegments, subsegment);
+  return subsegments;
 }
 
 // Pixels the slicing left without a face (removed thin faces, segments the sampling missed) take a
@@ -286,7 +335,7 @@ void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vec
       }
       const auto id = static_cast<std::int32_t>(result.faces.size());
       const Subsegment& sub = subsegments[static_cast<std::size_t>(k)];
-      result.faces.push_back({result.segment_orientation[static_cast<std::size_t>(sub.segment)], sub.depth_mm,
+      result.faces.push_back({sub.orientation, sub.depth_mm,
                               sub.segment, 0});
       for (const auto& [col, row] : piece) result.face(col, row) = id;
     }
@@ -502,11 +551,14 @@ SliceResult slice(const RasterMaps& maps, const Segmentation& seg, const SliceOp
   result.segment_orientation = choose_orientations(maps, seg);
   const Blocks blocks(maps.grid, result.block_px);
   const std::vector<Subsegment> subsegments =
-      downsample(maps, seg, result.segment_orientation, blocks, options.depth_tol_fraction_of_W * W,
-                 result.block_subsegment);
+      level_subsegments(maps, seg, result.segment_orientation, W, result.subsegment);
+  // SDS, for the maps: the subsegment at each block's centre.
+  result.block_subsegment = Grid<std::int32_t>(blocks.cols, blocks.rows, -1);
+  for (int br = 0; br < blocks.rows; ++br)
+    for (int bc = 0; bc < blocks.cols; ++bc)
+      if (result.subsegment.contains(blocks.centre_col(bc), blocks.centre_row(br)))
+        result.block_subsegment(bc, br) = result.subsegment(blocks.centre_col(bc), blocks.centre_row(br));
   result.subsegments = static_cast<int>(subsegments.size());
-  result.subsegment =
-      upsample(maps, seg, result.segment_orientation, blocks, result.block_subsegment, subsegments, W);
   build_faces(maps, seg, subsegments, W, result);
   return result;
 }

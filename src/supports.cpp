@@ -26,6 +26,7 @@ struct Candidate {
   Orientation orientation = Orientation::V;
   double depth_mm = 0;
   double cost = 0;
+  int taken = 0;           // rows of `face` the support takes, on its edge
 };
 
 bool needs_support(FaceStatus status, bool allow_dangling) {
@@ -70,12 +71,25 @@ class CandidateFinder {
       // The edge row: f's top (bottom) at the block column's centre. A support needs f along at
       // least half of its near side and its target along half of its far side: slices of curved
       // surfaces cross a W-wide column at a slant, and the rest of either side is a cut.
-      const int edge = up ? first_row(f, (c0 + c1) / 2) : last_row(f, (c0 + c1) / 2);
-      if (edge < 0 || !mostly(f, c0, c1, edge)) continue;
-      const double edge_Y = grid_.Y(edge) + (up ? px_mm_ / 2 : -px_mm_ / 2);
-      const double h = face.orientation == Orientation::V ? edge_Y + face.depth_mm : face.depth_mm;
-      const double d = face.orientation == Orientation::V ? face.depth_mm : face.depth_mm - edge_Y;
-      if (auto c = walk(f, c0, c1, edge, up, h, d)) candidates.push_back(*c);
+      const int centre = (c0 + c1) / 2;
+      const int edge = up ? first_row(f, centre) : last_row(f, centre);
+      if (edge < 0) continue;
+      // The support may also start inside f, taking its first rows: between two thin slices the
+      // fold onto the next one then lands inside it rather than beyond it, and neither is cut.
+      const int inward = up ? 1 : -1;
+      const int deepest = up ? last_row(f, centre) : first_row(f, centre);
+      for (int taken = 0; taken <= 2 * block_ && (deepest - edge) * inward - taken >= 0; ++taken) {
+        const int row = edge + taken * inward;  // f's row just outside the support
+        if (face_(centre, row) != f || !mostly(f, c0, c1, row)) continue;
+        const double edge_Y = grid_.Y(row) + (up ? px_mm_ / 2 : -px_mm_ / 2);
+        const double h = face.orientation == Orientation::V ? edge_Y + face.depth_mm : face.depth_mm;
+        const double d = face.orientation == Orientation::V ? face.depth_mm : face.depth_mm - edge_Y;
+        if (auto c = walk(f, c0, c1, row, up, h, d)) {
+          c->taken = taken;
+          candidates.push_back(*c);
+          if (c->cost < split_cost_) break;  // the first that cuts nothing: it takes least of f
+        }
+      }
     }
     return candidates;
   }
@@ -281,7 +295,7 @@ std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult
         if (!wanted) continue;
         std::vector<Candidate> candidates = finder.from_edge(f, up);
         std::ranges::sort(candidates, [](const Candidate& a, const Candidate& b) {
-          return a.cost != b.cost ? a.cost < b.cost : a.c0 < b.c0;
+          return std::tie(a.cost, a.taken, a.c0) < std::tie(b.cost, b.taken, b.c0);
         });
         for (Candidate& s : candidates) {
           if (!allow_splits && s.cost >= options.split_cost_mm) break;  // sorted: no cheaper one follows

@@ -527,12 +527,18 @@ TEST(PlanDxfReader, BadFilesAreRejectedNamingTheFile) {
 // ----------------------------------------------------------------------------------------------
 // Plans written by origamic read back as the design made them.
 
-// The raster face under a plan point.
+// The design face whose exact region holds a plan point (even-odd over its rings); kNoFace if none.
 std::int32_t label_at(const DesignResult& r, PlanPoint p) {
-  const PixelGrid& g = r.maps.grid;
-  const int col = static_cast<int>(std::floor(p.X * g.px_per_mm));
-  const int row = static_cast<int>(std::floor(g.rows_above_fold - p.Y * g.px_per_mm));
-  return r.slices.face.contains(col, row) ? r.slices.face(col, row) : kNoFace;
+  for (const PlanRegion& region : r.plan.regions) {
+    bool inside = false;
+    for (const std::vector<PlanPoint>& ring : region.rings)
+      for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
+        if ((ring[i].Y > p.Y) != (ring[j].Y > p.Y) &&
+            p.X < ring[j].X + (p.Y - ring[j].Y) * (ring[i].X - ring[j].X) / (ring[i].Y - ring[j].Y))
+          inside = !inside;
+    if (inside) return region.face;
+  }
+  return kNoFace;
 }
 
 struct Comparison {

@@ -109,9 +109,21 @@ TEST(Slice, FaceCountFallsAsWGrowsAndNoFaceIsNarrowerThanW) {
       const DesignResult r = design(test::models_dir() / model, options);
       EXPECT_LT(r.slices.faces.size(), previous) << "W = " << W;
       previous = r.slices.faces.size();
-      for (std::size_t f = 2; f < r.slices.faces.size(); ++f)  // one orientation per segment
-        EXPECT_EQ(r.slices.faces[f].orientation,
-                  r.slices.segment_orientation[static_cast<std::size_t>(r.slices.faces[f].segment)]);
+      // V where the model is steeper than 55 degrees, H where it is flatter than 35: nearly every
+      // such pixel (slivers under W join a neighbour whatever its orientation).
+      std::int64_t decisive = 0, agreeing = 0;
+      for (int row = 0; row < r.slices.face.rows; ++row)
+        for (int col = 0; col < r.slices.face.cols; ++col) {
+          const std::int32_t f = r.slices.face(col, row);
+          if (f < 2 || r.maps.kind(col, row) != HitKind::Model) continue;
+          const glm::vec3 n = r.maps.normal(col, row);
+          const float steep = std::abs(n.z), flat = std::abs(n.y), tan_35 = 0.7002f;
+          if (flat >= steep * tan_35 && steep >= flat * tan_35) continue;
+          ++decisive;
+          agreeing += r.slices.faces[static_cast<std::size_t>(f)].orientation ==
+                      (flat < steep * tan_35 ? Orientation::V : Orientation::H);
+        }
+      EXPECT_GE(agreeing, decisive * 98 / 100) << "W = " << W;
       std::map<std::int32_t, std::vector<std::pair<int, int>>> pixels_of;
       for (int row = 0; row < r.slices.face.rows; ++row)
         for (int col = 0; col < r.slices.face.cols; ++col)

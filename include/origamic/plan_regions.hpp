@@ -4,6 +4,7 @@
 // produces it from any DXF; `origamic fold` folds it into the 3D pop-up.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "origamic/oa.hpp"
@@ -19,6 +20,7 @@ struct PlanRegion {
   bool placed = false;                        // orientation and depth follow from the folds
   FaceStatus status = FaceStatus::Valid;
   PlanPoint inside;                           // a point inside it, to name where it is
+  std::int32_t face = -1;                     // the design's face (Plan::faces) it is; -1 when read from lines
 };
 
 }  // namespace origamic

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Surface slicing (seed §4.3): each segment becomes vertical or horizontal slices no narrower than
-// the minimum strip width W, whose boundaries follow the model's contours.
+// Surface slicing (seed §4.3): each segment becomes vertical slices where it is steep and horizontal
+// ones where it is flat, a depth step of at least W apart and no narrower than W, whose boundaries
+// are the model's iso-depth contours.
 #pragma once
 
 #include <cstdint>
@@ -28,10 +29,7 @@ inline constexpr std::int32_t kFloorFace = 1;  // H(0)
 inline constexpr std::int32_t kNoFace = -1;    // outside the sheet
 
 struct SliceOptions {
-  double min_strip_mm = 3.0;  // W: no strip narrower than this
-  // Blocks of one segment join a slice while their depth stays within this fraction of W of the
-  // slice's mean, so a slice's depth is never more than W/2 from the surface it stands for.
-  double depth_tol_fraction_of_W = 0.5;
+  double min_strip_mm = 3.0;  // W: no strip narrower than this, and the depth step of the slices
 };
 
 /// |pop-up face depth - model depth| over model pixels, measured along the 45-degree ray as a depth.
@@ -44,9 +42,9 @@ struct ShapeError {
 
 struct SliceResult {
   double min_strip_mm = 0;                   // W
-  int block_px = 0;                          // W in pixels: the downsampling block
-  std::vector<Orientation> segment_orientation;  // per segment (back V, floor H)
-  Grid<std::int32_t> block_subsegment;       // SDS: subsegment per block, -1 for none
+  int block_px = 0;                          // W in pixels: the lattice of supports and narrow strips
+  std::vector<Orientation> segment_orientation;  // per segment (back V, floor H), for its 35-55 degree parts
+  Grid<std::int32_t> block_subsegment;       // SDS: the subsegment at each W x W block's centre, -1 none
   Grid<std::int32_t> subsegment;             // SS: full-resolution subsegments, -1 back/floor/outside
   Grid<std::int32_t> face;                   // the raster plan: face id per pixel, kNoFace outside
   std::vector<RasterFace> faces;             // faces[kBackFace] is V(0), faces[kFloorFace] is H(0)
