@@ -7,7 +7,6 @@
 #include "origamic/plan.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -522,10 +521,11 @@ struct Pieces {
   std::vector<std::int32_t> label;                            // per piece
 };
 
-// An edge under a micrometre joins nothing: paper does not hang by it, and the plan's files, whose
-// coordinates are doubles, may not even keep it apart from its end points.
+// An edge under kFoldLineTolerance_mm joins nothing: paper does not hang by it, and the plan's
+// files may not even keep it apart from its end points.
 bool negligible(Arrangement::Halfedge_const_handle he) {
-  return CGAL::compare_squared_distance(he->source()->point(), he->target()->point(), FT(1e-12)) == CGAL::SMALLER;
+  const FT tolerance(kFoldLineTolerance_mm);
+  return CGAL::compare_squared_distance(he->source()->point(), he->target()->point(), tolerance * tolerance) == CGAL::SMALLER;
 }
 
 Pieces pieces_of(const Arrangement& arr) {
@@ -741,14 +741,14 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
     if (fu.hole || fl.hole) kind = LineKind::CutOut;
     edges.push_back({he, kind});
   }
-  // Folds under a micrometre apart are one line: the face between them swings about it. (Depths
-  // reached along different paths can differ in the last bits of a double.) As validate reads them.
+  // Folds under kFoldLineTolerance_mm apart are one line, as validate reads them: the face between
+  // them swings about it. (Depths reached along different paths can differ in a double's last bits.)
   {
     std::vector<std::int32_t> line_of(fold_line_ids.size());
     std::int32_t line = -1;
     const FT* previous = nullptr;
     for (const auto& [Y, id] : fold_line_ids) {
-      if (!previous || Y - *previous > FT(1e-6)) ++line;
+      if (!previous || Y - *previous > FT(kFoldLineTolerance_mm)) ++line;
       line_of[static_cast<std::size_t>(id)] = line;
       previous = &Y;
     }

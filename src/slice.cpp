@@ -123,24 +123,25 @@ void merge_thin_subsegments(const Grid<std::int32_t>& segment, double min_side_p
       into[k] = best, paired[k] = paired[static_cast<std::size_t>(best)] = 1, merged = true;
     }
     if (!merged) return;
-    auto root = [&](std::int32_t k) { return into[static_cast<std::size_t>(k)]; };
-    std::vector<double> sum(n, 0), count(n, 0);
-    // A part of another orientation takes the plane of the subsegment it joins.
+    // A part of another orientation takes the plane of the subsegment it joins: its depth does not
+    // count in the mean, its pixels do in the size.
+    std::vector<double> sum(n, 0), count(n, 0), size(n, 0);
     for (std::size_t k = 0; k < n; ++k) {
-      const auto r = static_cast<std::size_t>(root(static_cast<std::int32_t>(k)));
+      const auto r = static_cast<std::size_t>(into[k]);
+      size[r] += pixels[k];
       if (subsegments[k].orientation == subsegments[r].orientation) sum[r] += subsegments[k].depth_mm * pixels[k], count[r] += pixels[k];
     }
     std::vector<std::int32_t> renumber(n, -1);
     std::vector<Subsegment> next;
     std::vector<double> next_pixels;
     for (std::size_t k = 0; k < n; ++k)
-      if (root(static_cast<std::int32_t>(k)) == static_cast<std::int32_t>(k) && count[k] > 0) {
+      if (into[k] == static_cast<std::int32_t>(k) && count[k] > 0) {
         renumber[k] = static_cast<std::int32_t>(next.size());
         next.push_back({subsegments[k].segment, sum[k] / count[k], subsegments[k].orientation});
-        next_pixels.push_back(count[k]);
+        next_pixels.push_back(size[k]);
       }
     for (auto& v : subsegment.values)
-      if (v >= 0) v = renumber[static_cast<std::size_t>(root(v))];
+      if (v >= 0) v = renumber[static_cast<std::size_t>(into[static_cast<std::size_t>(v)])];
     subsegments = std::move(next);
     pixels = std::move(next_pixels);
   }

@@ -78,6 +78,11 @@ struct Plan {
   bool simplified = false;              // every cut simplified, every fold candidate snapped
 };
 
+/// Folds closer than this are one line, and an edge shorter than it joins nothing: the rounding of a
+/// plan's coordinates to doubles in its files (about 1e-14 mm), with room to spare, and far below
+/// any cutter's precision. The design and `origamic validate` both decide with it.
+inline constexpr double kFoldLineTolerance_mm = 1e-6;
+
 /// How far from its fold line a V/H boundary may run and still become that fold, in mm.
 inline double fold_snap_tolerance_mm(const PlanOptions& options, const SliceResult& slices, const PixelGrid& grid) {
   return options.fold_snap_fraction_of_W * slices.min_strip_mm + 1 / grid.px_per_mm;

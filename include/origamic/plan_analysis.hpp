@@ -25,7 +25,7 @@ struct AnalysisOptions {
   // are at most this far apart. The decision is exact; the tolerance only absorbs the rounding of
   // coordinates to doubles in a file (about 1e-14 mm per fold: a plan's h - d is rarely a double).
   // 1e-6 mm is far below any cutter's precision and catches a fold 0.0001 mm off its line.
-  double tolerance_mm = 1e-6;
+  double tolerance_mm = kFoldLineTolerance_mm;
   // The lines' unit; converted to mm exactly (25.4 mm per inch as the rational 254/10).
   DrawingUnit unit = DrawingUnit::Millimetre;
 };
