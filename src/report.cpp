@@ -133,6 +133,7 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
                     {"cut_out", result.supports.cut_out},
                     {"narrow_strips", narrow_json(result.supports.narrow)},
                     {"round_bound", result.supports.round_bound},
+                    {"orders", result.supports.orders},
                     {"converged", result.supports.converged},
                     {"stop_reason", result.supports.stop_reason}}},
       {"time_ms", times},

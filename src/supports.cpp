@@ -373,12 +373,14 @@ void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid,
 
 }  // namespace
 
-Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& sheet, const PlanOptions& plan_options,
-                       const SupportOptions& options) {
+namespace {
+
+// One greedy run of the support loop in the face order that `random` draws.
+Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sheet& sheet,
+                            const PlanOptions& plan_options, const SupportOptions& options, std::mt19937& random) {
   Supported result;
   SupportReport& report = result.report;
   report.round_bound = slices.face.cols / std::max(1, slices.block_px) + 1;
-  std::mt19937 random(options.seed);
   const double tolerance = fold_snap_tolerance_mm(plan_options, slices, maps.grid);
   // A part of a face under W x W / 8 (a crumb left where a support or a slanted cut met it) joins a
   // neighbour rather than become a face to be supported.
@@ -484,6 +486,35 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
   report.narrow = narrow_strips(slices, maps.grid);
   result.slices = std::move(slices);
   return result;
+}
+
+bool stands(const Supported& s, bool allow_dangling) {
+  return plan_stands(s.plan.validity, allow_dangling) && s.plan.loose_card_pieces == 0;
+}
+
+// How far a plan is from standing: its faces no support holds, then the faces cut out.
+std::pair<int, int> shortfall(const Supported& s) {
+  const Validity& v = s.plan.validity;
+  return {v.floating + v.dangling + v.invalid + s.plan.loose_card_pieces, s.report.cut_out};
+}
+
+}  // namespace
+
+Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& sheet, const PlanOptions& plan_options,
+                       const SupportOptions& options) {
+  // The greedy choice depends on the order the faces choose in, and one order can paint itself into
+  // a corner that another avoids: the next orders of the same random sequence get their turn.
+  std::mt19937 random(options.seed);
+  std::optional<Supported> best;
+  for (int order = 1; order <= std::max(1, options.orders); ++order) {
+    Supported run = supports_in_order(maps, order < options.orders ? slices : std::move(slices), sheet, plan_options,
+                                      options, random);
+    const bool done = stands(run, options.allow_dangling);
+    if (!best || done || shortfall(run) < shortfall(*best)) best = std::move(run);
+    best->report.orders = order;
+    if (done) break;
+  }
+  return std::move(*best);
 }
 
 }  // namespace origamic

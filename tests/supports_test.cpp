@@ -150,5 +150,21 @@ TEST(Supports, SameSeedSamePlanAnotherSeedStillStands) {
   expect_exact_and_standing(c.plan);
 }
 
+// The README's demo model: its roof slopes become terraces. One greedy face order leaves them
+// floating; the next orders of the seed's sequence must find a plan that stands, cutting nothing out.
+TEST(Supports, ShippedHouseStandsAtTheDefaultOptions) {
+  DesignOptions options;
+  const DesignResult house = design(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj", options);
+  expect_exact_and_standing(house.plan);
+  EXPECT_EQ(house.supports.cut_out, 0) << house.supports.stop_reason;
+  EXPECT_GE(house.supports.orders, 1);
+  EXPECT_LE(house.supports.orders, options.supports.orders);
+  // One order only: the report says so, and a plan that does not stand says why.
+  options.supports.orders = 1;
+  const DesignResult once = design(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj", options);
+  EXPECT_EQ(once.supports.orders, 1);
+  if (!plan_stands(once.plan.validity, false)) EXPECT_FALSE(once.supports.stop_reason.empty());
+}
+
 }  // namespace
 }  // namespace origamic

@@ -26,6 +26,9 @@ struct SupportOptions {
   // When supports run out, cut the faces they could not hold out of the sheet (holes, reported as
   // "removed") so that what is left stands; off, such faces stay in the plan, reported invalid.
   bool cut_out_unsupported = true;
+  // Face orders tried, one after another from the seed's random sequence, until one makes the
+  // plan stand; the best of them is kept.
+  int orders = 3;
 };
 
 /// A face or support whose whole extent along the main fold is under W: the place to look.
@@ -41,6 +44,7 @@ struct SupportReport {
   int rounds = 0;        // rounds of supports chosen
   int exact_builds = 0;  // exact plans built to confirm the raster graph's verdict
   int round_bound = 0;   // the loop's bound: one round per W-wide column of the sheet, plus one
+  int orders = 0;        // face orders tried (SupportOptions::orders); the rest is of the one kept
   bool converged = false;
   std::string stop_reason;  // why supports alone did not make every face stand; empty when they did
   int cut_out = 0;          // faces cut out of the sheet as the last resort

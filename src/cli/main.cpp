@@ -89,6 +89,7 @@ struct DesignArgs {
   bool no_supports = false;
   bool allow_dangling = false;
   std::uint32_t seed = 1;
+  int orders = 3;
   std::string colours = "laser";
   std::string dxf = "r12";
 };
@@ -216,6 +217,10 @@ void add_design_options(CLI::App& design, DesignArgs& args) {
                   "keep dangling faces (windows, balconies) instead of supporting them; the report lists them");
   design.add_option("--seed", args.seed, "the order in which invalid faces choose their supports")
       ->capture_default_str();
+  design.add_option("--orders", args.orders,
+                    "face orders tried, one after another from the seed, until the plan stands; the best is kept")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
   design.add_option("--colours", args.colours,
                     "layer colours: laser (cut black, mountain red, valley blue, outline green) or craft (cut "
                     "blue, mountain green, valley red, outline black)")
@@ -242,6 +247,7 @@ int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const
   options.supports.enabled = !args.no_supports;
   options.supports.allow_dangling = args.allow_dangling;
   options.supports.seed = args.seed;
+  options.supports.orders = args.orders;
 
   // A folder that cannot be made is reported before any work and before any file is written.
   for (const std::string& dir : {args.out_dir, args.maps_dir})
