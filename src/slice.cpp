@@ -8,6 +8,7 @@
 #include <map>
 #include <numeric>
 #include <string>
+#include <utility>
 
 #include "origamic/error.hpp"
 
@@ -301,6 +302,22 @@ ShapeError shape_error(const RasterMaps& maps, const Grid<std::int32_t>& face, c
   return e;
 }
 
+// A face sliced at its mean plane can reach past the card: an H(h) face behind the back plane where
+// Y > h, a V(d) face below the floor where Y < -d (the part of a slope beyond its mean). That part
+// becomes the back plane (the floor), so the face ends on its fold with it, at Y = h (Y = -d), as
+// the paper does (seed §4.5).
+void keep_within_card(const PixelGrid& grid, SliceResult& result) {
+  for (int row = 0; row < result.face.rows; ++row)
+    for (int col = 0; col < result.face.cols; ++col) {
+      std::int32_t& f = result.face(col, row);
+      if (f < 2) continue;
+      const RasterFace& face = result.faces[static_cast<std::size_t>(f)];
+      const double Y = grid.Y(row);
+      if (face.orientation == Orientation::H && Y > face.depth_mm) f = kBackFace;
+      else if (face.orientation == Orientation::V && Y < -face.depth_mm) f = kFloorFace;
+    }
+}
+
 // Connected pieces of each full-resolution subsegment become faces; pieces whose oriented box has a
 // side under W are removed and their holes filled from the neighbours (§4.3.3, last paragraph).
 void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vector<Subsegment>& subsegments,
@@ -341,6 +358,7 @@ void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vec
       for (const auto& [col, row] : piece) result.face(col, row) = id;
     }
   fill_holes(maps.grid, seg.segment, result.faces, result.face);
+  keep_within_card(maps.grid, result);
   merge_coplanar_faces(result);
   result.error = shape_error(maps, result.face, result.faces, W);
 }
@@ -369,19 +387,23 @@ void merge_coplanar_faces(SliceResult& result) {
         parent[std::max(a, b)] = std::min(a, b);
       }
     }
-  std::vector<std::int64_t> pixels(result.faces.size(), 0);
+  const std::size_t n = result.faces.size();
+  std::vector<std::int64_t> pixels(n, 0);
   for (const std::int32_t f : face.values)
-    if (f >= 0) ++pixels[static_cast<std::size_t>(root(f))];
-  std::vector<std::int32_t> new_id(result.faces.size(), -1);
+    if (f >= 0) ++pixels[static_cast<std::size_t>(f)];
+  for (std::size_t f = 0; f < n; ++f)
+    if (const auto r = static_cast<std::size_t>(root(static_cast<std::int32_t>(f))); r != f) pixels[r] += std::exchange(pixels[f], 0);
+  std::vector<std::int32_t> new_id(n, -1);
   std::vector<RasterFace> faces;
-  for (std::size_t f = 0; f < result.faces.size(); ++f)
+  for (std::size_t f = 0; f < n; ++f)
     if (root(static_cast<std::int32_t>(f)) == static_cast<std::int32_t>(f) && (f < 2 || pixels[f] > 0)) {
       new_id[f] = static_cast<std::int32_t>(faces.size());
       faces.push_back(result.faces[f]);
       faces.back().pixels = pixels[f];
     }
+  for (std::size_t f = 0; f < n; ++f) new_id[f] = new_id[static_cast<std::size_t>(root(static_cast<std::int32_t>(f)))];
   for (auto& f : face.values)
-    if (f >= 0) f = new_id[root(f)];
+    if (f >= 0) f = new_id[static_cast<std::size_t>(f)];
   result.faces = std::move(faces);
 }
 

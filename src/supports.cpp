@@ -117,7 +117,7 @@ class CandidateFinder {
   // face at depth d' on the row where Y = h - d', or an H face at height h' where Y = h' - d.
   std::optional<Candidate> walk(std::int32_t f, int c0, int c1, int edge, bool up, double h, double d) const {
     const int step = up ? -1 : 1;
-    std::set<std::int32_t> crossed;
+    std::vector<std::int32_t> crossed;  // with repeats; a run of one face is one entry
     for (int r = edge + step; r >= 0 && r < face_.rows; r += step) {
       const std::int32_t g = face_((c0 + c1) / 2, r);
       if (g >= 0 && g != f && mostly(g, c0, c1, r)) {
@@ -137,13 +137,15 @@ class CandidateFinder {
           s.orientation = v_hit ? Orientation::H : Orientation::V;
           s.depth_mm = v_hit ? h : d;
           s.cost = (s.r1 - s.r0) * px_mm_;
+          std::ranges::sort(crossed);
+          crossed.erase(std::unique(crossed.begin(), crossed.end()), crossed.end());
           for (const std::int32_t x : crossed)
             if (x != g && splits(x, s)) s.cost += split_cost_;
           return s;
         }
       }
       for (int c = c0; c < c1; ++c)
-        if (const std::int32_t x = face_(c, r); x != f) crossed.insert(x);
+        if (const std::int32_t x = face_(c, r); x != f && (crossed.empty() || crossed.back() != x)) crossed.push_back(x);
     }
     return std::nullopt;
   }

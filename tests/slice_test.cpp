@@ -134,6 +134,39 @@ TEST(Slice, FaceCountFallsAsWGrowsAndNoFaceIsNarrowerThanW) {
   }
 }
 
+TEST(Slice, ARoofRisingToTheBackPlaneEndsOnItsFoldThereNotBehindIt) {
+  // A ramp 35 mm high at the back plane, 60 mm deep on the floor: a 30-degree roof, sliced into H
+  // terraces at their mean heights. The top terrace's back reaches Y = 35 in the plan, above its
+  // mean height: that part would lie behind the back plane. It is the back plane's.
+  TriangleMesh ramp;
+  ramp.positions = {{40, 0, 0}, {40, 0, 60}, {40, 35, 0}, {150, 0, 0}, {150, 0, 60}, {150, 35, 0}};
+  ramp.triangles = {{0, 1, 2}, {3, 5, 4}, {1, 4, 5}, {1, 5, 2}, {0, 3, 4}, {0, 4, 1}, {0, 2, 5}, {0, 5, 3}};
+  const Planned p = plan_of_oa_mesh(ramp);
+  const PixelGrid& grid = p.maps.grid;
+  int terraces = 0;
+  double top = 0;
+  for (std::size_t f = 2; f < p.slices.faces.size(); ++f)
+    if (p.slices.faces[f].orientation == Orientation::H) ++terraces, top = std::max(top, p.slices.faces[f].depth_mm);
+  EXPECT_GE(terraces, 10) << "one terrace per W of the 35 mm rise";
+  EXPECT_LT(top, 35.0);
+  int top_rows_below_back_plane = 0;
+  for (int row = 0; row + 1 < grid.rows; ++row)
+    for (int col = 0; col < grid.cols; ++col) {
+      const std::int32_t f = p.slices.face(col, row);
+      ASSERT_GE(f, 0);
+      const RasterFace& face = p.slices.faces[static_cast<std::size_t>(f)];
+      if (f >= 2 && face.orientation == Orientation::H) EXPECT_LE(grid.Y(row), face.depth_mm) << col << ", " << row;
+      if (f >= 2 && face.orientation == Orientation::V) EXPECT_GE(grid.Y(row), -face.depth_mm) << col << ", " << row;
+      // The top terrace meets the back plane on its fold line Y = h, to the pixel.
+      if (f == kBackFace && grid.X(col) > 45 && grid.X(col) < 145 && p.slices.face(col, row + 1) >= 2 &&
+          p.slices.faces[static_cast<std::size_t>(p.slices.face(col, row + 1))].depth_mm == top) {
+        EXPECT_NEAR(grid.Y(row) - 0.5 / grid.px_per_mm, top, 1 / grid.px_per_mm);
+        ++top_rows_below_back_plane;
+      }
+    }
+  EXPECT_GT(top_rows_below_back_plane, static_cast<int>(90 * grid.px_per_mm)) << "folded to the back plane all along";
+}
+
 TEST(Slice, ThinPoleIsRemovedAndItsHoleFilled) {
   // A box with a 1 mm pole standing in front of it; W = 3 mm.
   const TriangleMesh house = test::box({60, 0, 0}, {150, 50, 30});

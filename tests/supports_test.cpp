@@ -103,7 +103,9 @@ TEST(Supports, QuarterSphereStandsWithEverySliceSupportedAndSupportsAtLeastWWide
   EXPECT_EQ(r.plan.lost_faces, 0);
   EXPECT_EQ(r.plan.unresolved_crossings, 0);
   EXPECT_TRUE(plan_stands(r.plan.validity, false));
-  EXPECT_TRUE(analyze_plan(r.plan.lines, AnalysisOptions{}).valid()) << "its lines say otherwise";
+  const PlanAnalysis lines = analyze_plan(r.plan.lines, AnalysisOptions{});
+  EXPECT_TRUE(lines.valid()) << "its lines say otherwise";
+  for (const PlanProblem& p : lines.problems) EXPECT_NE(p.kind, PlanProblemKind::OutsideCard) << p.message;
   EXPECT_TRUE(r.supports.converged) << r.supports.stop_reason;
   EXPECT_TRUE(r.supports.stop_reason.empty());
   EXPECT_EQ(r.supports.cut_out, 0);
