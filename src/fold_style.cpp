@@ -249,7 +249,8 @@ std::vector<std::vector<PlanPoint>> dash_pieces(const DrawnLine& line) {
   std::vector<std::vector<PlanPoint>> pieces;
   double at = 0;
   for (std::size_t i = 0; at < total - kNegligible_mm; i = (i + 1) % line.dash_mm.size()) {
-    const double to = std::min(total, at + line.dash_mm[i]);
+    // The fitted pattern ends on the line's end, up to rounding: the last dash ends exactly there.
+    const double to = at + line.dash_mm[i] >= total - kNegligible_mm ? total : at + line.dash_mm[i];
     if (i % 2 == 0 && to - at > kNegligible_mm) pieces.push_back(piece(line.points, s, at, to));
     at = to;
   }

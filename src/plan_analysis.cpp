@@ -75,6 +75,67 @@ struct Input {
   std::vector<PlanProblem> warnings;
 };
 
+// A horizontal piece of a fold as drawn: the whole fold, a printed dash or a perforation cut.
+struct FoldPiece {
+  FT Y, lo, hi;
+  LineKind kind;
+  bool perforation;
+};
+
+// Folds drawn in pieces stand for whole folds: collinear pieces of one kind with no cut (or outline)
+// reaching their line between them are one fold, which ends where they do; perforations keep clear
+// of the cuts, so a fold drawn with them runs on to the cut on either side (the sheet's edge if
+// none). The ends are exact: a joined fold meets its cut at their exact crossing.
+void add_joined_folds(std::vector<FoldPiece> pieces, Input& in) {
+  std::vector<std::pair<Kernel::Segment_2, std::pair<double, double>>> cuts;  // with their Y range
+  for (const Traits::Curve_2& curve : in.curves)
+    if (in.kind[static_cast<std::size_t>(curve.data())] != LineKind::Mountain &&
+        in.kind[static_cast<std::size_t>(curve.data())] != LineKind::Valley) {
+      const double a = CGAL::to_double(curve.source().y()), b = CGAL::to_double(curve.target().y());
+      cuts.emplace_back(Kernel::Segment_2(curve.source(), curve.target()), std::pair{std::min(a, b), std::max(a, b)});
+    }
+  std::ranges::sort(pieces, [](const FoldPiece& a, const FoldPiece& b) {
+    return std::tie(a.Y, a.kind, a.lo) < std::tie(b.Y, b.kind, b.lo);
+  });
+  std::vector<FT> crossings;
+  for (std::size_t i = 0; i < pieces.size();) {
+    const FT Y = pieces[i].Y;
+    const double Y_double = CGAL::to_double(Y);
+    crossings.clear();
+    for (const auto& [cut, range] : cuts) {
+      if (Y_double < range.first - 1 || Y_double > range.second + 1) continue;
+      const Point &p = cut.source(), &q = cut.target();
+      const CGAL::Comparison_result sp = CGAL::compare(p.y(), Y), sq = CGAL::compare(q.y(), Y);
+      if (sp == sq && sp != CGAL::EQUAL) continue;
+      if (sp == CGAL::EQUAL) crossings.push_back(p.x());
+      if (sq == CGAL::EQUAL) crossings.push_back(q.x());
+      if (sp != CGAL::EQUAL && sq != CGAL::EQUAL) crossings.push_back(p.x() + (q.x() - p.x()) * (Y - p.y()) / (q.y() - p.y()));
+    }
+    std::ranges::sort(crossings);
+    // Whether a cut reaches the line within [a, b].
+    auto cut_between = [&](const FT& a, const FT& b) {
+      const auto first = std::ranges::lower_bound(crossings, a);
+      return first != crossings.end() && *first <= b;
+    };
+    std::size_t j = i;
+    while (j < pieces.size() && pieces[j].Y == Y && pieces[j].kind == pieces[i].kind) ++j;
+    for (std::size_t k = i; k < j;) {
+      FT lo = pieces[k].lo, hi = pieces[k].hi;
+      bool perforated = pieces[k].perforation;
+      for (++k; k < j && !cut_between(hi, pieces[k].lo); ++k) hi = CGAL::max(hi, pieces[k].hi), perforated |= pieces[k].perforation;
+      if (perforated) {
+        const auto after = std::ranges::lower_bound(crossings, hi);
+        const auto before = std::ranges::upper_bound(crossings, lo);
+        hi = after != crossings.end() ? *after : in.max_X;
+        lo = before != crossings.begin() ? *std::prev(before) : in.min_X;
+      }
+      in.curves.emplace_back(Kernel::Segment_2(Point(lo, Y), Point(hi, Y)), static_cast<std::int32_t>(in.kind.size()));
+      in.kind.push_back(pieces[i].kind);
+    }
+    i = j;
+  }
+}
+
 Input collect(const std::vector<PlanPolyline>& lines, const AnalysisOptions& options) {
   const FT unit = exact_unit(options.unit);
   const bool scaled = options.unit != DrawingUnit::Millimetre;
@@ -109,14 +170,21 @@ Input collect(const std::vector<PlanPolyline>& lines, const AnalysisOptions& opt
                      "and the floor below");
 
   const Kernel::Iso_rectangle_2 sheet(Point(in.min_X, in.min_Y), Point(in.max_X, in.max_Y));
+  std::vector<FoldPiece> fold_pieces;
+  bool perforation = false;
   auto add = [&](const Point& p, const Point& q, LineKind kind) {
     if (p == q) return;
+    if ((kind == LineKind::Mountain || kind == LineKind::Valley) && p.y() == q.y()) {
+      fold_pieces.push_back({p.y(), CGAL::min(p.x(), q.x()), CGAL::max(p.x(), q.x()), kind, perforation});
+      return;
+    }
     in.curves.emplace_back(Kernel::Segment_2(p, q), static_cast<std::int32_t>(in.kind.size()));
     in.kind.push_back(kind);
   };
   const Point corners[4] = {{in.min_X, in.min_Y}, {in.max_X, in.min_Y}, {in.max_X, in.max_Y}, {in.min_X, in.max_Y}};
   for (int k = 0; k < 4; ++k) add(corners[k], corners[(k + 1) % 4], LineKind::Outline);
   for (std::size_t i = 0; i < lines.size(); ++i) {
+    perforation = lines[i].perforation;
     bool reported = false;
     for (std::size_t k = 1; k < points[i].size(); ++k) {
       const Point &p = points[i][k - 1], &q = points[i][k];
@@ -135,6 +203,7 @@ Input collect(const std::vector<PlanPolyline>& lines, const AnalysisOptions& opt
       if (const auto* s = boost::get<Kernel::Segment_2>(&*clipped)) add(s->source(), s->target(), lines[i].kind);
     }
   }
+  add_joined_folds(std::move(fold_pieces), in);
   return in;
 }
 

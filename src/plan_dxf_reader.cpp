@@ -57,11 +57,13 @@ void check_structure(const std::string& bytes, const std::string& name) {
 class Reader : public DL_CreationAdapter {
  public:
   Reader(const LayerNames& layers, std::string name) : name_(std::move(name)) {
-    kinds_ = {{upper(layers.cut), LineKind::Cut},
-              {upper(layers.mountain), LineKind::Mountain},
-              {upper(layers.valley), LineKind::Valley},
-              {upper(layers.outline), LineKind::Outline},
-              {upper(layers.cut_out), LineKind::CutOut}};
+    layers_ = {{upper(layers.cut), LineKind::Cut},
+               {upper(layers.mountain), LineKind::Mountain},
+               {upper(layers.valley), LineKind::Valley},
+               {upper(layers.outline), LineKind::Outline},
+               {upper(layers.cut_out), LineKind::CutOut},
+               {upper(layers.perforated_mountain), LineKind::Mountain, true},
+               {upper(layers.perforated_valley), LineKind::Valley, true}};
   }
 
   DxfDrawing drawing;
@@ -73,16 +75,16 @@ class Reader : public DL_CreationAdapter {
   void endBlock() override { in_block_ = false; }
 
   void addLine(const DL_LineData& data) override {
-    const auto kind = kind_of_entity("LINE");
-    if (!kind) return;
+    const auto layer = layer_of_entity("LINE");
+    if (!layer) return;
     check_finite({data.x1, data.y1, data.x2, data.y2}, "LINE");
-    drawing.lines.push_back({*kind, {{data.x1, data.y1}, {data.x2, data.y2}}});
+    drawing.lines.push_back({layer->kind, {{data.x1, data.y1}, {data.x2, data.y2}}, layer->perforation});
   }
 
   void addPolyline(const DL_PolylineData& data) override {
     finish_polyline();
-    const auto kind = kind_of_entity("POLYLINE");
-    if (!kind) return;
+    const auto layer = layer_of_entity("POLYLINE");
+    if (!layer) return;
     if (data.flags & (16 | 64))
       throw InputError(name_ + ": a mesh POLYLINE on layer " + getAttributes().getLayer() + "; a plan is drawn in 2D");
     // 2D polylines are in their object coordinate system; 3D ones (flag 8) in world coordinates.
@@ -91,7 +93,7 @@ class Reader : public DL_CreationAdapter {
     if (!world && (direction[0] != 0 || direction[1] != 0 || direction[2] == 0))
       throw InputError(name_ + ": a POLYLINE on layer " + getAttributes().getLayer() +
                        " is not in the XY plane (extrusion is not +-Z)");
-    polyline_ = PlanPolyline{*kind, {}};
+    polyline_ = PlanPolyline{layer->kind, {}, layer->perforation};
     closed_ = (data.flags & 1) != 0;
     mirrored_ = !world && direction[2] < 0;
   }
@@ -161,24 +163,29 @@ class Reader : public DL_CreationAdapter {
 
  private:
   std::string name_;
-  std::vector<std::pair<std::string, LineKind>> kinds_;
+  struct Layer {
+    std::string name;
+    LineKind kind = LineKind::Cut;
+    bool perforation = false;
+  };
+  std::vector<Layer> layers_;
   std::set<std::string> other_layers_;
   std::optional<PlanPolyline> polyline_;
   bool closed_ = false, mirrored_ = false, in_block_ = false;
   int insunits_ = 4;
 
   std::string layer_name(LineKind kind) const {
-    for (const auto& [layer, k] : kinds_)
-      if (k == kind) return layer;
+    for (const Layer& layer : layers_)
+      if (layer.kind == kind) return layer.name;
     return "?";
   }
 
   // The kind of the current entity, or nothing for entities that are not part of the plan.
-  std::optional<LineKind> kind_of_entity(const char*) {
+  std::optional<Layer> layer_of_entity(const char*) {
     if (in_block_ || getAttributes().isInPaperSpace()) return std::nullopt;
-    const std::string layer = upper(getAttributes().getLayer());
-    for (const auto& [name, kind] : kinds_)
-      if (name == layer) return kind;
+    const std::string name = upper(getAttributes().getLayer());
+    for (const Layer& layer : layers_)
+      if (layer.name == name) return layer;
     ignore();
     return std::nullopt;
   }
@@ -190,7 +197,7 @@ class Reader : public DL_CreationAdapter {
   }
 
   void reject_curve(const char* entity) {
-    if (!kind_of_entity(entity)) return;
+    if (!layer_of_entity(entity)) return;
     throw InputError(name_ + ": " + entity + " on layer " + getAttributes().getLayer() +
                      "; curves are not supported: flatten them into straight segments");
   }

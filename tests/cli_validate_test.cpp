@@ -121,6 +121,36 @@ TEST(CliValidate, DesignedPlanValidatesWithTheDesignsCounts) {
     EXPECT_EQ(report["counts"][count], design["counts"][count]) << count;
 }
 
+// Every plan origamic writes validates, whichever way its folds are drawn: the dashes of the printed
+// style and the perforations are read as the folds they stand for, to the same faces and lengths.
+TEST(CliValidate, EveryFoldStyleValidatesAsTheScoredPlanAndFolds) {
+  const test::TempDir dir;
+  nlohmann::json scored;
+  for (const std::string style : {"score", "perforated", "dashed"}) {
+    const test::CommandRun designed =
+        test::run_origamic("design " + test::quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") +
+                           " --strict --fold-style " + style + " --out " + test::quoted(dir / style));
+    ASSERT_EQ(designed.status, 0) << designed.output;
+    const std::string dxf = test::quoted(dir / style / "house.dxf");
+    const test::CommandRun r = test::run_origamic("validate --json " + dxf, true);
+    EXPECT_EQ(r.status, 0) << style << ": " << r.output.substr(0, 2000);
+    const auto report = nlohmann::json::parse(r.output);
+    EXPECT_EQ(report["counts"]["errors"], 0) << style;
+    EXPECT_EQ(report["counts"]["warnings"], 0) << style;
+    if (style == "score") {
+      scored = report;
+      continue;
+    }
+    EXPECT_EQ(report["counts"], scored["counts"]) << style;
+    for (const char* kind : {"cut", "mountain", "valley"})
+      EXPECT_EQ(report["length_mm"][kind], scored["length_mm"][kind]) << style << " " << kind;
+    const test::CommandRun folded =
+        test::run_origamic("fold " + dxf + " --angle 90 -o " + test::quoted(dir / (style + ".obj")));
+    EXPECT_EQ(folded.status, 0) << folded.output;
+    EXPECT_NE(folded.output.find("(0 faces not reached by any fold left out)"), std::string::npos) << folded.output;
+  }
+}
+
 TEST(CliValidate, BadFilesAndOptionsExitTwoWithOneLineNamingThem) {
   const test::TempDir dir;
   test::write_text(dir / "notes.dxf", "these are my notes, not a drawing\n");

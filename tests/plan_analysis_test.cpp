@@ -319,6 +319,49 @@ TEST(PlanAnalysis, StripNarrowerThanWIsReportedWithItsPlace) {
   }
 }
 
+// A plan with every fold drawn as perforation cuts: 1 mm cuts, 1 mm gaps, `inset` mm clear of the
+// fold's ends, as `--fold-style perforated` draws them.
+std::vector<PlanPolyline> perforated(const std::vector<PlanPolyline>& plan, double inset = 0.5) {
+  std::vector<PlanPolyline> lines;
+  for (const PlanPolyline& line : plan) {
+    if (line.kind != LineKind::Mountain && line.kind != LineKind::Valley) {
+      lines.push_back(line);
+      continue;
+    }
+    const double Y = line.points[0].Y, lo = std::min(line.points[0].X, line.points[1].X) + inset,
+                 hi = std::max(line.points[0].X, line.points[1].X) - inset;
+    for (double x = lo; x < hi; x += 2) lines.push_back({line.kind, {{x, Y}, {std::min(x + 1, hi), Y}}, true});
+  }
+  return lines;
+}
+
+TEST(PlanAnalysis, PerforatedFoldsAreReadAsTheFoldsTheyStandFor) {
+  const Box b;
+  const PlanAnalysis scored = analyze_plan(box_plan(b), {});
+  const PlanAnalysis a = analyze_plan(perforated(box_plan(b)), {});
+  EXPECT_TRUE(a.valid()) << listing(a);
+  EXPECT_TRUE(a.problems.empty()) << listing(a);
+  EXPECT_EQ(a.faces, 2);
+  // Each fold runs on to the cuts (and the sheet's edge) its perforations keep clear of, exactly,
+  // and never across a cut: the main fold stays two folds either side of the box.
+  EXPECT_EQ(a.mountain_mm, scored.mountain_mm);
+  EXPECT_EQ(a.valley_mm, scored.valley_mm);
+  EXPECT_EQ(a.mountain_mm, b.x1 - b.x0);
+  EXPECT_EQ(region_at(a, {b.mid(), 0}), region_at(a, {b.mid(), -1})) << "no fold across the box's front";
+
+  // A slanted cut, 2 mm off vertical: a fold ends on it at their exact crossing, which no double
+  // holds. Perforations 2.5 mm clear of the vertical cut are clear of it.
+  std::vector<PlanPolyline> slanted = perforated(box_plan(b), 2.5);
+  for (PlanPolyline& line : slanted)
+    if (line.kind == LineKind::Cut && line.points[0].X == b.x0) line.points[1].X = b.x0 + 2;
+  const PlanAnalysis s = analyze_plan(slanted, {});
+  EXPECT_TRUE(s.valid()) << listing(s);
+  EXPECT_TRUE(s.problems.empty()) << listing(s);
+  const auto at = [&](double Y) { return b.x0 + 2 * (Y + b.d) / (b.h + b.d); };  // the cut's X at Y
+  EXPECT_NEAR(s.mountain_mm, b.x1 - at(b.h - b.d), 1e-12);
+  EXPECT_NEAR(s.valley_mm, at(0) + (kWidth - b.x1) + (b.x1 - at(-b.d)) + (b.x1 - at(b.h)), 1e-12);
+}
+
 TEST(PlanAnalysis, FoldEndingInsideAFaceIsReportedAtItsLooseEnd) {
   const Box b;
   std::vector<PlanPolyline> lines = box_plan(b);

@@ -30,6 +30,9 @@ inline bool is_cut(LineKind kind) { return kind == LineKind::Cut || kind == Line
 struct PlanPolyline {
   LineKind kind = LineKind::Cut;
   std::vector<PlanPoint> points;
+  // A fold drawn as perforation cuts (read from PERF_MOUNTAIN / PERF_VALLEY): one of the short cuts
+  // that together stand for the fold, which runs on to the cuts they keep clear of.
+  bool perforation = false;
 };
 
 struct PlanFace {

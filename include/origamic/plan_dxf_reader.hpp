@@ -19,6 +19,9 @@ struct LayerNames {
   std::string valley = "VALLEY";      // valley folds
   std::string outline = "OUTLINE";    // the sheet's edge (optional)
   std::string cut_out = "CUTOUT";     // cuts around pieces cut out of the sheet: they fall out
+  // Folds drawn as perforation cuts: each fold's short cuts, stopping short of the cuts it meets.
+  std::string perforated_mountain = "PERF_MOUNTAIN";
+  std::string perforated_valley = "PERF_VALLEY";
 };
 
 /// The drawing unit a DXF declares in $INSUNITS.
@@ -37,7 +40,7 @@ double mm_per_unit(DrawingUnit unit);
 const char* to_string(DrawingUnit unit);
 
 /// Reads an ASCII DXF (R12 or later) with dxflib: LINE, POLYLINE (with its VERTEXes) and LWPOLYLINE
-/// entities on the four layers, in model space, outside block definitions; the closed flag closes a
+/// entities on the plan's layers, in model space, outside block definitions; the closed flag closes a
 /// polyline. Coordinates are taken exactly as the file's doubles, Z is ignored, and a 2D polyline
 /// whose extrusion is (0, 0, -1) is mirrored into world X as CAD programs draw it.
 /// $INSUNITS 4 (mm) is assumed when absent or 0 (unitless); 1 (in), 2 (ft), 5 (cm) and 6 (m) are

@@ -290,6 +290,14 @@ struct ValidateArgs {
   origamic::LayerNames layers;
 };
 
+// Folds drawn as perforation cuts are read as the folds they stand for, run on to the cuts.
+void add_perforation_layers(CLI::App& command, origamic::LayerNames& layers) {
+  command.add_option("--perf-mountain-layer", layers.perforated_mountain, "layer of mountain folds drawn as perforations")
+      ->capture_default_str();
+  command.add_option("--perf-valley-layer", layers.perforated_valley, "layer of valley folds drawn as perforations")
+      ->capture_default_str();
+}
+
 void add_validate_options(CLI::App& validate, ValidateArgs& args) {
   validate.add_option("PLAN", args.plan, "plan as ASCII DXF: cuts, mountain and valley folds on their layers, in mm, "
                                          "Y = 0 the main fold")
@@ -307,6 +315,7 @@ void add_validate_options(CLI::App& validate, ValidateArgs& args) {
   validate.add_option("--outline-layer", args.layers.outline,
                       "layer of the sheet's edge (without one, the sheet is the bounding box of every line)")
       ->capture_default_str();
+  add_perforation_layers(validate, args.layers);
 }
 
 int run_validate(const ValidateArgs& args) {
@@ -353,6 +362,7 @@ void add_fold_options(CLI::App& fold, FoldArgs& args) {
   fold.add_option("--cut-layer", args.layers.cut, "layer of the cuts")->capture_default_str();
   fold.add_option("--mountain-layer", args.layers.mountain, "layer of the mountain folds")->capture_default_str();
   fold.add_option("--valley-layer", args.layers.valley, "layer of the valley folds")->capture_default_str();
+  add_perforation_layers(fold, args.layers);
 }
 
 int run_fold(const FoldArgs& args) {
