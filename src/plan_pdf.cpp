@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <ctime>
 #include <optional>
 #include <string>
 #include <vector>
@@ -277,6 +279,26 @@ void check_export_options(const ExportOptions& options, const Sheet& sheet) {
   pdf_page(sheet, options.paper);
 }
 
+namespace {
+
+// The reproducible-builds convention: with SOURCE_DATE_EPOCH set (seconds since 1970), the PDF's
+// creation date is that moment, so the same plan gives the same bytes; without it, cairo's clock.
+std::optional<std::string> source_date() {
+  const char* text = std::getenv("SOURCE_DATE_EPOCH");
+  if (!text || !*text) return std::nullopt;
+  char* end = nullptr;
+  const long long seconds = std::strtoll(text, &end, 10);
+  if (*end || seconds < 0) return std::nullopt;
+  const std::time_t time = static_cast<std::time_t>(seconds);
+  std::tm utc{};
+  if (!gmtime_r(&time, &utc)) return std::nullopt;
+  char iso[32];
+  std::strftime(iso, sizeof iso, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return iso;
+}
+
+}  // namespace
+
 std::string plan_pdf(const Plan& plan, const ExportOptions& options) {
   const PageSize page = pdf_page(plan.sheet, options.paper);
   const DrawnPlan drawn = draw_plan(plan, options.folds);
@@ -291,6 +313,10 @@ std::string plan_pdf(const Plan& plan, const ExportOptions& options) {
   cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_SUBJECT, plan_description(plan, options).c_str());
   cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_KEYWORDS, keywords.c_str());
   cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, creator.c_str());
+  if (const auto date = source_date()) {
+    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATE_DATE, date->c_str());
+    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_MOD_DATE, date->c_str());
+  }
   cairo_t* cr = cairo_create(surface);
   cairo_scale(cr, kPointsPerMm, kPointsPerMm);  // from here on, 1 user unit = 1 mm
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -350,6 +351,22 @@ TEST_F(HousePlan, PdfCarriesItsLegendCaptionAndMetadata) {
   EXPECT_NE(pdfinfo_field(dir / "house.pdf", "Keywords").find("house.obj"), std::string::npos);
   EXPECT_EQ(pdfinfo_field(dir / "house.pdf", "Creator").rfind("origamic ", 0), 0u);
   EXPECT_EQ(pdfinfo_field(dir / "house.pdf", "Pages"), "1") << "the legend found a free corner";
+}
+
+// With SOURCE_DATE_EPOCH set, the PDF is dated then and the same plan gives the same bytes.
+TEST_F(HousePlan, PdfWithSourceDateEpochIsDatedThenAndByteIdentical) {
+  const test::TempDir dir;
+  const ExportOptions options = exports(FoldStyle::Score);
+  ASSERT_EQ(setenv("SOURCE_DATE_EPOCH", "1700000000", 1), 0);  // 2023-11-14 22:13:20 UTC
+  const std::string first = plan_pdf(house(), options);
+  ASSERT_EQ(setenv("SOURCE_DATE_EPOCH", "1700000000", 1), 0);
+  const std::string second = plan_pdf(house(), options);
+  unsetenv("SOURCE_DATE_EPOCH");
+  EXPECT_EQ(first, second);
+  write_files({{dir / "house.pdf", first}});
+  const test::CommandResult info = test::shell("TZ=UTC pdfinfo -isodates " + quoted(dir / "house.pdf"));
+  ASSERT_EQ(info.status, 0);
+  EXPECT_NE(info.output.find("2023-11-14T22:13:20"), std::string::npos) << info.output;
 }
 
 TEST_F(HousePlan, PerforationsKeepClearOfEveryCutAndCutTheirShareOfEachFold) {
