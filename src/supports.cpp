@@ -495,9 +495,9 @@ bool stands(const Supported& s, bool allow_dangling) {
 }
 
 // How far a plan is from standing: its faces no support holds, then the faces cut out.
-std::pair<int, int> shortfall(const Supported& s) {
+std::pair<int, int> shortfall(const Supported& s, bool allow_dangling) {
   const Validity& v = s.plan.validity;
-  return {v.floating + v.dangling + v.invalid + s.plan.loose_card_pieces, s.report.cut_out};
+  return {v.floating + v.invalid + (allow_dangling ? 0 : v.dangling) + s.plan.loose_card_pieces, s.report.cut_out};
 }
 
 }  // namespace
@@ -512,7 +512,8 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
     Supported run = supports_in_order(maps, order < options.orders ? slices : std::move(slices), sheet, plan_options,
                                       options, random);
     const bool done = stands(run, options.allow_dangling);
-    if (!best || done || shortfall(run) < shortfall(*best)) best = std::move(run);
+    const bool better = !best || shortfall(run, options.allow_dangling) < shortfall(*best, options.allow_dangling);
+    if (done || better) best = std::move(run);
     best->report.orders = order;
     if (done) break;
   }
