@@ -314,9 +314,18 @@ TEST(Cli, FoldTurnsAnyPlanIntoItsPopUpFlatAt180AndStandingAt90) {
   for (const auto& v : obj_vertices(dir / "up.obj")) highest = std::max(highest, v[1]);
   EXPECT_NEAR(highest, 148.5, 1e-3) << "the back half stands up to the sheet's top edge";
 
+  for (const char* name : {"up.gltf", "up.glb"}) {
+    const CommandRun gltf = run("fold " + quoted(dir / "plan" / "box.dxf") + " -o " + quoted(dir / name));
+    ASSERT_EQ(gltf.status, 0) << gltf.output;
+    std::ifstream in(dir / name, std::ios::binary);
+    std::string magic(4, '\0');
+    in.read(magic.data(), 4);
+    EXPECT_EQ(magic == "glTF", std::string(name) == "up.glb") << name << ": binary only as .glb";
+  }
+
   const CommandRun bad = run("fold " + quoted(dir / "plan" / "box.dxf") + " -o " + quoted(dir / "box.stl"));
   EXPECT_EQ(bad.status, 2);
-  EXPECT_NE(bad.output.find("--out"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("--out: expected a .obj, .ply, .gltf or .glb file"), std::string::npos) << bad.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "box.stl"));
   const CommandRun angle = run("fold " + quoted(dir / "plan" / "box.dxf") + " --angle 200 -o " + quoted(dir / "a.obj"));
   EXPECT_EQ(angle.status, 2) << angle.output;

@@ -16,8 +16,10 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
 
 #include "helpers.hpp"
 #include "origamic/error.hpp"
@@ -97,9 +99,12 @@ TEST(Fold3d, EveryEdgeKeepsItsPlanLengthAtEveryAngle) {
   for (const double thickness : {0.0, 0.5})
     for (const double angle : kAngles) {
       const FoldedPopup popup = fold_popup(box_regions(), Sheet{}, {.angle_deg = angle, .thickness_mm = thickness});
+      // The reverse side of thick paper is mitred at folds (shorter inside a bend, longer outside),
+      // as real card's is; it keeps its plan lengths only where the card lies flat.
+      auto kept = [&](PaperSurface s) { return s == PaperSurface::Printed || (s == PaperSurface::Reverse && angle == 180); };
       int edges = 0;
       for (std::size_t t = 0; t < popup.triangles.size(); ++t) {
-        if (popup.triangle_surface[t] == PaperSurface::Edge) continue;
+        if (!kept(popup.triangle_surface[t])) continue;
         for (int k = 0; k < 3; ++k) {
           const std::uint32_t a = popup.triangles[t][k], b = popup.triangles[t][(k + 1) % 3];
           const double plan = plan_distance(popup.plan_points[a], popup.plan_points[b]);
@@ -109,9 +114,7 @@ TEST(Fold3d, EveryEdgeKeepsItsPlanLengthAtEveryAngle) {
           ++edges;
         }
       }
-      EXPECT_EQ(edges, 3 * static_cast<int>(std::ranges::count_if(popup.triangle_surface, [](PaperSurface s) {
-                         return s != PaperSurface::Edge;
-                       })));
+      EXPECT_EQ(edges, 3 * static_cast<int>(std::ranges::count_if(popup.triangle_surface, kept)));
       EXPECT_GT(edges, 0);
     }
 }
@@ -158,7 +161,14 @@ TEST(Fold3d, PrintedSidesFaceTheViewerAndTheSky) {
       switch (popup.triangle_surface[t]) {
         case PaperSurface::Printed: expect_near3(n, printed, 1e-9, "printed normal"); break;
         case PaperSurface::Reverse: expect_near3(n, -printed, 1e-9, "reverse normal"); break;
-        case PaperSurface::Edge: EXPECT_NEAR(glm::dot(n, printed), 0, 1e-9); break;
+        case PaperSurface::Edge: {
+          // Along a cut the edge stands square to the paper; along a fold it is the mitre, which
+          // still runs along the fold, square to the main fold's direction.
+          const bool along_fold = popup.plan_points[tri[0]].Y == popup.plan_points[tri[1]].Y &&
+                                  popup.plan_points[tri[1]].Y == popup.plan_points[tri[2]].Y;
+          EXPECT_NEAR(glm::dot(n, along_fold ? frame.e_x : printed), 0, 1e-9);
+          break;
+        }
       }
     }
   }
@@ -193,25 +203,54 @@ TEST(Fold3d, TrianglesCoverEachRegionLessItsHoles) {
   EXPECT_EQ(popup.empty_regions, 0);
 }
 
-TEST(Fold3d, ThickPaperMakesClosedSlabsOfTheRightVolume) {
+TEST(Fold3d, ThickPaperMakesClosedSlabsMitredAtTheFolds) {
   const double t = 0.4;
   const std::vector<PlanRegion> regions = box_regions();
-  const FoldedPopup popup = fold_popup(regions, Sheet{}, {.angle_deg = 75, .thickness_mm = t});
-  std::vector<double> volume(regions.size(), 0.0);
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
-  for (std::size_t i = 0; i < popup.triangles.size(); ++i) {
-    const auto& tri = popup.triangles[i];
-    const glm::dvec3 &a = popup.positions[tri[0]], &b = popup.positions[tri[1]], &c = popup.positions[tri[2]];
-    volume[static_cast<std::size_t>(popup.triangle_region[i])] += glm::dot(a, glm::cross(b, c)) / 6;
-    for (int k = 0; k < 3; ++k) ++directed[{tri[k], tri[(k + 1) % 3]}];
+  for (const double angle : {30.0, 60.0, 90.0, 120.0, 150.0}) {
+    const FoldedPopup popup = fold_popup(regions, Sheet{}, {.angle_deg = angle, .thickness_mm = t});
+    std::vector<double> volume(regions.size(), 0.0);
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+    for (std::size_t i = 0; i < popup.triangles.size(); ++i) {
+      const auto& tri = popup.triangles[i];
+      const glm::dvec3 &a = popup.positions[tri[0]], &b = popup.positions[tri[1]], &c = popup.positions[tri[2]];
+      volume[static_cast<std::size_t>(popup.triangle_region[i])] += glm::dot(a, glm::cross(b, c)) / 6;
+      for (int k = 0; k < 3; ++k) ++directed[{tri[k], tri[(k + 1) % 3]}];
+    }
+    // Closed and consistently wound: every directed edge once, and its reverse once.
+    for (const auto& [edge, count] : directed) {
+      EXPECT_EQ(count, 1);
+      EXPECT_EQ(directed.count({edge.second, edge.first}), 1u);
+    }
+    if (angle == 90) {
+      // Square folds: a valley's reverse sides (outside the bend) reach on by t, a mountain's stop t
+      // short, each slab gaining or losing a t-by-t half square along the fold. The back plane and
+      // the floor meet the box and each other in valleys; the front meets the top in a mountain
+      // and the floor in a valley, the top the back plane in a valley.
+      const double box = kX1 - kX0, rest = 210 - box, corner = t * t / 2;
+      const std::vector<double> folds = {corner * (rest + box), corner * (rest + box), corner * (box - box),
+                                         corner * (box - box)};
+      for (std::size_t r = 0; r < regions.size(); ++r)
+        EXPECT_NEAR(volume[r], t * test::twice_signed_area(regions[r].rings[0]) / 2 + folds[r], 1e-6) << "region " << r;
+    }
+    if (angle < 53 || angle > 127) continue;
+    // The two slabs of a fold meet on the same mitre: the front's and the top's points on their fold
+    // line (printed and reverse) are the same points, and so are the back plane's and the top's.
+    for (const auto& [a, b, Y] : {std::tuple{2, 3, kH - kD}, std::tuple{0, 3, kH}}) {
+      auto on_fold = [&](int region) {
+        std::vector<glm::dvec3> points;
+        for (std::size_t v = 0; v < popup.positions.size(); ++v)
+          if (popup.position_region[v] == region && popup.plan_points[v].Y == Y) points.push_back(popup.positions[v]);
+        return points;
+      };
+      const std::vector<glm::dvec3> first = on_fold(a), second = on_fold(b);
+      ASSERT_EQ(first.size(), 4u) << "angle " << angle << ": two printed and two reverse ends";
+      for (const glm::dvec3& p : first) {
+        double nearest = std::numeric_limits<double>::max();
+        for (const glm::dvec3& q : second) nearest = std::min(nearest, glm::length(p - q));
+        EXPECT_LT(nearest, 1e-9) << "angle " << angle << ", regions " << a << " and " << b;
+      }
+    }
   }
-  // Closed and consistently wound: every directed edge once, and its reverse once.
-  for (const auto& [edge, count] : directed) {
-    EXPECT_EQ(count, 1);
-    EXPECT_EQ(directed.count({edge.second, edge.first}), 1u);
-  }
-  for (std::size_t r = 0; r < regions.size(); ++r)
-    EXPECT_NEAR(volume[r], t * test::twice_signed_area(regions[r].rings[0]) / 2, 1e-6) << "region " << r;
 }
 
 TEST(Fold3d, RegionsTheFoldsDoNotPlaceAreLeftOut) {
@@ -315,6 +354,69 @@ TEST(Fold3d, MeshFilesReadBackWithTheSameVerticesFacesAndColours) {
     EXPECT_NE(header.find("element face " + std::to_string(popup.triangles.size()) + "\n"), std::string::npos);
     // Three floats a vertex; a count byte, three int indices and three colour bytes a face.
     EXPECT_EQ(bytes.size(), header_end + 11 + 12 * popup.positions.size() + 16 * popup.triangles.size());
+  }
+}
+
+// glTF read back by tests/read_gltf.py, the container and accessors parsed by the standard library.
+TEST(Fold3d, GltfAndGlbReadBackWithTheSameVerticesTrianglesAndColoursInMetres) {
+  const test::TempDir dir;
+  for (const double thickness : {0.0, 0.4}) {
+    const FoldedPopup popup = fold_popup(box_regions(), Sheet{}, {.angle_deg = 63, .thickness_mm = thickness});
+    // Every triangle with its colour; the file groups them by colour, so compare as multisets.
+    std::multiset<std::array<int, 6>> expected;
+    for (std::size_t t = 0; t < popup.triangles.size(); ++t) {
+      const Rgb8 c = paper_colour(popup.regions[static_cast<std::size_t>(popup.triangle_region[t])],
+                                  popup.triangle_surface[t], true);
+      const auto& v = popup.triangles[t];
+      expected.insert({static_cast<int>(v[0]), static_cast<int>(v[1]), static_cast<int>(v[2]), c.r, c.g, c.b});
+    }
+    for (const auto& [name, format] : {std::pair{"box.gltf", MeshFormat::Gltf}, std::pair{"box.glb", MeshFormat::Glb}}) {
+      const std::vector<OutputFile> files = folded_mesh_files(popup, dir / name, format);
+      ASSERT_EQ(files.size(), 1u) << name;
+      write_files(files);
+      const test::CommandResult r =
+          test::shell("/usr/bin/python3 " + std::string(ORIGAMIC_TESTS_DIR) + "/read_gltf.py " + test::quoted(dir / name));
+      ASSERT_EQ(r.status, 0) << name << ": " << r.output;
+      const nlohmann::json read = nlohmann::json::parse(r.output);
+      EXPECT_EQ(read["version"], "2.0");
+      EXPECT_DOUBLE_EQ(read["extras"]["opening_angle_deg"].get<double>(), 63.0) << name;
+      EXPECT_DOUBLE_EQ(read["extras"]["paper_thickness_mm"].get<double>(), thickness) << name;
+      EXPECT_DOUBLE_EQ(read["extras"]["sheet_width_mm"].get<double>(), 210.0) << name;
+
+      const auto& positions = read["positions"];
+      ASSERT_EQ(positions.size(), popup.positions.size()) << name;
+      std::array<double, 3> low{1e9, 1e9, 1e9}, high{-1e9, -1e9, -1e9};
+      for (std::size_t i = 0; i < positions.size(); ++i)
+        for (int k = 0; k < 3; ++k) {
+          const double metres = positions[i][static_cast<std::size_t>(k)].get<double>();
+          EXPECT_EQ(metres, static_cast<double>(static_cast<float>(popup.positions[i][k] / 1000))) << name << " " << i;
+          low[static_cast<std::size_t>(k)] = std::min(low[static_cast<std::size_t>(k)], metres);
+          high[static_cast<std::size_t>(k)] = std::max(high[static_cast<std::size_t>(k)], metres);
+        }
+      for (std::size_t k = 0; k < 3; ++k) {
+        EXPECT_EQ(read["min"][k].get<double>(), low[k]) << name;
+        EXPECT_EQ(read["max"][k].get<double>(), high[k]) << name;
+      }
+
+      // Linear colour factors back to 8-bit sRGB.
+      auto srgb = [](double linear) {
+        const double c = linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1 / 2.4) - 0.055;
+        return static_cast<int>(std::lround(255 * c));
+      };
+      std::multiset<std::array<int, 6>> triangles;
+      ASSERT_EQ(read["triangles"].size(), popup.triangles.size()) << name;
+      for (std::size_t t = 0; t < read["triangles"].size(); ++t) {
+        const auto& m = read["materials"][read["triangle_material"][t].get<std::size_t>()];
+        const auto& v = read["triangles"][t];
+        triangles.insert({v[0].get<int>(), v[1].get<int>(), v[2].get<int>(), srgb(m["rgba"][0].get<double>()),
+                          srgb(m["rgba"][1].get<double>()), srgb(m["rgba"][2].get<double>())});
+      }
+      EXPECT_EQ(triangles, expected) << name;
+      for (const auto& m : read["materials"]) {
+        EXPECT_EQ(m["double_sided"].get<bool>(), thickness == 0) << name << ": a sheet is seen from both sides";
+        EXPECT_EQ(m["metallic"].get<double>(), 0.0) << name;
+      }
+    }
   }
 }
 

@@ -92,8 +92,11 @@ struct FoldedPopup {
 /// over the rings, so holes may come in either direction) and every vertex is mapped by fold_point.
 /// Printed-side triangles keep the plan's counter-clockwise order, so their normals point to the
 /// printed side (n_back for V, n_floor for H). With thickness_mm > 0 each region is also copied
-/// thickness_mm behind its printed side (reversed) and closed by edge quads along its boundary; the
-/// slabs of two faces meeting at a fold then overlap or gap by up to the thickness at the crease.
+/// thickness_mm behind its printed side (reversed) and closed by edge quads along its boundary. At a
+/// fold (a horizontal edge the region shares with a placed region of the other orientation) the
+/// reverse side is mitred: it ends where the two faces' reverse planes meet, so the two slabs meet
+/// on the plane bisecting the fold without overlap or gap. The mitre is held at twice the thickness,
+/// which is exact for folds opened 53 degrees or more (every fold between 53 and 127 degrees).
 /// \throws InputError naming the option for an angle outside [0, 180] or a thickness outside
 ///         [0, 10] mm, and naming the region for a non-finite coordinate.
 FoldedPopup fold_popup(const std::vector<PlanRegion>& regions, const Sheet& sheet, const FoldOptions& options);
@@ -101,6 +104,8 @@ FoldedPopup fold_popup(const std::vector<PlanRegion>& regions, const Sheet& shee
 enum class MeshFormat : std::uint8_t {
   Obj,  // Wavefront OBJ with a material library (one material per colour) beside it
   Ply,  // binary little-endian PLY with a colour per face
+  Gltf,  // glTF 2.0 JSON with its buffer embedded, a material per colour, in metres (glTF's unit)
+  Glb,   // the same glTF 2.0 asset as one binary file
 };
 
 /// An 8-bit sRGB colour.
@@ -116,7 +121,9 @@ Rgb8 paper_colour(const FoldedRegion& region, PaperSurface surface, bool mark_un
 /// The mesh files of a folded pop-up, written by OpenMesh's IO, each triangle in its paper colour
 /// (faces that do not stand marked): for Obj, `path` and the material library OpenMesh writes beside
 /// it (same stem, extension ".mat", named by the OBJ's mtllib line); for Ply, `path` alone.
-/// Positions are in world mm, in single precision (OpenMesh writes floats).
+/// Positions are in world mm, in single precision (OpenMesh writes floats). Gltf and Glb are
+/// written by tinygltf, `path` alone, in metres as glTF requires; the asset's extras name the
+/// opening angle, the paper thickness and the sheet in mm.
 /// \throws OutputError naming path if OpenMesh cannot write the mesh.
 std::vector<OutputFile> folded_mesh_files(const FoldedPopup& popup, const std::filesystem::path& path,
                                           MeshFormat format);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -358,7 +359,7 @@ void add_fold_options(CLI::App& fold, FoldArgs& args) {
       ->capture_default_str();
   fold.add_option("--thickness", args.thickness_mm, "paper thickness in mm (0: zero-thickness sheets)")
       ->capture_default_str();
-  fold.add_option("-o,--out", args.out, "the folded pop-up as a mesh: .obj (with its .mat) or .ply")->required();
+  fold.add_option("-o,--out", args.out, "the folded pop-up as a mesh: .obj (with its .mat), .ply, .gltf or .glb")->required();
   fold.add_option("--cut-layer", args.layers.cut, "layer of the cuts")->capture_default_str();
   fold.add_option("--mountain-layer", args.layers.mountain, "layer of the mountain folds")->capture_default_str();
   fold.add_option("--valley-layer", args.layers.valley, "layer of the valley folds")->capture_default_str();
@@ -367,8 +368,13 @@ void add_fold_options(CLI::App& fold, FoldArgs& args) {
 
 int run_fold(const FoldArgs& args) {
   const std::string extension = std::filesystem::path(args.out).extension().string();
-  if (extension != ".obj" && extension != ".ply")
-    throw InputError("--out: expected a .obj or .ply file, not '" + args.out + "'");
+  const std::map<std::string, origamic::MeshFormat> formats = {{".obj", origamic::MeshFormat::Obj},
+                                                               {".ply", origamic::MeshFormat::Ply},
+                                                               {".gltf", origamic::MeshFormat::Gltf},
+                                                               {".glb", origamic::MeshFormat::Glb}};
+  const auto format = formats.find(extension);
+  if (format == formats.end())
+    throw InputError("--out: expected a .obj, .ply, .gltf or .glb file, not '" + args.out + "'");
   const origamic::DxfDrawing drawing = origamic::read_dxf_drawing(args.plan, args.layers);
   origamic::AnalysisOptions options;
   options.unit = drawing.unit;
@@ -377,8 +383,7 @@ int run_fold(const FoldArgs& args) {
   const origamic::Sheet sheet{box.max_X - box.min_X, 2 * std::max(box.max_Y, -box.min_Y)};
   const origamic::FoldedPopup popup =
       origamic::fold_popup(analysis.regions, sheet, {.angle_deg = args.angle_deg, .thickness_mm = args.thickness_mm});
-  origamic::write_files(origamic::folded_mesh_files(
-      popup, args.out, extension == ".ply" ? origamic::MeshFormat::Ply : origamic::MeshFormat::Obj));
+  origamic::write_files(origamic::folded_mesh_files(popup, args.out, format->second));
   int unplaced = 0;
   for (const origamic::PlanRegion& region : analysis.regions) unplaced += !region.placed;
   std::printf("%s\nfolded at %g degrees: %s (%d faces not reached by any fold left out)\n",
