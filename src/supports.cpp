@@ -463,22 +463,31 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
     // the rounds resume. A card missing more than a quarter of its model is no likeness: then the
     // plan stays invalid, with the reason.
     if (!options.cut_out_unsupported) break;
-    const auto pixels = [&](std::int32_t f) { return slices.faces[static_cast<std::size_t>(f)].pixels; };
-    std::ranges::sort(invalid, [&](std::int32_t a, std::int32_t b) { return pixels(a) != pixels(b) ? pixels(a) < pixels(b) : a < b; });
-    const std::int64_t limit = pixels(invalid[invalid.size() / 2]);
-    std::int64_t more = 0;
-    for (const std::int32_t f : invalid)
-      if (pixels(f) <= limit) more += pixels(f);
-    if (4 * (cut_out_pixels + more) > model_pixels) {
-      report.stop_reason += "; cutting them out would remove over a quarter of the model";
-      break;
-    }
-    cut_out_pixels += more;
-    for (const std::int32_t f : invalid)
-      if (pixels(f) <= limit) {
-        slices.faces[static_cast<std::size_t>(f)].hole = true;
-        ++report.cut_out;
+    auto cut_out = [&](std::int32_t f) {
+      slices.faces[static_cast<std::size_t>(f)].hole = true;
+      ++report.cut_out;
+    };
+    // Pieces of the back plane or the floor that strips around them parted from it are card, not
+    // model: a hole there takes nothing from the likeness, so they go first and free of the quota.
+    const auto card_piece = [&](std::int32_t f) { return f > kFloorFace && slices.faces[static_cast<std::size_t>(f)].depth_mm == 0; };
+    const auto model_faces = std::ranges::partition(invalid, card_piece);
+    if (model_faces.begin() != invalid.begin()) {
+      std::for_each(invalid.begin(), model_faces.begin(), cut_out);
+    } else {
+      const auto pixels = [&](std::int32_t f) { return slices.faces[static_cast<std::size_t>(f)].pixels; };
+      std::ranges::sort(invalid, [&](std::int32_t a, std::int32_t b) { return pixels(a) != pixels(b) ? pixels(a) < pixels(b) : a < b; });
+      const std::int64_t limit = pixels(invalid[invalid.size() / 2]);
+      std::int64_t more = 0;
+      for (const std::int32_t f : invalid)
+        if (pixels(f) <= limit) more += pixels(f);
+      if (4 * (cut_out_pixels + more) > model_pixels) {
+        report.stop_reason += "; cutting them out would remove over a quarter of the model";
+        break;
       }
+      cut_out_pixels += more;
+      for (const std::int32_t f : invalid)
+        if (pixels(f) <= limit) cut_out(f);
+    }
     merge_coplanar_faces(slices);
     align_folds_to_lines(slices, maps.grid, tolerance);
     settle();

@@ -168,5 +168,29 @@ TEST(Supports, ShippedHouseStandsAtTheDefaultOptions) {
   if (!plan_stands(once.plan.validity, false)) EXPECT_FALSE(once.supports.stop_reason.empty());
 }
 
+// The windmill's sails are strips that part pieces of the back plane from it; with nothing to hold
+// them, those pieces of card are cut out (holes in the back plane), without counting against the
+// model, and the windmill stands.
+TEST(Supports, PiecesOfTheBackPlanePartedByStripsAreCutOutAndTheModelStands) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  DesignOptions options;
+  options.placement.up = UpAxis::Y;
+  const DesignResult r = design(test::models_dir() / "arch_windmill.obj", options);
+  expect_exact_and_standing(r.plan);
+  int card_pieces = 0;
+  std::int64_t model_px = 0, model_cut_px = 0;
+  for (std::size_t f = 2; f < r.slices.faces.size(); ++f) {
+    const RasterFace& face = r.slices.faces[f];
+    const bool card = face.depth_mm == 0;
+    if (!card) model_px += face.pixels;
+    if (!face.hole) continue;
+    EXPECT_EQ(r.plan.faces[f].status, FaceStatus::Removed) << "face " << f;
+    if (card) ++card_pieces;
+    else model_cut_px += face.pixels;
+  }
+  EXPECT_GT(card_pieces, 0) << "the pieces of back plane between the sails";
+  EXPECT_LT(4 * model_cut_px, model_px) << "under a quarter of the model cut out";
+}
+
 }  // namespace
 }  // namespace origamic
