@@ -377,9 +377,12 @@ void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid,
 
 namespace {
 
+constexpr int kSplitRetryRounds = 8;
+
 // One greedy run of the support loop in the face order that `random` draws.
 Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sheet& sheet,
-                            const PlanOptions& plan_options, const SupportOptions& options, std::mt19937& random) {
+                            const PlanOptions& plan_options, const SupportOptions& options, std::mt19937& random,
+                            bool last_order) {
   Supported result;
   SupportReport& report = result.report;
   report.round_bound = slices.face.cols / std::max(1, slices.block_px) + 1;
@@ -391,6 +394,8 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
   // nothing left to do: the exact plan always has the last word.
   bool exact = false;
   bool allow_splits = true;
+  bool splits_retried = false;
+  int split_rounds_left = 0;
   Standing standing;
   // Rounds run on the raster graph; the exact plan, built when they end, has the last word and
   // the next rounds start from its verdict.
@@ -421,7 +426,8 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
                " rounds (the loop's bound)";
       ++report.rounds;
       std::shuffle(invalid.begin(), invalid.end(), random);
-      const std::vector<Candidate> chosen = choose_supports(maps, slices, standing, invalid, options, allow_splits);
+      const bool splits = allow_splits || split_rounds_left-- > 0;
+      const std::vector<Candidate> chosen = choose_supports(maps, slices, standing, invalid, options, splits);
       if (chosen.empty()) return std::to_string(invalid.size()) + " faces invalid and no support reaches them";
       report.supports += static_cast<int>(chosen.size());
       paint_supports(chosen, maps.grid, tolerance, crumb_px, slices);
@@ -473,6 +479,13 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
     const auto model_faces = std::ranges::partition(invalid, card_piece);
     if (model_faces.begin() != invalid.begin()) {
       std::for_each(invalid.begin(), model_faces.begin(), cut_out);
+    } else if (last_order && !splits_retried && report.rounds < report.round_bound) {
+      // The last order, before any of the model is cut out: a few more rounds in which supports may
+      // cut faces in two again, so that a face held only by reaching across others (a ring's top)
+      // stands.
+      splits_retried = true;
+      split_rounds_left = kSplitRetryRounds;
+      continue;
     } else {
       const auto pixels = [&](std::int32_t f) { return slices.faces[static_cast<std::size_t>(f)].pixels; };
       std::ranges::sort(invalid, [&](std::int32_t a, std::int32_t b) { return pixels(a) != pixels(b) ? pixels(a) < pixels(b) : a < b; });
@@ -518,8 +531,8 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
   std::mt19937 random(options.seed);
   std::optional<Supported> best;
   for (int order = 1; order <= std::max(1, options.orders); ++order) {
-    Supported run = supports_in_order(maps, order < options.orders ? slices : std::move(slices), sheet, plan_options,
-                                      options, random);
+    const bool last = order >= options.orders;
+    Supported run = supports_in_order(maps, last ? std::move(slices) : slices, sheet, plan_options, options, random, last);
     const bool done = stands(run, options.allow_dangling);
     const bool better = !best || shortfall(run, options.allow_dangling) < shortfall(*best, options.allow_dangling);
     if (done || better) best = std::move(run);

@@ -192,5 +192,17 @@ TEST(Supports, PiecesOfTheBackPlanePartedByStripsAreCutOutAndTheModelStands) {
   EXPECT_LT(4 * model_cut_px, model_px) << "under a quarter of the model cut out";
 }
 
+// A flat torus lying on the floor: its top is held only by supports that reach across the ring's
+// front slices, cutting them in two, which the rounds stop choosing once the exact plan has split
+// faces. The last face order gets a few more rounds of them before any of the model is cut out.
+TEST(Supports, TheLastOrderMayCutFacesAgainSoAFlatRingStands) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  DesignOptions options;
+  options.placement.up = UpAxis::Z;
+  const DesignResult r = design(test::models_dir() / "prim_torus.stl", options);
+  expect_exact_and_standing(r.plan);
+  EXPECT_EQ(r.supports.orders, options.supports.orders) << "the earlier orders do not stand";
+}
+
 }  // namespace
 }  // namespace origamic
