@@ -124,7 +124,7 @@ Rgb8 paper_colour(const FoldedRegion& region, PaperSurface surface, bool mark_un
 /// Positions are in world mm, in single precision (OpenMesh writes floats). Gltf and Glb are
 /// written by tinygltf, `path` alone, in metres as glTF requires; the asset's extras name the
 /// opening angle, the paper thickness and the sheet in mm.
-/// \throws OutputError naming path if OpenMesh cannot write the mesh.
+/// \throws OutputError naming path if OpenMesh or tinygltf cannot write the mesh.
 std::vector<OutputFile> folded_mesh_files(const FoldedPopup& popup, const std::filesystem::path& path,
                                           MeshFormat format);
 
