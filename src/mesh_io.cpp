@@ -15,6 +15,7 @@
 #include <glm/geometric.hpp>
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <tbb/parallel_for.h>
 
 #include "origamic/error.hpp"
 #include "quiet_openmesh.hpp"
@@ -213,16 +214,17 @@ std::vector<glm::vec3> feature_corner_normals(const TriangleMesh& mesh, double f
     for (int c = 0; c < 3; ++c)
       corners[fill[mesh.triangles[f][static_cast<std::size_t>(c)]]++] = static_cast<std::uint32_t>(3 * f + c);
 
+  // Each triangle's values depend on nothing written in the same loop: both loops run on all cores.
   std::vector<glm::dvec3> normals(mesh.triangles.size());
   std::vector<double> angles(3 * mesh.triangles.size());
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+  tbb::parallel_for(std::size_t{0}, mesh.triangles.size(), [&](std::size_t f) {
     normals[f] = face_normal(mesh, mesh.triangles[f]);
     for (int c = 0; c < 3; ++c) angles[3 * f + c] = corner_angle(mesh, mesh.triangles[f], c);
-  }
+  });
 
   const double cos_feature = std::cos(feature_angle_deg * std::numbers::pi / 180);
   std::vector<glm::vec3> result(3 * mesh.triangles.size());
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+  tbb::parallel_for(std::size_t{0}, mesh.triangles.size(), [&](std::size_t f) {
     for (int c = 0; c < 3; ++c) {
       const std::uint32_t v = mesh.triangles[f][static_cast<std::size_t>(c)];
       glm::dvec3 sum(0.0);
@@ -233,7 +235,7 @@ std::vector<glm::vec3> feature_corner_normals(const TriangleMesh& mesh, double f
       const double length = glm::length(sum);
       result[3 * f + c] = glm::vec3(length > 0 ? sum / length : normals[f]);
     }
-  }
+  });
   return result;
 }
 

@@ -130,6 +130,7 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
       {"supports", {{"added", result.supports.supports},
                     {"rounds", result.supports.rounds},
                     {"exact_builds", result.supports.exact_builds},
+                    {"passes_undone", result.supports.passes_undone},
                     {"cut_out", result.supports.cut_out},
                     {"narrow_strips", narrow_json(result.supports.narrow)},
                     {"round_bound", result.supports.round_bound},

@@ -366,31 +366,41 @@ void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vec
 }  // namespace
 
 void merge_coplanar_faces(SliceResult& result) {
-  std::vector<std::int32_t> parent(result.faces.size());
+  const std::size_t n = result.faces.size();
+  std::vector<std::int32_t> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
   auto root = [&](std::int32_t f) {
     while (parent[f] != f) f = parent[f] = parent[parent[f]];
     return f;
   };
   Grid<std::int32_t>& face = result.face;
-  for (int row = 0; row < face.rows; ++row)
-    for (int col = 0; col < face.cols; ++col) {
-      const std::int32_t f = face(col, row);
-      if (f < 2) continue;
-      for (const auto& [c, r] : {std::pair{col + 1, row}, {col, row + 1}}) {
-        if (!face.contains(c, r) || face(c, r) < 2 || face(c, r) == f) continue;
-        const RasterFace &a_face = result.faces[f], &b_face = result.faces[face(c, r)];
-        // Holes merge with each other whatever plane they came from, and never with paper.
-        if (a_face.hole != b_face.hole) continue;
-        if (!a_face.hole && (a_face.orientation != b_face.orientation || a_face.depth_mm != b_face.depth_mm)) continue;
-        const std::int32_t a = root(f), b = root(face(c, r));
-        parent[std::max(a, b)] = std::min(a, b);
-      }
-    }
-  const std::size_t n = result.faces.size();
   std::vector<std::int64_t> pixels(n, 0);
-  for (const std::int32_t f : face.values)
-    if (f >= 0) ++pixels[static_cast<std::size_t>(f)];
+  bool merged = false;
+  auto join = [&](std::int32_t f, std::int32_t g) {
+    if (g < 2 || g == f) return;
+    const RasterFace &a_face = result.faces[f], &b_face = result.faces[g];
+    // Holes merge with each other whatever plane they came from, and never with paper.
+    if (a_face.hole != b_face.hole) return;
+    if (!a_face.hole && (a_face.orientation != b_face.orientation || a_face.depth_mm != b_face.depth_mm)) return;
+    const std::int32_t a = root(f), b = root(g);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b), merged = true;
+  };
+  for (int row = 0; row < face.rows; ++row) {
+    const std::int32_t* here = &face.values[face.index(0, row)];
+    const std::int32_t* below = row + 1 < face.rows ? here + face.cols : nullptr;
+    for (int col = 0; col < face.cols; ++col) {
+      const std::int32_t f = here[col];
+      if (f >= 0) ++pixels[static_cast<std::size_t>(f)];
+      if (f < 2) continue;
+      if (col + 1 < face.cols && here[col + 1] != f) join(f, here[col + 1]);
+      if (below && below[col] != f) join(f, below[col]);
+    }
+  }
+  const bool emptied = std::any_of(pixels.begin() + std::min<std::size_t>(2, n), pixels.end(), [](std::int64_t p) { return p == 0; });
+  if (!merged && !emptied) {  // the ids stay as they are: no pass over the pixels to relabel them
+    for (std::size_t f = 0; f < n; ++f) result.faces[f].pixels = pixels[f];
+    return;
+  }
   for (std::size_t f = 0; f < n; ++f)
     if (const auto r = static_cast<std::size_t>(root(static_cast<std::int32_t>(f))); r != f) pixels[r] += std::exchange(pixels[f], 0);
   std::vector<std::int32_t> new_id(n, -1);
@@ -413,19 +423,27 @@ std::vector<FacePart> split_disconnected_faces(SliceResult& result, const std::v
   std::vector<std::uint8_t> wanted(result.faces.size(), 0);
   for (const std::int32_t f : faces)
     if (f >= 0 && !result.faces[static_cast<std::size_t>(f)].hole) wanted[static_cast<std::size_t>(f)] = 1;
+  // The box around the wanted pixels: the flood fill's own grid need not cover the sheet (the rounds
+  // of supports split a few faces at a time).
+  int col_lo = face.cols, col_hi = -1, row_lo = face.rows, row_hi = -1;
+  for (int row = 0; row < face.rows; ++row)
+    for (int col = 0; col < face.cols; ++col)
+      if (const std::int32_t f = face(col, row); f >= 0 && wanted[static_cast<std::size_t>(f)])
+        col_lo = std::min(col_lo, col), col_hi = std::max(col_hi, col), row_lo = std::min(row_lo, row), row_hi = row;
   // Flood-fill every part of the wanted faces; part[i] holds the pixels of part i.
-  Grid<std::int32_t> part(face.cols, face.rows, -1);
+  Grid<std::int32_t> part(std::max(0, col_hi - col_lo + 1), std::max(0, row_hi - row_lo + 1), -1);
+  auto part_of = [&](int col, int row) -> std::int32_t& { return part(col - col_lo, row - row_lo); };
   std::vector<std::vector<std::size_t>> parts;
   std::vector<std::int32_t> part_face;
   std::vector<std::size_t> stack;
-  for (int row = 0; row < face.rows; ++row)
-    for (int col = 0; col < face.cols; ++col) {
+  for (int row = row_lo; row <= row_hi; ++row)
+    for (int col = col_lo; col <= col_hi; ++col) {
       const std::int32_t f = face(col, row);
-      if (f < 0 || !wanted[static_cast<std::size_t>(f)] || part(col, row) >= 0) continue;
+      if (f < 0 || !wanted[static_cast<std::size_t>(f)] || part_of(col, row) >= 0) continue;
       const auto id = static_cast<std::int32_t>(parts.size());
       parts.emplace_back();
       part_face.push_back(f);
-      part(col, row) = id;
+      part_of(col, row) = id;
       stack.assign(1, face.index(col, row));
       while (!stack.empty()) {
         const std::size_t i = stack.back();
@@ -433,8 +451,8 @@ std::vector<FacePart> split_disconnected_faces(SliceResult& result, const std::v
         parts.back().push_back(i);
         const int c = static_cast<int>(i % face.cols), r = static_cast<int>(i / face.cols);
         for (const auto& [dc, dr] : kStep)
-          if (face.contains(c + dc, r + dr) && face(c + dc, r + dr) == f && part(c + dc, r + dr) < 0)
-            part(c + dc, r + dr) = id, stack.push_back(face.index(c + dc, r + dr));
+          if (face.contains(c + dc, r + dr) && face(c + dc, r + dr) == f && part_of(c + dc, r + dr) < 0)
+            part_of(c + dc, r + dr) = id, stack.push_back(face.index(c + dc, r + dr));
       }
     }
   // The largest part of each face keeps its id (the first of equals, for determinism).
@@ -489,35 +507,62 @@ std::vector<FacePart> split_disconnected_faces(SliceResult& result, const std::v
 
 namespace {
 
-// One sweep of align_folds_to_lines; returns how many pixels changed face.
-std::int64_t align_sweep(SliceResult& result, const PixelGrid& grid, double tolerance_mm) {
+// Where faces a (row r) and b (row r + 1 below it) should meet: their fold line Y = h - d lies
+// between rows t and t + 1, Y = (rows_above_fold - t - 1) / px_per_mm. -1 when they meet on no fold
+// within tolerance_mm of their boundary (and for a line above the sheet, which nothing can reach).
+int fold_row(const SliceResult& result, const PixelGrid& grid, double tolerance_mm, std::int32_t a, std::int32_t b, int r) {
+  if (a == b || a < 0 || b < 0) return -1;
+  const RasterFace &fa = result.faces[static_cast<std::size_t>(a)], &fb = result.faces[static_cast<std::size_t>(b)];
+  if (fa.orientation == fb.orientation || fa.hole || fb.hole) return -1;
+  const double fold_Y = fa.orientation == Orientation::H ? fa.depth_mm - fb.depth_mm : fb.depth_mm - fa.depth_mm;
+  const double edge_Y = grid.Y(r) - 0.5 / grid.px_per_mm;
+  if (!(std::abs(edge_Y - fold_Y) <= tolerance_mm)) return -1;
+  return static_cast<int>(std::lround(grid.rows_above_fold - 1 - fold_Y * grid.px_per_mm));
+}
+
+// One sweep of align_folds_to_lines over one column; returns how many pixels changed face.
+std::int64_t align_column(SliceResult& result, const PixelGrid& grid, double tolerance_mm, int col) {
   std::int64_t moved = 0;
   Grid<std::int32_t>& face = result.face;
   auto count = [&](std::int32_t f, int delta) { result.faces[static_cast<std::size_t>(f)].pixels += delta; };
-  for (int col = 0; col < face.cols; ++col)
-    for (int r = 0; r + 1 < face.rows; ++r) {
-      const std::int32_t a = face(col, r), b = face(col, r + 1);  // a above, b below
-      if (a == b || a < 0 || b < 0) continue;
-      const RasterFace &fa = result.faces[static_cast<std::size_t>(a)], &fb = result.faces[static_cast<std::size_t>(b)];
-      if (fa.orientation == fb.orientation || fa.hole || fb.hole) continue;
-      const double fold_Y = fa.orientation == Orientation::H ? fa.depth_mm - fb.depth_mm : fb.depth_mm - fa.depth_mm;
-      const double edge_Y = grid.Y(r) - 0.5 / grid.px_per_mm;
-      if (!(std::abs(edge_Y - fold_Y) <= tolerance_mm)) continue;
-      // The boundary between rows t and t + 1 lies at Y = (rows_above_fold - t - 1) / px_per_mm.
-      const int t = static_cast<int>(std::lround(grid.rows_above_fold - 1 - fold_Y * grid.px_per_mm));
-      if (t < r) {  // up: b takes rows t + 1 .. r if they are all a and a keeps row t
-        bool free = t >= 0 && face(col, t) == a;
-        for (int k = t + 1; free && k <= r; ++k) free = face(col, k) == a;
-        if (!free) continue;
-        for (int k = t + 1; k <= r; ++k) face(col, k) = b, count(a, -1), count(b, 1), ++moved;
-      } else if (t > r) {  // down: a takes rows r + 1 .. t if they are all b and b keeps row t + 1
-        bool free = t + 1 < face.rows && face(col, t + 1) == b;
-        for (int k = r + 1; free && k <= t; ++k) free = face(col, k) == b;
-        if (!free) continue;
-        for (int k = r + 1; k <= t; ++k) face(col, k) = a, count(b, -1), count(a, 1), ++moved;
-        r = t;  // continue below the moved boundary
-      }
+  for (int r = 0; r + 1 < face.rows; ++r) {
+    const std::int32_t a = face(col, r), b = face(col, r + 1);  // a above, b below
+    const int t = fold_row(result, grid, tolerance_mm, a, b, r);
+    if (t == -1 || t == r) continue;
+    if (t < r) {  // up: b takes rows t + 1 .. r if they are all a and a keeps row t
+      bool free = t >= 0 && face(col, t) == a;
+      for (int k = t + 1; free && k <= r; ++k) free = face(col, k) == a;
+      if (!free) continue;
+      for (int k = t + 1; k <= r; ++k) face(col, k) = b, count(a, -1), count(b, 1), ++moved;
+    } else {  // down: a takes rows r + 1 .. t if they are all b and b keeps row t + 1
+      bool free = t + 1 < face.rows && face(col, t + 1) == b;
+      for (int k = r + 1; free && k <= t; ++k) free = face(col, k) == b;
+      if (!free) continue;
+      for (int k = r + 1; k <= t; ++k) face(col, k) = a, count(b, -1), count(a, 1), ++moved;
+      r = t;  // continue below the moved boundary
     }
+  }
+  return moved;
+}
+
+// One sweep of align_folds_to_lines; returns how many pixels changed face. Columns are independent,
+// so only those with a boundary off its line are walked: a row-major scan finds them far faster
+// than walking every column down.
+std::int64_t align_sweep(SliceResult& result, const PixelGrid& grid, double tolerance_mm) {
+  const Grid<std::int32_t>& face = result.face;
+  std::vector<std::uint8_t> off_line(static_cast<std::size_t>(face.cols), 0);
+  for (int r = 0; r + 1 < face.rows; ++r) {
+    const std::int32_t* above = &face.values[face.index(0, r)];
+    const std::int32_t* below = above + face.cols;
+    for (int col = 0; col < face.cols; ++col)
+      if (above[col] != below[col] && !off_line[static_cast<std::size_t>(col)]) {
+        const int t = fold_row(result, grid, tolerance_mm, above[col], below[col], r);
+        off_line[static_cast<std::size_t>(col)] = t != -1 && t != r;
+      }
+  }
+  std::int64_t moved = 0;
+  for (int col = 0; col < face.cols; ++col)
+    if (off_line[static_cast<std::size_t>(col)]) moved += align_column(result, grid, tolerance_mm, col);
   return moved;
 }
 

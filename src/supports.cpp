@@ -12,6 +12,8 @@
 #include <tuple>
 #include <utility>
 
+#include <tbb/parallel_for.h>
+
 namespace origamic {
 namespace {
 
@@ -36,19 +38,23 @@ bool needs_support(FaceStatus status, bool allow_dangling) {
 
 class CandidateFinder {
  public:
-  CandidateFinder(const RasterMaps& maps, const SliceResult& slices, double split_cost)
+  // Candidates will be asked of the faces in `wanted` only.
+  CandidateFinder(const RasterMaps& maps, const SliceResult& slices, const std::vector<std::int32_t>& wanted, double split_cost)
       : grid_(maps.grid), face_(slices.face), faces_(slices.faces), split_cost_(split_cost),
-        px_mm_(1 / maps.grid.px_per_mm), block_(slices.block_px),
-        first_(slices.faces.size() * static_cast<std::size_t>(face_.cols), -1),
-        last_(first_.size(), -1), columns_(slices.faces.size(), {INT_MAX, -1}) {
+        px_mm_(1 / maps.grid.px_per_mm), block_(slices.block_px), slot_(slices.faces.size(), -1) {
+    for (const std::int32_t f : wanted)
+      if (int& k = slot_[static_cast<std::size_t>(f)]; k < 0) k = static_cast<int>(columns_.size()), columns_.push_back({INT_MAX, -1});
+    first_.assign(columns_.size() * static_cast<std::size_t>(face_.cols), -1);
+    last_.assign(first_.size(), -1);
     for (int r = 0; r < face_.rows; ++r)
       for (int c = 0; c < face_.cols; ++c) {
         const std::int32_t f = face_(c, r);
-        if (f < 0) continue;
-        const std::size_t k = static_cast<std::size_t>(f) * face_.cols + c;
+        if (f < 0 || slot_[static_cast<std::size_t>(f)] < 0) continue;
+        const auto slot = static_cast<std::size_t>(slot_[static_cast<std::size_t>(f)]);
+        const std::size_t k = slot * face_.cols + c;
         if (first_[k] < 0) first_[k] = r;
         last_[k] = r;
-        auto& [lo, hi] = columns_[static_cast<std::size_t>(f)];
+        auto& [lo, hi] = columns_[slot];
         lo = std::min(lo, c), hi = std::max(hi, c);
       }
   }
@@ -61,9 +67,9 @@ class CandidateFinder {
     const RasterFace& face = faces_[static_cast<std::size_t>(f)];
     // The block columns, and the two flush with the face's ends: a support there trims the faces it
     // crosses where they end with the face, instead of cutting them in two.
+    const auto [lo, hi] = columns_[static_cast<std::size_t>(slot_[static_cast<std::size_t>(f)])];
     std::vector<int> starts;
-    for (int c0 = 0; c0 + block_ <= face_.cols; c0 += block_) starts.push_back(c0);
-    const auto [lo, hi] = columns_[static_cast<std::size_t>(f)];
+    for (int c0 = std::max(0, lo) / block_ * block_; c0 <= hi && c0 + block_ <= face_.cols; c0 += block_) starts.push_back(c0);
     for (const int c0 : {lo, hi + 1 - block_})
       if (c0 >= 0 && c0 + block_ <= face_.cols && c0 % block_ != 0) starts.push_back(c0);
     for (const int c0 : starts) {
@@ -110,8 +116,9 @@ class CandidateFinder {
     }
     return left && right;
   }
-  int first_row(std::int32_t f, int c) const { return first_[static_cast<std::size_t>(f) * face_.cols + c]; }
-  int last_row(std::int32_t f, int c) const { return last_[static_cast<std::size_t>(f) * face_.cols + c]; }
+  std::size_t at(std::int32_t f, int c) const { return static_cast<std::size_t>(slot_[static_cast<std::size_t>(f)]) * face_.cols + c; }
+  int first_row(std::int32_t f, int c) const { return first_[at(f, c)]; }
+  int last_row(std::int32_t f, int c) const { return last_[at(f, c)]; }
 
   // Walks the block column away from the edge to the first face the support can fold onto: a V
   // face at depth d' on the row where Y = h - d', or an H face at height h' where Y = h' - d.
@@ -155,8 +162,9 @@ class CandidateFinder {
   const std::vector<RasterFace>& faces_;
   double split_cost_, px_mm_;
   int block_;
-  std::vector<int> first_, last_;  // per face and column: its first and last row, -1 if none
-  std::vector<std::pair<int, int>> columns_;  // per face: its first and last column
+  std::vector<int> slot_;  // per face: its place in the tables below, -1 for faces not wanted
+  std::vector<int> first_, last_;  // per wanted face and column: its first and last row, -1 if none
+  std::vector<std::pair<int, int>> columns_;  // per wanted face: its first and last column
 };
 
 bool claimed_anywhere(const Grid<std::uint8_t>& claimed, int c0, int c1, int r0, int r1) {
@@ -276,7 +284,7 @@ std::vector<std::int32_t> unsupported(const Standing& standing, bool allow_dangl
 std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const Standing& standing,
                                        const std::vector<std::int32_t>& invalid, const SupportOptions& options,
                                        bool allow_splits) {
-  const CandidateFinder finder(maps, slices, options.split_cost_mm);
+  const CandidateFinder finder(maps, slices, invalid, options.split_cost_mm);
   Grid<std::uint8_t> claimed(slices.face.cols, slices.face.rows, 0);
   std::vector<Candidate> chosen;
   // Seed: an edge already folded to a face is not supported again; a floating face gets both. A
@@ -289,27 +297,37 @@ std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult
   // fold path reaches it, down towards the floor likewise.
   for (const bool by_missing_plane : {false, true}) {
     if (by_missing_plane && !chosen.empty()) break;
-    for (const std::int32_t f : invalid) {
+    auto wanted = [&](std::size_t i, bool up) {
+      return by_missing_plane ? !(up ? standing.validity.in_X[i] : standing.validity.in_Y[i])
+                              : !(up ? top_joined[i] : bottom_joined[i]);
+    };
+    // The candidates of every edge that wants them, found on both cores (the search only reads);
+    // the greedy choice below stays in order, and skips edges an earlier choice joined.
+    std::vector<std::vector<Candidate>> found(2 * invalid.size());
+    tbb::parallel_for(std::size_t{0}, found.size(), [&](std::size_t k) {
+      const std::int32_t f = invalid[k / 2];
+      const bool up = k % 2 == 0;
+      if (!wanted(static_cast<std::size_t>(f), up)) return;
+      found[k] = finder.from_edge(f, up);
+      std::ranges::sort(found[k], [](const Candidate& a, const Candidate& b) {
+        return std::tie(a.cost, a.taken, a.c0) < std::tie(b.cost, b.taken, b.c0);
+      });
+    });
+    for (std::size_t k = 0; k < found.size(); ++k) {
+      const std::int32_t f = invalid[k / 2];
       const auto i = static_cast<std::size_t>(f);
-      for (const bool up : {true, false}) {
-        const bool wanted = by_missing_plane ? !(up ? standing.validity.in_X[i] : standing.validity.in_Y[i])
-                                             : !(up ? top_joined[i] : bottom_joined[i]);
-        if (!wanted) continue;
-        std::vector<Candidate> candidates = finder.from_edge(f, up);
-        std::ranges::sort(candidates, [](const Candidate& a, const Candidate& b) {
-          return std::tie(a.cost, a.taken, a.c0) < std::tie(b.cost, b.taken, b.c0);
-        });
-        for (Candidate& s : candidates) {
-          if (!allow_splits && s.cost >= options.split_cost_mm) break;  // sorted: no cheaper one follows
-          if (claimed_anywhere(claimed, s.c0, s.c1, s.r0, s.r1)) continue;
-          widen(slices.face, claimed, s);
-          for (int r = s.r0; r < s.r1; ++r)
-            for (int c = s.c0; c < s.c1; ++c) claimed(c, r) = 1;
-          chosen.push_back(s);
-          (up ? top_joined[i] : bottom_joined[i]) = 1;
-          (up ? bottom_joined[static_cast<std::size_t>(s.target)] : top_joined[static_cast<std::size_t>(s.target)]) = 1;
-          break;
-        }
+      const bool up = k % 2 == 0;
+      if (!wanted(i, up)) continue;
+      for (Candidate& s : found[k]) {
+        if (!allow_splits && s.cost >= options.split_cost_mm) break;  // sorted: no cheaper one follows
+        if (claimed_anywhere(claimed, s.c0, s.c1, s.r0, s.r1)) continue;
+        widen(slices.face, claimed, s);
+        for (int r = s.r0; r < s.r1; ++r)
+          for (int c = s.c0; c < s.c1; ++c) claimed(c, r) = 1;
+        chosen.push_back(s);
+        (up ? top_joined[i] : bottom_joined[i]) = 1;
+        (up ? bottom_joined[static_cast<std::size_t>(s.target)] : top_joined[static_cast<std::size_t>(s.target)]) = 1;
+        break;
       }
     }
   }
@@ -440,8 +458,20 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
   std::size_t fewest_exact = SIZE_MAX;
   settle();
   for (;;) {
+    // A pass of rounds from an exact verdict that leaves at least as many faces invalid as it found
+    // is undone: its supports held nothing, and the exact plan of the slices before it is at hand.
+    std::optional<SliceResult> before;
+    const std::size_t invalid_before = unsupported(standing, options.allow_dangling).size();
+    if (exact) before = slices;
     const std::string why = support_rounds();
-    confirm();
+    if (before && !why.empty() && unsupported(standing, options.allow_dangling).size() >= invalid_before) {
+      slices = std::move(*before);
+      standing = standing_of(result.plan);
+      exact = true;
+      ++report.passes_undone;
+    } else {
+      confirm();
+    }
     std::vector<std::int32_t> invalid = unsupported(standing, options.allow_dangling);
     const int loose = result.plan.loose_card_pieces;
     if (invalid.empty() && loose == 0) break;
