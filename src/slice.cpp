@@ -83,14 +83,26 @@ struct Subsegment {
 // the surface is steep: the quantization adapts to it (seed Figure 4.6).
 void merge_thin_subsegments(const Grid<std::int32_t>& segment, double min_side_px, std::vector<double>& pixels,
                             std::vector<Subsegment>& subsegments, Grid<std::int32_t>& subsegment) {
+  // Each subsegment's pixels in row-major order, and whether it is thin: kept from pass to pass for
+  // the subsegments no merge touched.
+  std::vector<std::vector<std::pair<int, int>>> members(subsegments.size());
+  for (int row = 0; row < subsegment.rows; ++row)
+    for (int col = 0; col < subsegment.cols; ++col)
+      if (const std::int32_t k = subsegment(col, row); k >= 0) members[static_cast<std::size_t>(k)].emplace_back(col, row);
+  auto is_thin = [&](const std::vector<std::pair<int, int>>& pixels_of) {
+    return !pixels_of.empty() && oriented_box_min_side_px(pixels_of) < min_side_px;
+  };
+  std::vector<std::uint8_t> thin(subsegments.size());
+  for (std::size_t k = 0; k < subsegments.size(); ++k) thin[k] = is_thin(members[k]);
+  // The grid keeps its first ids until the end; `current` maps them to the ids of this pass.
+  std::vector<std::int32_t> current(subsegments.size());
+  std::iota(current.begin(), current.end(), 0);
+  auto id_at = [&](int col, int row) {
+    const std::int32_t k = subsegment(col, row);
+    return k < 0 ? k : current[static_cast<std::size_t>(k)];
+  };
   for (;;) {
     const std::size_t n = subsegments.size();
-    std::vector<std::vector<std::pair<int, int>>> members(n);
-    for (int row = 0; row < subsegment.rows; ++row)
-      for (int col = 0; col < subsegment.cols; ++col)
-        if (const std::int32_t k = subsegment(col, row); k >= 0) members[static_cast<std::size_t>(k)].emplace_back(col, row);
-    std::vector<std::uint8_t> thin(n, 0);
-    for (std::size_t k = 0; k < n; ++k) thin[k] = !members[k].empty() && oriented_box_min_side_px(members[k]) < min_side_px;
     // Each thin subsegment's neighbour nearest in depth (ties: the lower id).
     // Pairs merge, the thinnest first, each subsegment in at most one pair per pass: a run of slivers
     // becomes steps about W wide, not one wide step.
@@ -114,7 +126,7 @@ void merge_thin_subsegments(const Grid<std::int32_t>& segment, double min_side_p
       for (const auto& [col, row] : members[k])
         for (const auto& [dc, dr] : kStep) {
           if (!subsegment.contains(col + dc, row + dr)) continue;
-          const std::int32_t j = subsegment(col + dc, row + dr);
+          const std::int32_t j = id_at(col + dc, row + dr);
           if (j < 0 || static_cast<std::size_t>(j) == k || paired[static_cast<std::size_t>(j)] ||
               segment(col + dc, row + dr) != subsegments[k].segment)
             continue;
@@ -123,7 +135,7 @@ void merge_thin_subsegments(const Grid<std::int32_t>& segment, double min_side_p
       if (best < 0) continue;
       into[k] = best, paired[k] = paired[static_cast<std::size_t>(best)] = 1, merged = true;
     }
-    if (!merged) return;
+    if (!merged) break;
     // A part of another orientation takes the plane of the subsegment it joins: its depth does not
     // count in the mean, its pixels do in the size.
     std::vector<double> sum(n, 0), count(n, 0), size(n, 0);
@@ -141,11 +153,34 @@ void merge_thin_subsegments(const Grid<std::int32_t>& segment, double min_side_p
         next.push_back({subsegments[k].segment, sum[k] / count[k], subsegments[k].orientation});
         next_pixels.push_back(size[k]);
       }
-    for (auto& v : subsegment.values)
-      if (v >= 0) v = renumber[static_cast<std::size_t>(into[static_cast<std::size_t>(v)])];
+    for (auto& k : current)
+      if (k >= 0) k = renumber[static_cast<std::size_t>(into[static_cast<std::size_t>(k)])];
+    std::vector<std::vector<std::pair<int, int>>> next_members(next.size());
+    std::vector<std::uint8_t> next_thin(next.size()), grown(next.size(), 0);
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::int32_t r = renumber[static_cast<std::size_t>(into[k])];
+      if (r < 0) continue;
+      auto& to = next_members[static_cast<std::size_t>(r)];
+      if (to.empty()) {
+        to = std::move(members[k]);
+        next_thin[static_cast<std::size_t>(r)] = thin[k];
+      } else {
+        // Row-major again, as a scan of the grid would list them: the box's sums come out the same.
+        const auto middle = static_cast<std::ptrdiff_t>(to.size());
+        to.insert(to.end(), members[k].begin(), members[k].end());
+        std::ranges::inplace_merge(to, to.begin() + middle, {}, [](const std::pair<int, int>& p) { return std::pair{p.second, p.first}; });
+        grown[static_cast<std::size_t>(r)] = 1;
+      }
+    }
+    for (std::size_t r = 0; r < next.size(); ++r)
+      if (grown[r]) next_thin[r] = is_thin(next_members[r]);
     subsegments = std::move(next);
     pixels = std::move(next_pixels);
+    members = std::move(next_members);
+    thin = std::move(next_thin);
   }
+  for (auto& k : subsegment.values)
+    if (k >= 0) k = current[static_cast<std::size_t>(k)];
 }
 
 // The depth quantization at full resolution: each segment's depth range is cut into the most levels
