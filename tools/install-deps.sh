@@ -10,7 +10,7 @@ packages=(
   libopenmesh-dev libglm-dev libembree-dev libtbb-dev
   libcli11-dev nlohmann-json3-dev libpng-dev libgif-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libdxflib-dev libcairo2-dev fonts-dejavu-core libtinygltf-dev
+  libdxflib-dev libcairo2-dev fonts-dejavu-core libtinygltf-dev libmimalloc-dev
   python3 python3-ezdxf poppler-utils
 )
 
