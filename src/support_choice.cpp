@@ -1,0 +1,282 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "support_choice.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <numeric>
+#include <optional>
+#include <set>
+#include <tuple>
+#include <utility>
+
+#include <tbb/parallel_for.h>
+
+namespace origamic {
+namespace {
+
+class CandidateFinder {
+ public:
+  // Candidates will be asked of the faces in `wanted` only.
+  CandidateFinder(const RasterMaps& maps, const SliceResult& slices, const std::vector<std::int32_t>& wanted, double split_cost)
+      : grid_(maps.grid), face_(slices.face), faces_(slices.faces), split_cost_(split_cost),
+        px_mm_(1 / maps.grid.px_per_mm), block_(slices.block_px), slot_(slices.faces.size(), -1) {
+    for (const std::int32_t f : wanted)
+      if (int& k = slot_[static_cast<std::size_t>(f)]; k < 0) k = static_cast<int>(columns_.size()), columns_.push_back({INT_MAX, -1});
+    first_.assign(columns_.size() * static_cast<std::size_t>(face_.cols), -1);
+    last_.assign(first_.size(), -1);
+    for (int r = 0; r < face_.rows; ++r)
+      for (int c = 0; c < face_.cols; ++c) {
+        const std::int32_t f = face_(c, r);
+        if (f < 0 || slot_[static_cast<std::size_t>(f)] < 0) continue;
+        const auto slot = static_cast<std::size_t>(slot_[static_cast<std::size_t>(f)]);
+        const std::size_t k = slot * face_.cols + c;
+        if (first_[k] < 0) first_[k] = r;
+        last_[k] = r;
+        auto& [lo, hi] = columns_[slot];
+        lo = std::min(lo, c), hi = std::max(hi, c);
+      }
+  }
+
+  // Candidates from the top (up = true) or bottom edge of face f, one per W-wide block column that
+  // f fills on that edge. (h, d) is the OA point of the edge: a support leaving it is H(h) reaching
+  // back (or forward) to a V face, or V(d) reaching up (or down) to an H face.
+  std::vector<Candidate> from_edge(std::int32_t f, bool up) const {
+    std::vector<Candidate> candidates;
+    const RasterFace& face = faces_[static_cast<std::size_t>(f)];
+    // The block columns, and the two flush with the face's ends: a support there trims the faces it
+    // crosses where they end with the face, instead of cutting them in two.
+    const auto [lo, hi] = columns_[static_cast<std::size_t>(slot_[static_cast<std::size_t>(f)])];
+    std::vector<int> starts;
+    for (int c0 = std::max(0, lo) / block_ * block_; c0 <= hi && c0 + block_ <= face_.cols; c0 += block_) starts.push_back(c0);
+    for (const int c0 : {lo, hi + 1 - block_})
+      if (c0 >= 0 && c0 + block_ <= face_.cols && c0 % block_ != 0) starts.push_back(c0);
+    for (const int c0 : starts) {
+      const int c1 = c0 + block_;
+      // The edge row: f's top (bottom) at the block column's centre. A support needs f along at
+      // least half of its near side and its target along half of its far side: slices of curved
+      // surfaces cross a W-wide column at a slant, and the rest of either side is a cut.
+      const int centre = (c0 + c1) / 2;
+      const int edge = up ? first_row(f, centre) : last_row(f, centre);
+      if (edge < 0) continue;
+      // The support may also start inside f, taking its first rows: between two thin slices the
+      // fold onto the next one then lands inside it rather than beyond it, and neither is cut.
+      const int inward = up ? 1 : -1;
+      const int deepest = up ? last_row(f, centre) : first_row(f, centre);
+      for (int taken = 0; taken <= 2 * block_ && (deepest - edge) * inward - taken >= 0; ++taken) {
+        const int row = edge + taken * inward;  // f's row just outside the support
+        if (face_(centre, row) != f || !mostly(f, c0, c1, row)) continue;
+        const double edge_Y = grid_.Y(row) + (up ? px_mm_ / 2 : -px_mm_ / 2);
+        const double h = face.orientation == Orientation::V ? edge_Y + face.depth_mm : face.depth_mm;
+        const double d = face.orientation == Orientation::V ? face.depth_mm : face.depth_mm - edge_Y;
+        if (auto c = walk(f, c0, c1, row, up, h, d)) {
+          c->taken = taken;
+          candidates.push_back(*c);
+          if (c->cost < split_cost_) break;  // the first that cuts nothing: it takes least of f
+        }
+      }
+    }
+    return candidates;
+  }
+
+ private:
+  bool mostly(std::int32_t f, int c0, int c1, int r) const {
+    int n = 0;
+    for (int c = c0; c < c1; ++c) n += face_(c, r) == f;
+    return 2 * n >= c1 - c0;
+  }
+  // Whether support s cuts face x in two: x lies on both sides of it, within its rows. A support
+  // that only trims x's end leaves it one piece of paper.
+  bool splits(std::int32_t x, const Candidate& s) const {
+    bool left = false, right = false;
+    for (int r = s.r0; r < s.r1; ++r) {
+      left |= s.c0 > 0 && face_(s.c0 - 1, r) == x;
+      right |= s.c1 < face_.cols && face_(s.c1, r) == x;
+    }
+    return left && right;
+  }
+  std::size_t at(std::int32_t f, int c) const { return static_cast<std::size_t>(slot_[static_cast<std::size_t>(f)]) * face_.cols + c; }
+  int first_row(std::int32_t f, int c) const { return first_[at(f, c)]; }
+  int last_row(std::int32_t f, int c) const { return last_[at(f, c)]; }
+
+  // Walks the block column away from the edge to the first face the support can fold onto: a V
+  // face at depth d' on the row where Y = h - d', or an H face at height h' where Y = h' - d.
+  std::optional<Candidate> walk(std::int32_t f, int c0, int c1, int edge, bool up, double h, double d) const {
+    const int step = up ? -1 : 1;
+    std::vector<std::int32_t> crossed;  // with repeats; a run of one face is one entry
+    for (int r = edge + step; r >= 0 && r < face_.rows; r += step) {
+      const std::int32_t g = face_((c0 + c1) / 2, r);
+      if (g >= 0 && g != f && mostly(g, c0, c1, r)) {
+        const RasterFace& target = faces_[static_cast<std::size_t>(g)];
+        const double Y = grid_.Y(r);
+        const bool beyond = up ? target.depth_mm < d : target.depth_mm > d;  // behind / in front
+        const bool higher = up ? target.depth_mm > h : target.depth_mm < h;  // above / below
+        const bool v_hit = target.orientation == Orientation::V && beyond && std::abs(h - target.depth_mm - Y) <= px_mm_ / 2;
+        const bool h_hit = target.orientation == Orientation::H && higher && std::abs(target.depth_mm - d - Y) <= px_mm_ / 2;
+        if (v_hit || h_hit) {
+          const int near = edge + step, far = r - step;  // rows the support covers, near to far
+          if ((far - near) * step < 0) return std::nullopt;  // no room: the faces touch already
+          Candidate s;
+          s.face = f, s.target = g, s.c0 = c0, s.c1 = c1;
+          s.r0 = std::min(near, far), s.r1 = std::max(near, far) + 1;
+          s.face_row = edge, s.target_row = r;
+          s.orientation = v_hit ? Orientation::H : Orientation::V;
+          s.depth_mm = v_hit ? h : d;
+          s.cost = (s.r1 - s.r0) * px_mm_;
+          std::ranges::sort(crossed);
+          crossed.erase(std::unique(crossed.begin(), crossed.end()), crossed.end());
+          for (const std::int32_t x : crossed)
+            if (x != g && splits(x, s)) s.cost += split_cost_;
+          return s;
+        }
+      }
+      for (int c = c0; c < c1; ++c)
+        if (const std::int32_t x = face_(c, r); x != f && (crossed.empty() || crossed.back() != x)) crossed.push_back(x);
+    }
+    return std::nullopt;
+  }
+
+  const PixelGrid& grid_;
+  const Grid<std::int32_t>& face_;
+  const std::vector<RasterFace>& faces_;
+  double split_cost_, px_mm_;
+  int block_;
+  std::vector<int> slot_;  // per face: its place in the tables below, -1 for faces not wanted
+  std::vector<int> first_, last_;  // per wanted face and column: its first and last row, -1 if none
+  std::vector<std::pair<int, int>> columns_;  // per wanted face: its first and last column
+};
+
+bool claimed_anywhere(const Grid<std::uint8_t>& claimed, int c0, int c1, int r0, int r1) {
+  for (int r = r0; r < r1; ++r)
+    for (int c = c0; c < c1; ++c)
+      if (claimed(c, r)) return true;
+  return false;
+}
+
+// Seed §4.4, last part: a support grows a column at a time to either side while that column still
+// joins the same two faces and covers no other face.
+void widen(const Grid<std::int32_t>& face, const Grid<std::uint8_t>& claimed, Candidate& s) {
+  auto column_fits = [&](int c) {
+    if (c < 0 || c >= face.cols || face(c, s.face_row) != s.face || face(c, s.target_row) != s.target) return false;
+    for (int r = s.r0; r < s.r1; ++r)
+      if (claimed(c, r) || (face(c, r) != s.face && face(c, r) != s.target)) return false;
+    return true;
+  };
+  while (column_fits(s.c0 - 1)) --s.c0;
+  while (column_fits(s.c1)) ++s.c1;
+}
+
+}  // namespace
+
+std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const Standing& standing,
+                                       const std::vector<std::int32_t>& invalid, const SupportOptions& options,
+                                       bool allow_splits) {
+  const CandidateFinder finder(maps, slices, invalid, options.split_cost_mm);
+  Grid<std::uint8_t> claimed(slices.face.cols, slices.face.rows, 0);
+  std::vector<Candidate> chosen;
+  // Seed: an edge already folded to a face is not supported again; a floating face gets both. A
+  // support chosen in this round joins the target's facing edge too, so that one is not supported
+  // again from the other side.
+  std::vector<std::uint8_t> top_joined = standing.fold_on_top, bottom_joined = standing.fold_on_bottom;
+  // First the seed's rule: unjoined edges only. If that finds nothing, faces whose every edge is
+  // folded but which hang from one plane only (a staircase standing on the floor, reaching
+  // nowhere) are supported on the side of the missing plane: up towards the back plane when no
+  // fold path reaches it, down towards the floor likewise.
+  for (const bool by_missing_plane : {false, true}) {
+    if (by_missing_plane && !chosen.empty()) break;
+    auto wanted = [&](std::size_t i, bool up) {
+      return by_missing_plane ? !(up ? standing.validity.in_X[i] : standing.validity.in_Y[i])
+                              : !(up ? top_joined[i] : bottom_joined[i]);
+    };
+    // The candidates of every edge that wants them, found on both cores (the search only reads);
+    // the greedy choice below stays in order, and skips edges an earlier choice joined.
+    std::vector<std::vector<Candidate>> found(2 * invalid.size());
+    tbb::parallel_for(std::size_t{0}, found.size(), [&](std::size_t k) {
+      const std::int32_t f = invalid[k / 2];
+      const bool up = k % 2 == 0;
+      if (!wanted(static_cast<std::size_t>(f), up)) return;
+      found[k] = finder.from_edge(f, up);
+      std::ranges::sort(found[k], [](const Candidate& a, const Candidate& b) {
+        return std::tie(a.cost, a.taken, a.c0) < std::tie(b.cost, b.taken, b.c0);
+      });
+    });
+    for (std::size_t k = 0; k < found.size(); ++k) {
+      const std::int32_t f = invalid[k / 2];
+      const auto i = static_cast<std::size_t>(f);
+      const bool up = k % 2 == 0;
+      if (!wanted(i, up)) continue;
+      for (Candidate& s : found[k]) {
+        if (!allow_splits && s.cost >= options.split_cost_mm) break;  // sorted: no cheaper one follows
+        if (claimed_anywhere(claimed, s.c0, s.c1, s.r0, s.r1)) continue;
+        widen(slices.face, claimed, s);
+        for (int r = s.r0; r < s.r1; ++r)
+          for (int c = s.c0; c < s.c1; ++c) claimed(c, r) = 1;
+        chosen.push_back(s);
+        (up ? top_joined[i] : bottom_joined[i]) = 1;
+        (up ? bottom_joined[static_cast<std::size_t>(s.target)] : top_joined[static_cast<std::size_t>(s.target)]) = 1;
+        break;
+      }
+    }
+  }
+  return chosen;
+}
+
+// Paints the chosen supports as faces of their own. A support crossing a face can leave a strip of
+// it beside the support, narrower than W and within the support's rows: a piece of paper too thin
+// to hold, which becomes part of the support (a wider support, the same folds).
+void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid, double tolerance, std::int64_t crumb_px,
+                    SliceResult& slices) {
+  Grid<std::int32_t>& face = slices.face;
+  const auto first_support = static_cast<std::int32_t>(slices.faces.size());
+  std::set<std::int32_t> crossed;
+  for (const Candidate& s : chosen) {
+    const auto id = static_cast<std::int32_t>(slices.faces.size());
+    slices.faces.push_back({s.orientation, s.depth_mm, slices.faces[static_cast<std::size_t>(s.face)].segment, 0, true});
+    for (int r = s.r0; r < s.r1; ++r)
+      for (int c = s.c0; c < s.c1; ++c) crossed.insert(std::exchange(face(c, r), id));
+    crossed.insert(s.face), crossed.insert(s.target);  // what is left of them may be a crumb
+  }
+  const std::vector<FacePart> parts =
+      split_disconnected_faces(slices, std::vector<std::int32_t>(crossed.begin(), crossed.end()), crumb_px, 0);
+  // The faces and parts a support crossed: their extent, and the support they touch (-1 none, -2
+  // several).
+  const std::size_t n = slices.faces.size();
+  std::vector<std::uint8_t> candidate(n, 0);
+  for (const std::int32_t f : crossed)
+    if (f >= 2 && f < first_support) candidate[static_cast<std::size_t>(f)] = 1;
+  for (const FacePart& p : parts) candidate[static_cast<std::size_t>(p.face)] = 1;
+  std::vector<int> c_lo(n, INT_MAX), c_hi(n, -1), r_lo(n, INT_MAX), r_hi(n, -1);
+  std::vector<std::int32_t> touches(n, -1);
+  const auto supports_end = static_cast<std::int32_t>(first_support + chosen.size());
+  for (int r = 0; r < face.rows; ++r)
+    for (int c = 0; c < face.cols; ++c) {
+      const std::int32_t f = face(c, r);
+      if (f < 0 || !candidate[static_cast<std::size_t>(f)]) continue;
+      const auto i = static_cast<std::size_t>(f);
+      c_lo[i] = std::min(c_lo[i], c), c_hi[i] = std::max(c_hi[i], c);
+      r_lo[i] = std::min(r_lo[i], r), r_hi[i] = std::max(r_hi[i], r);
+      for (const auto& [dc, dr] : {std::pair{-1, 0}, {1, 0}, {0, -1}, {0, 1}}) {
+        if (!face.contains(c + dc, r + dr)) continue;
+        const std::int32_t g = face(c + dc, r + dr);
+        if (g < first_support || g >= supports_end) continue;
+        touches[i] = touches[i] == -1 || touches[i] == g ? g : -2;
+      }
+    }
+  // A narrow one within the rows of the support it touches joins it; other parts go back to their
+  // face: the exact plan decides whether they stand.
+  std::vector<std::int32_t> into(n);
+  std::iota(into.begin(), into.end(), 0);
+  for (const FacePart& p : parts) into[static_cast<std::size_t>(p.face)] = p.from;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!candidate[i] || touches[i] < 0 || c_hi[i] - c_lo[i] + 1 >= slices.block_px) continue;
+    const Candidate& s = chosen[static_cast<std::size_t>(touches[i] - first_support)];
+    if (r_lo[i] >= s.r0 && r_hi[i] < s.r1) into[i] = touches[i];
+  }
+  for (auto& f : face.values)
+    if (f >= 0) f = into[static_cast<std::size_t>(f)];
+  merge_coplanar_faces(slices);
+  align_folds_to_lines(slices, grid, tolerance);
+}
+
+
+}  // namespace origamic

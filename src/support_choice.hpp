@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// One round of supports (seed §4.4) on the raster plan: candidates from the unjoined top and bottom
+// edges of invalid faces to the first face they can fold onto, chosen greedily and widened, then
+// painted in as faces of their own. The loop that runs the rounds is in supports.cpp.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "origamic/raster.hpp"
+#include "origamic/slice.hpp"
+#include "origamic/supports.hpp"
+#include "origamic/validity.hpp"
+
+namespace origamic {
+
+// A support: a W-wide (or wider) block of the raster plan between the face it holds and the face it
+// reaches, turned into a face of its own.
+struct Candidate {
+  std::int32_t face = 0, target = 0;
+  int c0 = 0, c1 = 0;      // pixel columns [c0, c1)
+  int r0 = 0, r1 = 0;      // pixel rows [r0, r1) the support covers
+  int face_row = 0;        // the row of `face` just outside the support
+  int target_row = 0;      // the row of `target` just outside it, on the other side
+  Orientation orientation = Orientation::V;
+  double depth_mm = 0;
+  double cost = 0;
+  int taken = 0;           // rows of `face` the support takes, on its edge
+};
+
+// What the loop needs to know of a plan: each face's status and which of its sides are folded.
+struct Standing {
+  Validity validity;
+  std::vector<std::uint8_t> fold_on_top, fold_on_bottom;
+};
+
+/// Supports for the invalid faces, chosen greedily in their order, widened, never overlapping; not
+/// yet painted. With allow_splits false, none that cuts a third face in two.
+std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const Standing& standing,
+                                       const std::vector<std::int32_t>& invalid, const SupportOptions& options,
+                                       bool allow_splits);
+
+/// Paints the chosen supports into the raster plan as faces of their own (RasterFace::support).
+void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid, double tolerance, std::int64_t crumb_px,
+                    SliceResult& slices);
+
+}  // namespace origamic
