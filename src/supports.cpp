@@ -108,11 +108,13 @@ std::vector<std::int32_t> unsupported(const Standing& standing, bool allow_dangl
 }
 
 constexpr int kSplitRetryRounds = 8;
+// The orders from this one on (and the last, should there be fewer) may cut faces in two again.
+constexpr int kSplitRetryFromOrder = 3;
 
 // One greedy run of the support loop in the face order that `random` draws.
 Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sheet& sheet,
                             const PlanOptions& plan_options, const SupportOptions& options, std::mt19937& random,
-                            bool last_order) {
+                            bool retry_splits) {
   Supported result;
   SupportReport& report = result.report;
   report.round_bound = slices.face.cols / std::max(1, slices.block_px) + 1;
@@ -221,8 +223,8 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
     const auto model_faces = std::ranges::partition(invalid, card_piece);
     if (model_faces.begin() != invalid.begin()) {
       std::for_each(invalid.begin(), model_faces.begin(), cut_out);
-    } else if (last_order && !splits_retried && report.rounds < report.round_bound) {
-      // The last order, before any of the model is cut out: a few more rounds in which supports may
+    } else if (retry_splits && !splits_retried && report.rounds < report.round_bound) {
+      // From the third order on, before any of the model is cut out: a few more rounds in which supports may
       // cut faces in two again, so that a face held only by reaching across others (a ring's top)
       // stands.
       splits_retried = true;
@@ -274,7 +276,8 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
   std::optional<Supported> best;
   for (int order = 1; order <= std::max(1, options.orders); ++order) {
     const bool last = order >= options.orders;
-    Supported run = supports_in_order(maps, last ? std::move(slices) : slices, sheet, plan_options, options, random, last);
+    const bool retry_splits = order >= std::min(options.orders, kSplitRetryFromOrder);
+    Supported run = supports_in_order(maps, last ? std::move(slices) : slices, sheet, plan_options, options, random, retry_splits);
     const bool done = stands(run, options.allow_dangling);
     const bool better = !best || shortfall(run, options.allow_dangling) < shortfall(*best, options.allow_dangling);
     if (done || better) best = std::move(run);

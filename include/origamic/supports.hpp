@@ -28,7 +28,7 @@ struct SupportOptions {
   bool cut_out_unsupported = true;
   // Face orders tried, one after another from the seed's random sequence, until one makes the
   // plan stand; the best of them is kept.
-  int orders = 3;
+  int orders = 8;
 };
 
 /// A face or support whose whole extent along the main fold is under W: the place to look.

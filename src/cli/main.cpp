@@ -90,7 +90,7 @@ struct DesignArgs {
   bool no_supports = false;
   bool allow_dangling = false;
   std::uint32_t seed = 1;
-  int orders = 3;
+  int orders = 8;
   std::string colours = "laser";
   std::string dxf = "r12";
 };
