@@ -176,10 +176,12 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
     // is undone: its supports held nothing, and the exact plan of the slices before it is at hand.
     std::optional<SliceResult> before;
     const std::size_t invalid_before = unsupported(standing, options.allow_dangling).size();
+    const int supports_before = report.supports;
     if (exact) before = slices;
     const std::string why = support_rounds();
     if (before && !why.empty() && unsupported(standing, options.allow_dangling).size() >= invalid_before) {
       slices = std::move(*before);
+      report.supports = supports_before;  // the rounds still count against the bound
       standing = standing_of(result.plan);
       exact = true;
       ++report.passes_undone;
@@ -224,9 +226,9 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
     if (model_faces.begin() != invalid.begin()) {
       std::for_each(invalid.begin(), model_faces.begin(), cut_out);
     } else if (retry_splits && !splits_retried && report.rounds < report.round_bound) {
-      // From the third order on, before any of the model is cut out: a few more rounds in which supports may
-      // cut faces in two again, so that a face held only by reaching across others (a ring's top)
-      // stands.
+      // From the third order on, before any of the model is cut out: a few more rounds in which
+      // supports may cut faces in two again, so that a face held only by reaching across others (a
+      // ring's top) stands.
       splits_retried = true;
       split_rounds_left = kSplitRetryRounds;
       continue;
