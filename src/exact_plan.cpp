@@ -622,7 +622,8 @@ PieceVerdict face_validity(const Validity& by_node, const Pieces& pieces, const 
 
 }  // namespace
 
-Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& sheet, const PlanOptions& options) {
+Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& sheet, const PlanOptions& options,
+                PlanDetail detail) {
   // §4.5 in two steps: the raster boundaries move to the pixel row nearest their fold line where
   // they can (align_folds_to_lines; a no-op on plans already aligned), then only those within half a
   // pixel snap onto it. Snapping farther could carry a fold across a neighbouring boundary, which
@@ -766,6 +767,20 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
   plan.validity = verdict.validity;
   plan.loose_card_pieces = verdict.loose_card_pieces;
   plan.crumbs_cut_out = static_cast<int>(std::ranges::count(verdict.cut_out, 1));
+  plan.pieces = static_cast<int>(pieces.label.size());
+  plan.faces.resize(n);
+  for (std::size_t f = 0; f < n; ++f) {
+    PlanFace& face = plan.faces[f];
+    face.orientation = slices.faces[f].orientation;
+    face.depth_mm = slices.faces[f].depth_mm;
+    face.area_mm2 = area[f];
+    face.fold_on_top = fold_on_top[f];
+    face.fold_on_bottom = fold_on_bottom[f];
+    face.support = slices.faces[f].support;
+    face.status = plan.validity.status[f];
+  }
+  if (detail == PlanDetail::Verdict) return plan;
+
   for (auto [he, kind] : edges) {
     if ((verdict.cut_out[static_cast<std::size_t>(pieces.of.at(he->face()))] ||
                                   verdict.cut_out[static_cast<std::size_t>(pieces.of.at(he->twin()->face()))]))
@@ -781,7 +796,6 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
   plan.lines.push_back({LineKind::Outline,
                         {{0, sheet.min_Y()}, {sheet.width_mm, sheet.min_Y()}, {sheet.width_mm, sheet.max_Y()},
                          {0, sheet.max_Y()}, {0, sheet.min_Y()}}});
-  plan.pieces = static_cast<int>(pieces.label.size());
   // A point inside each face: its pixel nearest the centroid of its pixels.
   std::vector<double> sum_col(n, 0), sum_row(n, 0), count(n, 0);
   for (int row = 0; row < labels.rows; ++row)
@@ -791,32 +805,23 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
     }
   // A face at most two pixels tall in every column may vanish when the folds on both its sides
   // snap onto their lines (up to a pixel each): collapsed, not lost.
-  std::vector<int> tallest(n, 0);
-  for (int col = 0; col < labels.cols; ++col)
-    for (int row = 0, run = 0; row < labels.rows; ++row) {
-      run = row > 0 && labels(col, row) == labels(col, row - 1) ? run + 1 : 1;
+  std::vector<int> tallest(n, 0), run(static_cast<std::size_t>(labels.cols), 0);
+  for (int row = 0; row < labels.rows; ++row)
+    for (int col = 0; col < labels.cols; ++col) {
+      int& r = run[static_cast<std::size_t>(col)];
+      r = row > 0 && labels(col, row) == labels(col, row - 1) ? r + 1 : 1;
       auto& t = tallest[static_cast<std::size_t>(labels(col, row))];
-      t = std::max(t, run);
+      t = std::max(t, r);
     }
   std::vector<double> best(n, 1e300);
-  plan.faces.resize(n);
   for (int row = 0; row < labels.rows; ++row)
     for (int col = 0; col < labels.cols; ++col) {
       const auto f = static_cast<std::size_t>(labels(col, row));
       const double dc = col - sum_col[f] / count[f], dr = row - sum_row[f] / count[f], d2 = dc * dc + dr * dr;
       if (d2 < best[f]) best[f] = d2, plan.faces[f].inside = {maps.grid.X(col), maps.grid.Y(row)};
     }
-  for (std::size_t f = 0; f < n; ++f) {
-    PlanFace& face = plan.faces[f];
-    face.orientation = slices.faces[f].orientation;
-    face.depth_mm = slices.faces[f].depth_mm;
-    face.area_mm2 = area[f];
-    face.fold_on_top = fold_on_top[f];
-    face.fold_on_bottom = fold_on_bottom[f];
-    face.support = slices.faces[f].support;
-    if (f >= 2 && slices.faces[f].pixels > 0 && !(area[f] > 0)) ++(tallest[f] <= 2 ? plan.collapsed_faces : plan.lost_faces);
-    face.status = plan.validity.status[f];
-  }
+  for (std::size_t f = 2; f < n; ++f)
+    if (slices.faces[f].pixels > 0 && !(area[f] > 0)) ++(tallest[f] <= 2 ? plan.collapsed_faces : plan.lost_faces);
   plan.regions = regions_of(arr, plan.faces);
   return plan;
 }

@@ -458,69 +458,92 @@ std::vector<FacePart> split_disconnected_faces(SliceResult& result, const std::v
   std::vector<std::uint8_t> wanted(result.faces.size(), 0);
   for (const std::int32_t f : faces)
     if (f >= 0 && !result.faces[static_cast<std::size_t>(f)].hole) wanted[static_cast<std::size_t>(f)] = 1;
-  // The box around the wanted pixels: the flood fill's own grid need not cover the sheet (the rounds
-  // of supports split a few faces at a time).
-  int col_lo = face.cols, col_hi = -1, row_lo = face.rows, row_hi = -1;
-  for (int row = 0; row < face.rows; ++row)
-    for (int col = 0; col < face.cols; ++col)
-      if (const std::int32_t f = face(col, row); f >= 0 && wanted[static_cast<std::size_t>(f)])
-        col_lo = std::min(col_lo, col), col_hi = std::max(col_hi, col), row_lo = std::min(row_lo, row), row_hi = row;
-  // Flood-fill every part of the wanted faces; part[i] holds the pixels of part i.
-  Grid<std::int32_t> part(std::max(0, col_hi - col_lo + 1), std::max(0, row_hi - row_lo + 1), -1);
-  auto part_of = [&](int col, int row) -> std::int32_t& { return part(col - col_lo, row - row_lo); };
-  std::vector<std::vector<std::size_t>> parts;
-  std::vector<std::int32_t> part_face;
-  std::vector<std::size_t> stack;
-  for (int row = row_lo; row <= row_hi; ++row)
-    for (int col = col_lo; col <= col_hi; ++col) {
-      const std::int32_t f = face(col, row);
-      if (f < 0 || !wanted[static_cast<std::size_t>(f)] || part_of(col, row) >= 0) continue;
-      const auto id = static_cast<std::int32_t>(parts.size());
-      parts.emplace_back();
-      part_face.push_back(f);
-      part_of(col, row) = id;
-      stack.assign(1, face.index(col, row));
-      while (!stack.empty()) {
-        const std::size_t i = stack.back();
-        stack.pop_back();
-        parts.back().push_back(i);
-        const int c = static_cast<int>(i % face.cols), r = static_cast<int>(i / face.cols);
-        for (const auto& [dc, dr] : kStep)
-          if (face.contains(c + dc, r + dr) && face(c + dc, r + dr) == f && part_of(c + dc, r + dr) < 0)
-            part_of(c + dc, r + dr) = id, stack.push_back(face.index(c + dc, r + dr));
+  // The wanted faces as runs of pixels along the rows; runs of one face that overlap in
+  // neighbouring rows are 4-connected. Union-find keeps the first run in row-major order as each
+  // part's root, so the parts come out in the order of their first pixel.
+  struct Run {
+    int row, c0, c1;  // pixels [c0, c1) of the row
+    std::int32_t face;
+  };
+  std::vector<Run> runs;
+  std::vector<std::uint32_t> parent;
+  auto root = [&](std::uint32_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::size_t previous_row = 0;  // where the runs of the row above begin
+  for (int row = 0; row < face.rows; ++row) {
+    const std::int32_t* line = &face.values[face.index(0, row)];
+    const std::size_t this_row = runs.size();
+    for (int c = 0; c < face.cols;) {
+      const std::int32_t f = line[c];
+      int end = c + 1;
+      while (end < face.cols && line[end] == f) ++end;
+      if (f >= 0 && wanted[static_cast<std::size_t>(f)]) {
+        runs.push_back({row, c, end, f});
+        parent.push_back(static_cast<std::uint32_t>(parent.size()));
       }
+      c = end;
     }
+    // Both rows' runs are sorted by column: one merge-like sweep finds the overlapping pairs.
+    for (std::size_t a = previous_row, b = this_row; a < this_row && b < runs.size();) {
+      if (runs[a].row == row - 1 && runs[a].face == runs[b].face && runs[a].c0 < runs[b].c1 && runs[b].c0 < runs[a].c1) {
+        const std::uint32_t ra = root(static_cast<std::uint32_t>(a)), rb = root(static_cast<std::uint32_t>(b));
+        parent[std::max(ra, rb)] = std::min(ra, rb);
+      }
+      (runs[a].c1 < runs[b].c1 ? a : b) += 1;
+    }
+    previous_row = this_row;
+  }
+  // part_runs[i]: the runs of part i, in row-major order.
+  std::vector<std::int32_t> part_of_root(runs.size(), -1);
+  std::vector<std::vector<std::uint32_t>> part_runs;
+  std::vector<std::int32_t> part_face;
+  std::vector<std::int64_t> part_size;
+  for (std::uint32_t i = 0; i < runs.size(); ++i) {
+    std::int32_t& part = part_of_root[root(i)];
+    if (part < 0) {
+      part = static_cast<std::int32_t>(part_runs.size());
+      part_runs.emplace_back();
+      part_face.push_back(runs[i].face);
+      part_size.push_back(0);
+    }
+    part_runs[static_cast<std::size_t>(part)].push_back(i);
+    part_size[static_cast<std::size_t>(part)] += runs[i].c1 - runs[i].c0;
+  }
+  const auto paint = [&](std::size_t part, std::int32_t id) {
+    for (const std::uint32_t k : part_runs[part]) std::fill_n(&face.values[face.index(runs[k].c0, runs[k].row)], runs[k].c1 - runs[k].c0, id);
+  };
   // The largest part of each face keeps its id (the first of equals, for determinism).
   std::vector<std::int32_t> keeper(result.faces.size(), -1);
-  for (std::size_t i = 0; i < parts.size(); ++i) {
+  for (std::size_t i = 0; i < part_runs.size(); ++i) {
     std::int32_t& k = keeper[static_cast<std::size_t>(part_face[i])];
-    if (k < 0 || parts[i].size() > parts[static_cast<std::size_t>(k)].size()) k = static_cast<std::int32_t>(i);
+    if (k < 0 || part_size[i] > part_size[static_cast<std::size_t>(k)]) k = static_cast<std::int32_t>(i);
   }
   std::vector<FacePart> created;
-  for (std::size_t i = 0; i < parts.size(); ++i) {
+  for (std::size_t i = 0; i < part_runs.size(); ++i) {
     const auto f = static_cast<std::size_t>(part_face[i]);
-    const auto size = static_cast<std::int64_t>(parts[i].size());
+    const std::int64_t size = part_size[i];
     const bool kept = keeper[f] == static_cast<std::int32_t>(i);
     if (kept && (f < 2 || size >= min_part_px)) {
       result.faces[f].pixels = size;
       continue;
     }
     int lo = INT_MAX, hi = -1;
-    for (const std::size_t p : parts[i]) lo = std::min(lo, static_cast<int>(p % face.cols)), hi = std::max(hi, static_cast<int>(p % face.cols));
+    for (const std::uint32_t k : part_runs[i]) lo = std::min(lo, runs[k].c0), hi = std::max(hi, runs[k].c1 - 1);
     if (size < min_part_px || (!kept && hi - lo + 1 < min_part_cols)) {
       // A crumb joins the face it shares the most pixel sides with.
       std::map<std::int32_t, int> sides;
-      for (const std::size_t p : parts[i]) {
-        const int c = static_cast<int>(p % face.cols), r = static_cast<int>(p / face.cols);
-        for (const auto& [dc, dr] : kStep)
-          if (face.contains(c + dc, r + dr)) {
-            const std::int32_t g = face(c + dc, r + dr);
-            if (g >= 0 && g != static_cast<std::int32_t>(f) && !result.faces[static_cast<std::size_t>(g)].hole) ++sides[g];
-          }
-      }
+      for (const std::uint32_t k : part_runs[i])
+        for (int c = runs[k].c0; c < runs[k].c1; ++c)
+          for (const auto& [dc, dr] : kStep)
+            if (face.contains(c + dc, runs[k].row + dr)) {
+              const std::int32_t g = face(c + dc, runs[k].row + dr);
+              if (g >= 0 && g != static_cast<std::int32_t>(f) && !result.faces[static_cast<std::size_t>(g)].hole) ++sides[g];
+            }
       if (!sides.empty()) {
         const std::int32_t into = std::ranges::max_element(sides, {}, [](const auto& s) { return s.second; })->first;
-        for (const std::size_t p : parts[i]) face.values[p] = into;
+        paint(i, into);
         result.faces[static_cast<std::size_t>(into)].pixels += size;
         if (kept) result.faces[f].pixels = 0;
         continue;
@@ -532,9 +555,9 @@ std::vector<FacePart> split_disconnected_faces(SliceResult& result, const std::v
     }
     const auto id = static_cast<std::int32_t>(result.faces.size());
     RasterFace piece = result.faces[f];
-    piece.pixels = static_cast<std::int64_t>(parts[i].size());
+    piece.pixels = size;
     result.faces.push_back(piece);
-    for (const std::size_t p : parts[i]) face.values[p] = id;
+    paint(i, id);
     created.push_back({id, static_cast<std::int32_t>(f)});
   }
   return created;

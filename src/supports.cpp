@@ -136,7 +136,7 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
     exact = false;
   };
   auto confirm = [&] {
-    result.plan = build_plan(maps, slices, sheet, plan_options);
+    result.plan = build_plan(maps, slices, sheet, plan_options, PlanDetail::Verdict);
     ++report.exact_builds;
     standing = standing_of(result.plan);
     exact = true;
@@ -175,7 +175,12 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
     // A pass of rounds from an exact verdict that leaves at least as many faces invalid as it found
     // is undone: its supports held nothing, and the exact plan of the slices before it is at hand.
     std::optional<SliceResult> before;
-    const std::size_t invalid_before = unsupported(standing, options.allow_dangling).size();
+    // Counted on the raster graph, as the pass's end will be: it may miss a face the exact plan sees.
+    std::size_t invalid_before = unsupported(standing, options.allow_dangling).size();
+    if (exact) {
+      const Standing raster = raster_standing(maps.grid, slices, aligned_fold_tolerance_mm(maps.grid));
+      invalid_before = std::min(invalid_before, unsupported(raster, options.allow_dangling).size());
+    }
     const int supports_before = report.supports;
     if (exact) before = slices;
     const std::string why = support_rounds();
@@ -286,6 +291,9 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
     best->report.orders = order;
     if (done) break;
   }
+  // The loop built verdicts; the plan chosen is built in full, from the same slices.
+  best->plan = build_plan(maps, best->slices, sheet, plan_options);
+  ++best->report.exact_builds;
   return std::move(*best);
 }
 

@@ -262,5 +262,37 @@ TEST(Plan, EverySeedlikeModelGivesAnExactPlanAndItsFilesCarryTheSameSegments) {
   }
 }
 
+// The support loop builds only verdicts: they must be the full plan's, to the last face.
+TEST(Plan, AVerdictBuildDecidesAsTheFullBuildAndDrawsNothing) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  DesignOptions options;
+  options.placement.up = UpAxis::Z;
+  options.supports.enabled = false;  // sliced, unsupported: floating and invalid faces, in pieces
+  const DesignResult r = design(test::models_dir() / "seedlike" / "sphere.stl", options);
+  const Plan verdict = build_plan(r.maps, r.slices, options.sheet, options.plan, PlanDetail::Verdict);
+  const Plan& full = r.plan;
+  ASSERT_GT(full.validity.floating + full.validity.invalid, 0) << "a plan with something to decide";
+  EXPECT_EQ(verdict.validity.status, full.validity.status);
+  EXPECT_EQ(verdict.validity.valid, full.validity.valid);
+  EXPECT_EQ(verdict.validity.floating, full.validity.floating);
+  EXPECT_EQ(verdict.validity.invalid, full.validity.invalid);
+  EXPECT_EQ(verdict.loose_card_pieces, full.loose_card_pieces);
+  EXPECT_EQ(verdict.pieces, full.pieces);
+  EXPECT_TRUE(verdict.arrangement_valid);
+  EXPECT_TRUE(verdict.faces_tile_sheet);
+  ASSERT_EQ(verdict.faces.size(), full.faces.size());
+  for (std::size_t f = 0; f < full.faces.size(); ++f) {
+    SCOPED_TRACE(f);
+    EXPECT_EQ(verdict.faces[f].fold_on_top, full.faces[f].fold_on_top);
+    EXPECT_EQ(verdict.faces[f].fold_on_bottom, full.faces[f].fold_on_bottom);
+    EXPECT_EQ(verdict.faces[f].area_mm2, full.faces[f].area_mm2);
+    EXPECT_EQ(verdict.faces[f].status, full.faces[f].status);
+  }
+  EXPECT_TRUE(verdict.lines.empty());
+  EXPECT_TRUE(verdict.regions.empty());
+  EXPECT_FALSE(full.lines.empty());
+  EXPECT_FALSE(full.regions.empty());
+}
+
 }  // namespace
 }  // namespace origamic

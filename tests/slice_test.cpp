@@ -235,5 +235,27 @@ TEST(Slice, FacesInPartsBecomeOneFacePerPartAndCrumbsJoinANeighbour) {
   EXPECT_EQ(s.face(10, 2), kBackFace);
 }
 
+// Parts are 4-connected: a U whose arms meet only in its bottom row is one part, a square touching
+// it at a corner only is another, and the largest part keeps the id whatever order it is met in.
+TEST(Slice, AFaceIsInPartsOnlyWhereNoPathOfSidesJoinsThem) {
+  SliceResult s;
+  s.face = Grid<std::int32_t>(10, 7, kBackFace);
+  s.faces = {{Orientation::V, 0}, {Orientation::H, 0}, {Orientation::V, 4}};
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 2; ++c) s.face(c, r) = 2;  // the square: 4 px, met first in row-major order
+  for (int r = 2; r < 7; ++r) s.face(2, r) = s.face(6, r) = 2;  // the U's arms, 5 px each
+  for (int c = 3; c < 6; ++c) s.face(c, 6) = 2;                  // its bottom: 3 px
+  const std::vector<FacePart> parts = split_disconnected_faces(s, {2}, 1, 0);
+  ASSERT_EQ(parts.size(), 1u);
+  EXPECT_EQ(parts[0].from, 2);
+  EXPECT_EQ(s.faces[2].pixels, 13) << "the U keeps the id";
+  EXPECT_EQ(s.faces[static_cast<std::size_t>(parts[0].face)].pixels, 4);
+  EXPECT_EQ(s.face(0, 0), parts[0].face);
+  EXPECT_EQ(s.face(1, 1), parts[0].face);
+  EXPECT_EQ(s.face(2, 2), 2);
+  EXPECT_EQ(s.face(6, 2), 2);
+  EXPECT_EQ(s.face(4, 6), 2);
+}
+
 }  // namespace
 }  // namespace origamic
