@@ -73,9 +73,18 @@ struct Chain {
 Grid<std::int32_t> labels_inside_sheet(const Grid<std::int32_t>& face) {
   Grid<std::int32_t> labels = face;
   std::vector<std::pair<int, int>> ring, next;
+  // Only a pixel whose row and column lie next to (or on) ones with outside pixels can border one.
+  std::vector<std::uint8_t> row_out(static_cast<std::size_t>(labels.rows), 0), col_out(static_cast<std::size_t>(labels.cols), 0);
+  for (int row = 0; row < labels.rows; ++row)
+    for (int col = 0; col < labels.cols; ++col)
+      if (labels(col, row) < 0) row_out[static_cast<std::size_t>(row)] = col_out[static_cast<std::size_t>(col)] = 1;
+  auto near = [](const std::vector<std::uint8_t>& out, int i) {
+    return out[static_cast<std::size_t>(i)] || (i > 0 && out[static_cast<std::size_t>(i) - 1]) ||
+           (static_cast<std::size_t>(i) + 1 < out.size() && out[static_cast<std::size_t>(i) + 1]);
+  };
   for (int row = 0; row < labels.rows; ++row)
     for (int col = 0; col < labels.cols; ++col) {
-      if (labels(col, row) < 0) continue;
+      if (!near(row_out, row) || !near(col_out, col) || labels(col, row) < 0) continue;
       const bool borders_outside = (col > 0 && labels(col - 1, row) < 0) || (col + 1 < labels.cols && labels(col + 1, row) < 0) ||
                                    (row > 0 && labels(col, row - 1) < 0) || (row + 1 < labels.rows && labels(col, row + 1) < 0);
       if (borders_outside) ring.emplace_back(col, row);
@@ -102,16 +111,24 @@ std::vector<Chain> trace_chains(const Grid<std::int32_t>& labels) {
   };
   std::vector<Edge> edges;
   // Directed so that the smaller label lies on the left: then each chain runs one way throughout.
-  auto add = [&](std::size_t a, std::size_t b, std::int32_t left, std::int32_t right) {
-    if (left < right) edges.push_back({a, b, left, right});
-    else edges.push_back({b, a, right, left});
+  auto directed = [](std::size_t a, std::size_t b, std::int32_t left, std::int32_t right) {
+    return left < right ? Edge{a, b, left, right} : Edge{b, a, right, left};
   };
   for (int r = 1; r < rows; ++r)  // between pixel rows r - 1 (above) and r: walking +X, above is left
     for (int c = 0; c < cols; ++c)
-      if (labels(c, r - 1) != labels(c, r)) add(corner(c, r), corner(c + 1, r), labels(c, r - 1), labels(c, r));
-  for (int c = 1; c < cols; ++c)  // between pixel columns c - 1 and c: walking +Y (up), c - 1 is left
-    for (int r = 0; r < rows; ++r)
-      if (labels(c - 1, r) != labels(c, r)) add(corner(c, r + 1), corner(c, r), labels(c - 1, r), labels(c, r));
+      if (labels(c, r - 1) != labels(c, r)) edges.push_back(directed(corner(c, r), corner(c + 1, r), labels(c, r - 1), labels(c, r)));
+  // Between pixel columns c - 1 and c, walking +Y (up), c - 1 on the left: column by column, as the
+  // tracing order depends on it, but found row by row (columns are far apart in memory).
+  std::vector<std::size_t> next_of_column(static_cast<std::size_t>(cols) + 1, 0);
+  for (int r = 0; r < rows; ++r)
+    for (int c = 1; c < cols; ++c) next_of_column[static_cast<std::size_t>(c) + 1] += labels(c - 1, r) != labels(c, r);
+  next_of_column[1] = edges.size();
+  for (int c = 1; c < cols; ++c) next_of_column[static_cast<std::size_t>(c) + 1] += next_of_column[static_cast<std::size_t>(c)];
+  edges.resize(next_of_column[static_cast<std::size_t>(cols)]);
+  for (int r = 0; r < rows; ++r)
+    for (int c = 1; c < cols; ++c)
+      if (labels(c - 1, r) != labels(c, r))
+        edges[next_of_column[static_cast<std::size_t>(c)]++] = directed(corner(c, r + 1), corner(c, r), labels(c - 1, r), labels(c, r));
 
   const std::size_t corners = static_cast<std::size_t>(corner_cols) * (rows + 1);
   std::vector<std::uint8_t> degree(corners, 0);
@@ -628,7 +645,11 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
   // they can (align_folds_to_lines; a no-op on plans already aligned), then only those within half a
   // pixel snap onto it. Snapping farther could carry a fold across a neighbouring boundary, which
   // forced the whole chain back to its pixel contour and lost the fold.
-  SliceResult slices = sliced;
+  SliceResult slices;  // what the plan is built of, copied: the subsegment maps are not
+  slices.min_strip_mm = sliced.min_strip_mm;
+  slices.block_px = sliced.block_px;
+  slices.face = sliced.face;
+  slices.faces = sliced.faces;
   align_folds_to_lines(slices, maps.grid, fold_snap_tolerance_mm(options, slices, maps.grid));
   const Lattice lattice(maps.grid, sheet);
   const Grid<std::int32_t> labels = labels_inside_sheet(slices.face);

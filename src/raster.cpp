@@ -56,6 +56,7 @@ RayScene::RayScene(TriangleMesh oa_mesh) : impl_(std::make_unique<Impl>()) {
   s.device = rtcNewDevice(nullptr);
   if (!s.device) throw std::runtime_error("Embree: cannot create a device");
   s.scene = rtcNewScene(s.device);
+  rtcSetSceneBuildQuality(s.scene, RTC_BUILD_QUALITY_LOW);
   if (s.mesh.triangles.empty()) {
     rtcCommitScene(s.scene);
     return;

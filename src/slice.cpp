@@ -420,15 +420,23 @@ void merge_coplanar_faces(SliceResult& result) {
     const std::int32_t a = root(f), b = root(g);
     if (a != b) parent[std::max(a, b)] = std::min(a, b), merged = true;
   };
+  // Run by run along the rows: a run's pixels are counted at once, and a stretch of one face below
+  // it is joined once.
   for (int row = 0; row < face.rows; ++row) {
     const std::int32_t* here = &face.values[face.index(0, row)];
     const std::int32_t* below = row + 1 < face.rows ? here + face.cols : nullptr;
-    for (int col = 0; col < face.cols; ++col) {
+    for (int col = 0; col < face.cols;) {
       const std::int32_t f = here[col];
-      if (f >= 0) ++pixels[static_cast<std::size_t>(f)];
-      if (f < 2) continue;
-      if (col + 1 < face.cols && here[col + 1] != f) join(f, here[col + 1]);
-      if (below && below[col] != f) join(f, below[col]);
+      int end = col + 1;
+      while (end < face.cols && here[end] == f) ++end;
+      if (f >= 0) pixels[static_cast<std::size_t>(f)] += end - col;
+      if (f >= 2) {
+        if (end < face.cols) join(f, here[end]);
+        if (below)
+          for (int c = col; c < end; ++c)
+            if (below[c] != f && (c == col || below[c] != below[c - 1])) join(f, below[c]);
+      }
+      col = end;
     }
   }
   const bool emptied = std::any_of(pixels.begin() + std::min<std::size_t>(2, n), pixels.end(), [](std::int64_t p) { return p == 0; });
@@ -612,11 +620,15 @@ std::int64_t align_sweep(SliceResult& result, const PixelGrid& grid, double tole
   for (int r = 0; r + 1 < face.rows; ++r) {
     const std::int32_t* above = &face.values[face.index(0, r)];
     const std::int32_t* below = above + face.cols;
-    for (int col = 0; col < face.cols; ++col)
-      if (above[col] != below[col] && !off_line[static_cast<std::size_t>(col)]) {
+    bool last_off = false;  // fold_row of the previous column's pair: the same pair gives the same row
+    for (int col = 0; col < face.cols; ++col) {
+      if (above[col] == below[col]) continue;
+      if (col == 0 || above[col] != above[col - 1] || below[col] != below[col - 1]) {
         const int t = fold_row(result, grid, tolerance_mm, above[col], below[col], r);
-        off_line[static_cast<std::size_t>(col)] = t != -1 && t != r;
+        last_off = t != -1 && t != r;
       }
+      off_line[static_cast<std::size_t>(col)] |= last_off;
+    }
   }
   std::int64_t moved = 0;
   for (int col = 0; col < face.cols; ++col)

@@ -7,6 +7,7 @@
 #include <numeric>
 #include <optional>
 #include <set>
+#include <span>
 #include <tuple>
 #include <utility>
 
@@ -51,8 +52,10 @@ class CandidateFinder {
     for (int c0 = std::max(0, lo) / block_ * block_; c0 <= hi && c0 + block_ <= face_.cols; c0 += block_) starts.push_back(c0);
     for (const int c0 : {lo, hi + 1 - block_})
       if (c0 >= 0 && c0 + block_ <= face_.cols && c0 % block_ != 0) starts.push_back(c0);
+    BlockColumn column(face_.rows);
     for (const int c0 : starts) {
       const int c1 = c0 + block_;
+      column.reset(c0, c1);
       // The edge row: f's top (bottom) at the block column's centre. A support needs f along at
       // least half of its near side and its target along half of its far side: slices of curved
       // surfaces cross a W-wide column at a slant, and the rest of either side is a cut.
@@ -69,7 +72,7 @@ class CandidateFinder {
         const double edge_Y = grid_.Y(row) + (up ? px_mm_ / 2 : -px_mm_ / 2);
         const double h = face.orientation == Orientation::V ? edge_Y + face.depth_mm : face.depth_mm;
         const double d = face.orientation == Orientation::V ? face.depth_mm : face.depth_mm - edge_Y;
-        if (auto c = walk(f, c0, c1, row, up, h, d)) {
+        if (auto c = walk(f, column, row, up, h, d)) {
           c->taken = taken;
           candidates.push_back(*c);
           if (c->cost < split_cost_) break;  // the first that cuts nothing: it takes least of f
@@ -99,16 +102,61 @@ class CandidateFinder {
   int first_row(std::int32_t f, int c) const { return first_[at(f, c)]; }
   int last_row(std::int32_t f, int c) const { return last_[at(f, c)]; }
 
+  // A block column [c0, c1) row by row as the walks out of one face's edge see it, read once for
+  // all of them (one per row the support may take of the face, each from its own start row).
+  class BlockColumn {
+   public:
+    explicit BlockColumn(int rows) : known_(static_cast<std::size_t>(rows), 0), row_(static_cast<std::size_t>(rows)) {}
+    void reset(int c0, int c1) {
+      for (const int r : touched_) known_[static_cast<std::size_t>(r)] = 0;
+      touched_.clear();
+      faces_.clear();
+      c0_ = c0, c1_ = c1;
+    }
+    int c0() const { return c0_; }
+    int c1() const { return c1_; }
+    struct Row {
+      std::int32_t centre;   // the face at the block column's centre
+      bool mostly;           // which fills at least half of the row's block
+      double Y;              // the row's plan Y
+      std::size_t from, to;  // faces_[from, to): the faces along the row, a run of one face once
+    };
+    const Row& row(const CandidateFinder& finder, int r) {
+      Row& row = row_[static_cast<std::size_t>(r)];
+      if (known_[static_cast<std::size_t>(r)]) return row;
+      known_[static_cast<std::size_t>(r)] = 1;
+      touched_.push_back(r);
+      row.centre = finder.face_((c0_ + c1_) / 2, r);
+      row.mostly = row.centre >= 0 && finder.mostly(row.centre, c0_, c1_, r);
+      row.Y = finder.grid_.Y(r);
+      row.from = faces_.size();
+      for (int c = c0_; c < c1_; ++c)
+        if (const std::int32_t x = finder.face_(c, r); faces_.size() == row.from || faces_.back() != x) faces_.push_back(x);
+      row.to = faces_.size();
+      return row;
+    }
+    std::span<const std::int32_t> faces(const Row& row) const { return {faces_.data() + row.from, row.to - row.from}; }
+
+   private:
+    std::vector<std::uint8_t> known_;
+    std::vector<Row> row_;
+    std::vector<int> touched_;
+    std::vector<std::int32_t> faces_;
+    int c0_ = 0, c1_ = 0;
+  };
+
   // Walks the block column away from the edge to the first face the support can fold onto: a V
   // face at depth d' on the row where Y = h - d', or an H face at height h' where Y = h' - d.
-  std::optional<Candidate> walk(std::int32_t f, int c0, int c1, int edge, bool up, double h, double d) const {
+  std::optional<Candidate> walk(std::int32_t f, BlockColumn& column, int edge, bool up, double h, double d) const {
     const int step = up ? -1 : 1;
-    std::vector<std::int32_t> crossed;  // with repeats; a run of one face is one entry
+    const int c0 = column.c0(), c1 = column.c1();
+    std::vector<std::int32_t> crossed;  // the faces other than f on the rows walked over
     for (int r = edge + step; r >= 0 && r < face_.rows; r += step) {
-      const std::int32_t g = face_((c0 + c1) / 2, r);
-      if (g >= 0 && g != f && mostly(g, c0, c1, r)) {
+      const BlockColumn::Row& row = column.row(*this, r);
+      const std::int32_t g = row.centre;
+      if (g >= 0 && g != f && row.mostly) {
         const RasterFace& target = faces_[static_cast<std::size_t>(g)];
-        const double Y = grid_.Y(r);
+        const double Y = row.Y;
         const bool beyond = up ? target.depth_mm < d : target.depth_mm > d;  // behind / in front
         const bool higher = up ? target.depth_mm > h : target.depth_mm < h;  // above / below
         const bool v_hit = target.orientation == Orientation::V && beyond && std::abs(h - target.depth_mm - Y) <= px_mm_ / 2;
@@ -130,8 +178,8 @@ class CandidateFinder {
           return s;
         }
       }
-      for (int c = c0; c < c1; ++c)
-        if (const std::int32_t x = face_(c, r); x != f && (crossed.empty() || crossed.back() != x)) crossed.push_back(x);
+      for (const std::int32_t x : column.faces(row))
+        if (x != f && (crossed.empty() || crossed.back() != x)) crossed.push_back(x);
     }
     return std::nullopt;
   }

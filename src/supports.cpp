@@ -83,9 +83,12 @@ Standing raster_standing(const PixelGrid& grid, const SliceResult& slices, doubl
   std::set<std::tuple<std::int32_t, std::int32_t, std::int32_t>> seen;
   for (int r = 0; r + 1 < face.rows; ++r) {
     const double edge_Y = grid.Y(r) - 0.5 / grid.px_per_mm;  // between row r (above) and r + 1
+    const std::int32_t* above = &face.values[face.index(0, r)];
+    const std::int32_t* below = above + face.cols;
     for (int c = 0; c < face.cols; ++c) {
-      const std::int32_t upper = face(c, r), lower = face(c, r + 1);
+      const std::int32_t upper = above[c], lower = below[c];
       if (upper == lower || upper < 0 || lower < 0) continue;
+      if (c > 0 && upper == above[c - 1] && lower == below[c - 1]) continue;  // the same pair, already seen
       const RasterFace &fu = slices.faces[static_cast<std::size_t>(upper)], &fl = slices.faces[static_cast<std::size_t>(lower)];
       if (fu.orientation == fl.orientation || fu.hole || fl.hole) continue;
       const double fold_Y = fu.orientation == Orientation::H ? fu.depth_mm - fl.depth_mm : fl.depth_mm - fu.depth_mm;
@@ -174,7 +177,7 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
   for (;;) {
     // A pass of rounds from an exact verdict that leaves at least as many faces invalid as it found
     // is undone: its supports held nothing, and the exact plan of the slices before it is at hand.
-    std::optional<SliceResult> before;
+    std::optional<std::pair<Grid<std::int32_t>, std::vector<RasterFace>>> before;  // the face map and faces
     // Counted on the raster graph, as the pass's end will be: it may miss a face the exact plan sees.
     std::size_t invalid_before = unsupported(standing, options.allow_dangling).size();
     if (exact) {
@@ -182,10 +185,11 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
       invalid_before = std::min(invalid_before, unsupported(raster, options.allow_dangling).size());
     }
     const int supports_before = report.supports;
-    if (exact) before = slices;
+    if (exact) before.emplace(slices.face, slices.faces);
     const std::string why = support_rounds();
     if (before && !why.empty() && unsupported(standing, options.allow_dangling).size() >= invalid_before) {
-      slices = std::move(*before);
+      slices.face = std::move(before->first);
+      slices.faces = std::move(before->second);
       report.supports = supports_before;  // the rounds still count against the bound
       standing = standing_of(result.plan);
       exact = true;
