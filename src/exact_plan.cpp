@@ -242,9 +242,12 @@ void add_cut(const Chain& chain, std::size_t from, std::size_t to, const Lattice
   if (to <= from) return;
   const Chain piece{chain.left, chain.right, {chain.corners.begin() + from, chain.corners.begin() + to + 1}};
   const std::vector<LatticePoint> points = simplified(piece, lattice, simplify_mm);
-  for (std::size_t k = 1; k < points.size(); ++k)
-    curves.add(lattice.exact(points[k - 1].u, points[k - 1].v), lattice.exact(points[k].u, points[k].v), chain.left,
-               chain.right);
+  Point from_point = lattice.exact(points[0].u, points[0].v);
+  for (std::size_t k = 1; k < points.size(); ++k) {
+    Point to_point = lattice.exact(points[k].u, points[k].v);
+    curves.add(from_point, to_point, chain.left, chain.right);
+    from_point = std::move(to_point);
+  }
 }
 
 // §4.5: where a boundary between V(d) and H(h) runs within `tolerance` of the fold line Y = h - d,

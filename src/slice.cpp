@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "origamic/error.hpp"
+#include "row_bands.hpp"
 
 namespace origamic {
 namespace {
@@ -420,24 +421,35 @@ void merge_coplanar_faces(SliceResult& result) {
     const std::int32_t a = root(f), b = root(g);
     if (a != b) parent[std::max(a, b)] = std::min(a, b), merged = true;
   };
-  // Run by run along the rows: a run's pixels are counted at once, and a stretch of one face below
-  // it is joined once.
-  for (int row = 0; row < face.rows; ++row) {
-    const std::int32_t* here = &face.values[face.index(0, row)];
-    const std::int32_t* below = row + 1 < face.rows ? here + face.cols : nullptr;
-    for (int col = 0; col < face.cols;) {
-      const std::int32_t f = here[col];
-      int end = col + 1;
-      while (end < face.cols && here[end] == f) ++end;
-      if (f >= 0) pixels[static_cast<std::size_t>(f)] += end - col;
-      if (f >= 2) {
-        if (end < face.cols) join(f, here[end]);
-        if (below)
-          for (int c = col; c < end; ++c)
-            if (below[c] != f && (c == col || below[c] != below[c - 1])) join(f, below[c]);
+  // Run by run along the rows, band by band on all cores: a run's pixels are counted at once, and a
+  // stretch of one face below it is met once. Joining is the same in any order.
+  std::vector<std::int64_t> band_pixels[kRowBands];
+  std::vector<std::pair<std::int32_t, std::int32_t>> band_meets[kRowBands];
+  for_row_bands(face.rows, [&](int band, int row_begin, int row_end) {
+    std::vector<std::int64_t>& count = band_pixels[band];
+    std::vector<std::pair<std::int32_t, std::int32_t>>& meets = band_meets[band];
+    count.assign(n, 0);
+    for (int row = row_begin; row < row_end; ++row) {
+      const std::int32_t* here = &face.values[face.index(0, row)];
+      const std::int32_t* below = row + 1 < face.rows ? here + face.cols : nullptr;
+      for (int col = 0; col < face.cols;) {
+        const std::int32_t f = here[col];
+        int end = col + 1;
+        while (end < face.cols && here[end] == f) ++end;
+        if (f >= 0) count[static_cast<std::size_t>(f)] += end - col;
+        if (f >= 2) {
+          if (end < face.cols && here[end] >= 2) meets.emplace_back(f, here[end]);
+          if (below)
+            for (int c = col; c < end; ++c)
+              if (below[c] != f && below[c] >= 2 && (c == col || below[c] != below[c - 1])) meets.emplace_back(f, below[c]);
+        }
+        col = end;
       }
-      col = end;
     }
+  });
+  for (int band = 0; band < kRowBands; ++band) {
+    for (std::size_t f = 0; f < n; ++f) pixels[f] += band_pixels[band][f];
+    for (const auto& [f, g] : band_meets[band]) join(f, g);
   }
   const bool emptied = std::any_of(pixels.begin() + std::min<std::size_t>(2, n), pixels.end(), [](std::int64_t p) { return p == 0; });
   if (!merged && !emptied) {  // the ids stay as they are: no pass over the pixels to relabel them
@@ -455,8 +467,11 @@ void merge_coplanar_faces(SliceResult& result) {
       faces.back().pixels = pixels[f];
     }
   for (std::size_t f = 0; f < n; ++f) new_id[f] = new_id[static_cast<std::size_t>(root(static_cast<std::int32_t>(f)))];
-  for (auto& f : face.values)
-    if (f >= 0) f = new_id[static_cast<std::size_t>(f)];
+  for_row_bands(face.rows, [&](int, int row_begin, int row_end) {
+    const std::size_t cols = static_cast<std::size_t>(face.cols);
+    for (std::size_t i = row_begin * cols; i < row_end * cols; ++i)
+      if (std::int32_t& f = face.values[i]; f >= 0) f = new_id[static_cast<std::size_t>(f)];
+  });
   result.faces = std::move(faces);
 }
 
@@ -611,10 +626,10 @@ std::int64_t align_column(SliceResult& result, const PixelGrid& grid, double tol
   return moved;
 }
 
-// One sweep of align_folds_to_lines; returns how many pixels changed face. Columns are independent,
-// so only those with a boundary off its line are walked: a row-major scan finds them far faster
-// than walking every column down.
-std::int64_t align_sweep(SliceResult& result, const PixelGrid& grid, double tolerance_mm) {
+// The first sweep of align_folds_to_lines; returns the columns in which pixels changed face.
+// Columns are independent, so only those with a boundary off its line are walked: a row-major scan
+// finds them far faster than walking every column down.
+std::vector<int> align_sweep(SliceResult& result, const PixelGrid& grid, double tolerance_mm) {
   const Grid<std::int32_t>& face = result.face;
   std::vector<std::uint8_t> off_line(static_cast<std::size_t>(face.cols), 0);
   for (int r = 0; r + 1 < face.rows; ++r) {
@@ -630,19 +645,21 @@ std::int64_t align_sweep(SliceResult& result, const PixelGrid& grid, double tole
       off_line[static_cast<std::size_t>(col)] |= last_off;
     }
   }
-  std::int64_t moved = 0;
+  std::vector<int> moved;
   for (int col = 0; col < face.cols; ++col)
-    if (off_line[static_cast<std::size_t>(col)]) moved += align_column(result, grid, tolerance_mm, col);
+    if (off_line[static_cast<std::size_t>(col)] && align_column(result, grid, tolerance_mm, col) > 0) moved.push_back(col);
   return moved;
 }
 
 }  // namespace
 
 void align_folds_to_lines(SliceResult& result, const PixelGrid& grid, double tolerance_mm) {
-  // A moved boundary can free another one: sweep until nothing moves, so that aligning an aligned
-  // plan changes nothing (build_plan aligns what it is given). Two sweeps suffice in practice.
-  for (int sweep = 0; sweep < 8 && align_sweep(result, grid, tolerance_mm) > 0; ++sweep) {
-  }
+  // A moved boundary can free another one in its column: sweep those columns again until nothing
+  // moves, so that aligning an aligned plan changes nothing (build_plan aligns what it is given).
+  // Columns are independent, so one in which nothing moved would not move on a later sweep.
+  std::vector<int> moved = align_sweep(result, grid, tolerance_mm);
+  for (int sweep = 1; sweep < 8 && !moved.empty(); ++sweep)
+    std::erase_if(moved, [&](int col) { return align_column(result, grid, tolerance_mm, col) == 0; });
 }
 
 Grid<float> shape_error_map(const RasterMaps& maps, const Grid<std::int32_t>& face, const std::vector<RasterFace>& faces) {

@@ -13,6 +13,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include "row_bands.hpp"
+
 namespace origamic {
 namespace {
 
@@ -320,8 +322,11 @@ void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid,
     const Candidate& s = chosen[static_cast<std::size_t>(touches[i] - first_support)];
     if (r_lo[i] >= s.r0 && r_hi[i] < s.r1) into[i] = touches[i];
   }
-  for (auto& f : face.values)
-    if (f >= 0) f = into[static_cast<std::size_t>(f)];
+  for_row_bands(face.rows, [&](int, int row_begin, int row_end) {
+    const std::size_t cols = static_cast<std::size_t>(face.cols);
+    for (std::size_t i = row_begin * cols; i < row_end * cols; ++i)
+      if (std::int32_t& f = face.values[i]; f >= 0) f = into[static_cast<std::size_t>(f)];
+  });
   merge_coplanar_faces(slices);
   align_folds_to_lines(slices, grid, tolerance);
 }

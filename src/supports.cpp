@@ -11,6 +11,7 @@
 #include <tuple>
 #include <utility>
 
+#include "row_bands.hpp"
 #include "support_choice.hpp"
 
 namespace origamic {
@@ -79,26 +80,37 @@ Standing raster_standing(const PixelGrid& grid, const SliceResult& slices, doubl
   Standing s;
   s.fold_on_top.assign(n, 0);
   s.fold_on_bottom.assign(n, 0);
+  // The fold pixel pairs, a run of one pair once, found band by band and taken in row order.
+  struct FoldPair {
+    std::int32_t upper, lower;
+    double fold_Y;
+  };
+  std::vector<FoldPair> bands[kRowBands];
+  for_row_bands(face.rows - 1, [&](int band, int row_begin, int row_end) {
+    for (int r = row_begin; r < row_end; ++r) {
+      const double edge_Y = grid.Y(r) - 0.5 / grid.px_per_mm;  // between row r (above) and r + 1
+      const std::int32_t* above = &face.values[face.index(0, r)];
+      const std::int32_t* below = above + face.cols;
+      for (int c = 0; c < face.cols; ++c) {
+        const std::int32_t upper = above[c], lower = below[c];
+        if (upper == lower || upper < 0 || lower < 0) continue;
+        if (c > 0 && upper == above[c - 1] && lower == below[c - 1]) continue;  // the same pair, already seen
+        const RasterFace &fu = slices.faces[static_cast<std::size_t>(upper)], &fl = slices.faces[static_cast<std::size_t>(lower)];
+        if (fu.orientation == fl.orientation || fu.hole || fl.hole) continue;
+        const double fold_Y = fu.orientation == Orientation::H ? fu.depth_mm - fl.depth_mm : fl.depth_mm - fu.depth_mm;
+        if (std::abs(edge_Y - fold_Y) <= tolerance) bands[band].push_back({upper, lower, fold_Y});
+      }
+    }
+  });
   std::map<double, std::int32_t> line_ids;
   std::set<std::tuple<std::int32_t, std::int32_t, std::int32_t>> seen;
-  for (int r = 0; r + 1 < face.rows; ++r) {
-    const double edge_Y = grid.Y(r) - 0.5 / grid.px_per_mm;  // between row r (above) and r + 1
-    const std::int32_t* above = &face.values[face.index(0, r)];
-    const std::int32_t* below = above + face.cols;
-    for (int c = 0; c < face.cols; ++c) {
-      const std::int32_t upper = above[c], lower = below[c];
-      if (upper == lower || upper < 0 || lower < 0) continue;
-      if (c > 0 && upper == above[c - 1] && lower == below[c - 1]) continue;  // the same pair, already seen
-      const RasterFace &fu = slices.faces[static_cast<std::size_t>(upper)], &fl = slices.faces[static_cast<std::size_t>(lower)];
-      if (fu.orientation == fl.orientation || fu.hole || fl.hole) continue;
-      const double fold_Y = fu.orientation == Orientation::H ? fu.depth_mm - fl.depth_mm : fl.depth_mm - fu.depth_mm;
-      if (!(std::abs(edge_Y - fold_Y) <= tolerance)) continue;
+  for (const std::vector<FoldPair>& band : bands)
+    for (const auto& [upper, lower, fold_Y] : band) {
       const auto line = line_ids.try_emplace(fold_Y, static_cast<std::int32_t>(line_ids.size())).first->second;
       s.fold_on_top[static_cast<std::size_t>(lower)] = 1;
       s.fold_on_bottom[static_cast<std::size_t>(upper)] = 1;
       if (seen.emplace(upper, lower, line).second) graph.folds.push_back({upper, lower, line});
     }
-  }
   s.validity = validate(graph);
   return s;
 }
