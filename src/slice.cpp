@@ -423,8 +423,8 @@ void merge_coplanar_faces(SliceResult& result) {
   };
   // Run by run along the rows, band by band on all cores: a run's pixels are counted at once, and a
   // stretch of one face below it is met once. Joining is the same in any order.
-  std::vector<std::int64_t> band_pixels[kRowBands];
-  std::vector<std::pair<std::int32_t, std::int32_t>> band_meets[kRowBands];
+  std::vector<std::int64_t> band_pixels[kBands];
+  std::vector<std::pair<std::int32_t, std::int32_t>> band_meets[kBands];
   for_row_bands(face.rows, [&](int band, int row_begin, int row_end) {
     std::vector<std::int64_t>& count = band_pixels[band];
     std::vector<std::pair<std::int32_t, std::int32_t>>& meets = band_meets[band];
@@ -447,7 +447,7 @@ void merge_coplanar_faces(SliceResult& result) {
       }
     }
   });
-  for (int band = 0; band < kRowBands; ++band) {
+  for (int band = 0; band < kBands; ++band) {
     for (std::size_t f = 0; f < n; ++f) pixels[f] += band_pixels[band][f];
     for (const auto& [f, g] : band_meets[band]) join(f, g);
   }

@@ -28,17 +28,27 @@ class CandidateFinder {
       if (int& k = slot_[static_cast<std::size_t>(f)]; k < 0) k = static_cast<int>(columns_.size()), columns_.push_back({INT_MAX, -1});
     first_.assign(columns_.size() * static_cast<std::size_t>(face_.cols), -1);
     last_.assign(first_.size(), -1);
-    for (int r = 0; r < face_.rows; ++r)
-      for (int c = 0; c < face_.cols; ++c) {
-        const std::int32_t f = face_(c, r);
-        if (f < 0 || slot_[static_cast<std::size_t>(f)] < 0) continue;
-        const auto slot = static_cast<std::size_t>(slot_[static_cast<std::size_t>(f)]);
-        const std::size_t k = slot * face_.cols + c;
-        if (first_[k] < 0) first_[k] = r;
-        last_[k] = r;
-        auto& [lo, hi] = columns_[slot];
-        lo = std::min(lo, c), hi = std::max(hi, c);
-      }
+    // Bands of columns on all cores: each writes its own columns, and its own extents to merge.
+    std::vector<std::pair<int, int>> band_columns[kBands];
+    tbb::parallel_for(0, kBands, [&](int band) {
+      const int c_begin = face_.cols * band / kBands, c_end = face_.cols * (band + 1) / kBands;
+      std::vector<std::pair<int, int>>& columns = band_columns[band];
+      columns.assign(columns_.size(), {INT_MAX, -1});
+      for (int r = 0; r < face_.rows; ++r)
+        for (int c = c_begin; c < c_end; ++c) {
+          const std::int32_t f = face_(c, r);
+          if (f < 0 || slot_[static_cast<std::size_t>(f)] < 0) continue;
+          const auto slot = static_cast<std::size_t>(slot_[static_cast<std::size_t>(f)]);
+          const std::size_t k = slot * face_.cols + c;
+          if (first_[k] < 0) first_[k] = r;
+          last_[k] = r;
+          auto& [lo, hi] = columns[slot];
+          lo = std::min(lo, c), hi = std::max(hi, c);
+        }
+    });
+    for (const auto& band : band_columns)
+      for (std::size_t slot = 0; slot < columns_.size(); ++slot)
+        columns_[slot] = {std::min(columns_[slot].first, band[slot].first), std::max(columns_[slot].second, band[slot].second)};
   }
 
   // Candidates from the top (up = true) or bottom edge of face f, one per W-wide block column that

@@ -85,7 +85,7 @@ Standing raster_standing(const PixelGrid& grid, const SliceResult& slices, doubl
     std::int32_t upper, lower;
     double fold_Y;
   };
-  std::vector<FoldPair> bands[kRowBands];
+  std::vector<FoldPair> bands[kBands];
   for_row_bands(face.rows - 1, [&](int band, int row_begin, int row_end) {
     for (int r = row_begin; r < row_end; ++r) {
       const double edge_Y = grid.Y(r) - 0.5 / grid.px_per_mm;  // between row r (above) and r + 1
