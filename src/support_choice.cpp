@@ -21,8 +21,9 @@ namespace {
 class CandidateFinder {
  public:
   // Candidates will be asked of the faces in `wanted` only.
-  CandidateFinder(const RasterMaps& maps, const SliceResult& slices, const std::vector<std::int32_t>& wanted, double split_cost)
-      : grid_(maps.grid), face_(slices.face), faces_(slices.faces), split_cost_(split_cost),
+  CandidateFinder(const RasterMaps& maps, const SliceResult& slices, const std::vector<std::int32_t>& wanted, double split_cost,
+                  bool below_tips)
+      : grid_(maps.grid), face_(slices.face), faces_(slices.faces), split_cost_(split_cost), below_tips_(below_tips),
         px_mm_(1 / maps.grid.px_per_mm), block_(slices.block_px), slot_(slices.faces.size(), -1) {
     for (const std::int32_t f : wanted)
       if (int& k = slot_[static_cast<std::size_t>(f)]; k < 0) k = static_cast<int>(columns_.size()), columns_.push_back({INT_MAX, -1});
@@ -78,9 +79,19 @@ class CandidateFinder {
       // fold onto the next one then lands inside it rather than beyond it, and neither is cut.
       const int inward = up ? 1 : -1;
       const int deepest = up ? last_row(f, centre) : first_row(f, centre);
-      for (int taken = 0; taken <= 2 * block_ && (deepest - edge) * inward - taken >= 0; ++taken) {
+      // Up to 2 W rows; with below_tips, a face that fills half the block only farther in (the tip
+      // of a tapering facet) is held where it does, 2 W rows at most past there.
+      const int height = (deepest - edge) * inward;
+      auto fills = [&](int taken) {
+        const int row = edge + taken * inward;
+        return face_(centre, row) == f && mostly(f, c0, c1, row);
+      };
+      int first_taken = 0;
+      while (below_tips_ && first_taken <= height && !fills(first_taken)) ++first_taken;
+      if (!below_tips_ || first_taken <= 2 * block_) first_taken = 0;
+      for (int taken = first_taken; taken <= first_taken + 2 * block_ && taken <= height; ++taken) {
+        if (!fills(taken)) continue;
         const int row = edge + taken * inward;  // f's row just outside the support
-        if (face_(centre, row) != f || !mostly(f, c0, c1, row)) continue;
         const double edge_Y = grid_.Y(row) + (up ? px_mm_ / 2 : -px_mm_ / 2);
         const double h = face.orientation == Orientation::V ? edge_Y + face.depth_mm : face.depth_mm;
         const double d = face.orientation == Orientation::V ? face.depth_mm : face.depth_mm - edge_Y;
@@ -199,7 +210,9 @@ class CandidateFinder {
   const PixelGrid& grid_;
   const Grid<std::int32_t>& face_;
   const std::vector<RasterFace>& faces_;
-  double split_cost_, px_mm_;
+  double split_cost_;
+  bool below_tips_;
+  double px_mm_;
   int block_;
   std::vector<int> slot_;  // per face: its place in the tables below, -1 for faces not wanted
   std::vector<int> first_, last_;  // per wanted face and column: its first and last row, -1 if none
@@ -230,8 +243,8 @@ void widen(const Grid<std::int32_t>& face, const Grid<std::uint8_t>& claimed, Ca
 
 std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const Standing& standing,
                                        const std::vector<std::int32_t>& invalid, const SupportOptions& options,
-                                       bool allow_splits) {
-  const CandidateFinder finder(maps, slices, invalid, options.split_cost_mm);
+                                       Reach reach) {
+  const CandidateFinder finder(maps, slices, invalid, options.split_cost_mm, reach.below_tips);
   Grid<std::uint8_t> claimed(slices.face.cols, slices.face.rows, 0);
   std::vector<Candidate> chosen;
   // Seed: an edge already folded to a face is not supported again; a floating face gets both. A
@@ -266,7 +279,7 @@ std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult
       const bool up = k % 2 == 0;
       if (!wanted(i, up)) continue;
       for (Candidate& s : found[k]) {
-        if (!allow_splits && s.cost >= options.split_cost_mm) break;  // sorted: no cheaper one follows
+        if (!reach.split_faces && s.cost >= options.split_cost_mm) break;  // sorted: no cheaper one follows
         if (claimed_anywhere(claimed, s.c0, s.c1, s.r0, s.r1)) continue;
         widen(slices.face, claimed, s);
         for (int r = s.r0; r < s.r1; ++r)

@@ -34,11 +34,19 @@ struct Standing {
   std::vector<std::uint8_t> fold_on_top, fold_on_bottom;
 };
 
+// What a round's supports may do; the loop (supports.cpp) allows more as the plain rules run out.
+struct Reach {
+  bool split_faces = true;  // cut a third face in two
+  // Hold a face that fills half a W-wide block only farther than 2 W in from its edge (the tip of
+  // a tapering facet, a spire's) where it does, the support taking the tip.
+  bool below_tips = false;
+};
+
 /// Supports for the invalid faces, chosen greedily in their order, widened, never overlapping; not
-/// yet painted. With allow_splits false, none that cuts a third face in two.
+/// yet painted.
 std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const Standing& standing,
                                        const std::vector<std::int32_t>& invalid, const SupportOptions& options,
-                                       bool allow_splits);
+                                       Reach reach);
 
 /// Paints the chosen supports into the raster plan as faces of their own (RasterFace::support).
 void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid, double tolerance, std::int64_t crumb_px,
