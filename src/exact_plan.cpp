@@ -104,6 +104,7 @@ Grid<std::int32_t> labels_inside_sheet(const Grid<std::int32_t>& face) {
 
 std::vector<Chain> trace_chains(const Grid<std::int32_t>& labels) {
   const int cols = labels.cols, rows = labels.rows, corner_cols = cols + 1;
+  if (cols == 0 || rows == 0) return {};
   auto corner = [&](int c, int r) { return static_cast<std::size_t>(r) * corner_cols + c; };
   struct Edge {
     std::size_t from, to;
@@ -648,7 +649,7 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
   // they can (align_folds_to_lines; a no-op on plans already aligned), then only those within half a
   // pixel snap onto it. Snapping farther could carry a fold across a neighbouring boundary, which
   // forced the whole chain back to its pixel contour and lost the fold.
-  SliceResult slices;  // what the plan is built of, copied: the subsegment maps are not
+  SliceResult slices;  // the fields a plan is built of (a field it comes to read must be copied here)
   slices.min_strip_mm = sliced.min_strip_mm;
   slices.block_px = sliced.block_px;
   slices.face = sliced.face;

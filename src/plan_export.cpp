@@ -18,6 +18,8 @@
 #include <string_view>
 #include <vector>
 
+#include <tbb/parallel_invoke.h>
+
 #include "origamic/error.hpp"
 #include "origamic/mm_text.hpp"
 #include "origamic/version.hpp"
@@ -311,6 +313,14 @@ std::string plan_png(const Plan& plan, const ExportOptions& options) {
                                          " px/mm: cuts red, folds green (mountain dash-dot, valley dashed)"},
                      {"Software", std::string("origamic ") + version}},
                     scale);
+}
+
+std::vector<OutputFile> plan_files(const Plan& plan, const ExportOptions& options, const std::string& base) {
+  std::string dxf, svg, png, pdf;
+  tbb::parallel_invoke([&] { dxf = plan_dxf(plan, options); }, [&] { svg = plan_svg(plan, options); },
+                       [&] { png = plan_png(plan, options); }, [&] { pdf = plan_pdf(plan, options); });
+  return {{base + ".dxf", std::move(dxf)}, {base + ".svg", std::move(svg)}, {base + ".png", std::move(png)},
+          {base + ".pdf", std::move(pdf)}};
 }
 
 }  // namespace origamic

@@ -2,6 +2,7 @@
 #include "origamic/slice.hpp"
 
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cmath>
 #include <limits>
@@ -11,7 +12,7 @@
 #include <utility>
 
 #include "origamic/error.hpp"
-#include "row_bands.hpp"
+#include "bands.hpp"
 
 namespace origamic {
 namespace {
@@ -421,13 +422,13 @@ void merge_coplanar_faces(SliceResult& result) {
     const std::int32_t a = root(f), b = root(g);
     if (a != b) parent[std::max(a, b)] = std::min(a, b), merged = true;
   };
-  // Run by run along the rows, band by band on all cores: a run's pixels are counted at once, and a
+  // Run by run along the rows, in bands in parallel: a run's pixels are counted at once, and a
   // stretch of one face below it is met once. Joining is the same in any order.
-  std::vector<std::int64_t> band_pixels[kBands];
-  std::vector<std::pair<std::int32_t, std::int32_t>> band_meets[kBands];
-  for_row_bands(face.rows, [&](int band, int row_begin, int row_end) {
-    std::vector<std::int64_t>& count = band_pixels[band];
-    std::vector<std::pair<std::int32_t, std::int32_t>>& meets = band_meets[band];
+  std::array<std::vector<std::int64_t>, kBands> band_pixels;
+  std::array<std::vector<std::pair<std::int32_t, std::int32_t>>, kBands> band_meets;
+  for_bands(face.rows, [&](int band, int row_begin, int row_end) {
+    std::vector<std::int64_t>& count = band_pixels[static_cast<std::size_t>(band)];
+    std::vector<std::pair<std::int32_t, std::int32_t>>& meets = band_meets[static_cast<std::size_t>(band)];
     count.assign(n, 0);
     for (int row = row_begin; row < row_end; ++row) {
       const std::int32_t* here = &face.values[face.index(0, row)];
@@ -447,7 +448,7 @@ void merge_coplanar_faces(SliceResult& result) {
       }
     }
   });
-  for (int band = 0; band < kBands; ++band) {
+  for (std::size_t band = 0; band < kBands; ++band) {
     for (std::size_t f = 0; f < n; ++f) pixels[f] += band_pixels[band][f];
     for (const auto& [f, g] : band_meets[band]) join(f, g);
   }
@@ -467,7 +468,7 @@ void merge_coplanar_faces(SliceResult& result) {
       faces.back().pixels = pixels[f];
     }
   for (std::size_t f = 0; f < n; ++f) new_id[f] = new_id[static_cast<std::size_t>(root(static_cast<std::int32_t>(f)))];
-  for_row_bands(face.rows, [&](int, int row_begin, int row_end) {
+  for_bands(face.rows, [&](int, int row_begin, int row_end) {
     const std::size_t cols = static_cast<std::size_t>(face.cols);
     for (std::size_t i = row_begin * cols; i < row_end * cols; ++i)
       if (std::int32_t& f = face.values[i]; f >= 0) f = new_id[static_cast<std::size_t>(f)];

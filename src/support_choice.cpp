@@ -2,6 +2,7 @@
 #include "support_choice.hpp"
 
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cmath>
 #include <numeric>
@@ -13,7 +14,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "row_bands.hpp"
+#include "bands.hpp"
 
 namespace origamic {
 namespace {
@@ -29,11 +30,10 @@ class CandidateFinder {
       if (int& k = slot_[static_cast<std::size_t>(f)]; k < 0) k = static_cast<int>(columns_.size()), columns_.push_back({INT_MAX, -1});
     first_.assign(columns_.size() * static_cast<std::size_t>(face_.cols), -1);
     last_.assign(first_.size(), -1);
-    // Bands of columns on all cores: each writes its own columns, and its own extents to merge.
-    std::vector<std::pair<int, int>> band_columns[kBands];
-    tbb::parallel_for(0, kBands, [&](int band) {
-      const int c_begin = face_.cols * band / kBands, c_end = face_.cols * (band + 1) / kBands;
-      std::vector<std::pair<int, int>>& columns = band_columns[band];
+    // Bands of columns in parallel: each writes its own columns, and its own extents to merge.
+    std::array<std::vector<std::pair<int, int>>, kBands> band_columns;
+    for_bands(face_.cols, [&](int band, int c_begin, int c_end) {
+      std::vector<std::pair<int, int>>& columns = band_columns[static_cast<std::size_t>(band)];
       columns.assign(columns_.size(), {INT_MAX, -1});
       for (int r = 0; r < face_.rows; ++r)
         for (int c = c_begin; c < c_end; ++c) {
@@ -261,7 +261,7 @@ std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult
       return by_missing_plane ? !(up ? standing.validity.in_X[i] : standing.validity.in_Y[i])
                               : !(up ? top_joined[i] : bottom_joined[i]);
     };
-    // The candidates of every edge that wants them, found on both cores (the search only reads);
+    // The candidates of every edge that wants them, found in parallel (the search only reads);
     // the greedy choice below stays in order, and skips edges an earlier choice joined.
     std::vector<std::vector<Candidate>> found(2 * invalid.size());
     tbb::parallel_for(std::size_t{0}, found.size(), [&](std::size_t k) {
@@ -345,7 +345,7 @@ void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid,
     const Candidate& s = chosen[static_cast<std::size_t>(touches[i] - first_support)];
     if (r_lo[i] >= s.r0 && r_hi[i] < s.r1) into[i] = touches[i];
   }
-  for_row_bands(face.rows, [&](int, int row_begin, int row_end) {
+  for_bands(face.rows, [&](int, int row_begin, int row_end) {
     const std::size_t cols = static_cast<std::size_t>(face.cols);
     for (std::size_t i = row_begin * cols; i < row_end * cols; ++i)
       if (std::int32_t& f = face.values[i]; f >= 0) f = into[static_cast<std::size_t>(f)];

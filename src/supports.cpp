@@ -2,6 +2,7 @@
 #include "origamic/supports.hpp"
 
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cmath>
 #include <map>
@@ -11,7 +12,7 @@
 #include <tuple>
 #include <utility>
 
-#include "row_bands.hpp"
+#include "bands.hpp"
 #include "support_choice.hpp"
 
 namespace origamic {
@@ -85,8 +86,8 @@ Standing raster_standing(const PixelGrid& grid, const SliceResult& slices, doubl
     std::int32_t upper, lower;
     double fold_Y;
   };
-  std::vector<FoldPair> bands[kBands];
-  for_row_bands(face.rows - 1, [&](int band, int row_begin, int row_end) {
+  std::array<std::vector<FoldPair>, kBands> bands;
+  for_bands(face.rows - 1, [&](int band, int row_begin, int row_end) {
     for (int r = row_begin; r < row_end; ++r) {
       const double edge_Y = grid.Y(r) - 0.5 / grid.px_per_mm;  // between row r (above) and r + 1
       const std::int32_t* above = &face.values[face.index(0, r)];
@@ -98,7 +99,7 @@ Standing raster_standing(const PixelGrid& grid, const SliceResult& slices, doubl
         const RasterFace &fu = slices.faces[static_cast<std::size_t>(upper)], &fl = slices.faces[static_cast<std::size_t>(lower)];
         if (fu.orientation == fl.orientation || fu.hole || fl.hole) continue;
         const double fold_Y = fu.orientation == Orientation::H ? fu.depth_mm - fl.depth_mm : fl.depth_mm - fu.depth_mm;
-        if (std::abs(edge_Y - fold_Y) <= tolerance) bands[band].push_back({upper, lower, fold_Y});
+        if (std::abs(edge_Y - fold_Y) <= tolerance) bands[static_cast<std::size_t>(band)].push_back({upper, lower, fold_Y});
       }
     }
   });
@@ -147,6 +148,10 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
   bool splits_retried = false;
   int split_rounds_left = 0;
   Standing standing;
+  // The face map and faces the last exact verdict was built of: an undone pass goes back to them, and
+  // so does the end (the plan kept is built in full from them; a crumb joined to a neighbour after
+  // the verdict would make it disagree).
+  std::pair<Grid<std::int32_t>, std::vector<RasterFace>> confirmed;
   // Rounds run on the raster graph; the exact plan, built when they end, has the last word and
   // the next rounds start from its verdict.
   auto settle = [&] {
@@ -155,6 +160,7 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
   };
   auto confirm = [&] {
     result.plan = build_plan(maps, slices, sheet, plan_options, PlanDetail::Verdict);
+    confirmed = {slices.face, slices.faces};
     ++report.exact_builds;
     standing = standing_of(result.plan);
     exact = true;
@@ -192,19 +198,19 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
   for (;;) {
     // A pass of rounds from an exact verdict that leaves at least as many faces invalid as it found
     // is undone: its supports held nothing, and the exact plan of the slices before it is at hand.
-    std::optional<std::pair<Grid<std::int32_t>, std::vector<RasterFace>>> before;  // the face map and faces
-    // Counted on the raster graph, as the pass's end will be: it may miss a face the exact plan sees.
+    // Found is the fewer of the exact count and the raster graph's: the pass's end is counted on the
+    // raster graph, which may miss a face the exact plan sees.
+    const bool from_exact = exact;
     std::size_t invalid_before = unsupported(standing, options.allow_dangling).size();
     if (exact) {
       const Standing raster = raster_standing(maps.grid, slices, aligned_fold_tolerance_mm(maps.grid));
       invalid_before = std::min(invalid_before, unsupported(raster, options.allow_dangling).size());
     }
     const int supports_before = report.supports;
-    if (exact) before.emplace(slices.face, slices.faces);
     const std::string why = support_rounds();
-    if (before && !why.empty() && unsupported(standing, options.allow_dangling).size() >= invalid_before) {
-      slices.face = std::move(before->first);
-      slices.faces = std::move(before->second);
+    if (from_exact && !why.empty() && unsupported(standing, options.allow_dangling).size() >= invalid_before) {
+      slices.face = confirmed.first;
+      slices.faces = confirmed.second;
       report.supports = supports_before;  // the rounds still count against the bound
       standing = standing_of(result.plan);
       exact = true;
@@ -277,6 +283,8 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
   }
   report.converged = report.cut_out == 0 && unsupported(standing, options.allow_dangling).empty() && result.plan.loose_card_pieces == 0;
   if (report.converged) report.stop_reason.clear();
+  slices.face = std::move(confirmed.first);
+  slices.faces = std::move(confirmed.second);
   report.narrow = narrow_strips(slices, maps.grid);
   result.slices = std::move(slices);
   return result;

@@ -369,6 +369,24 @@ TEST_F(HousePlan, PdfWithSourceDateEpochIsDatedThenAndByteIdentical) {
   EXPECT_NE(info.output.find("2023-11-14T22:13:20"), std::string::npos) << info.output;
 }
 
+// Rendered in parallel, the four files are byte for byte the ones each exporter makes alone.
+TEST_F(HousePlan, PlanFilesInParallelAreEachExportersOwn) {
+  const ExportOptions options = exports(FoldStyle::Score);
+  ASSERT_EQ(setenv("SOURCE_DATE_EPOCH", "1700000000", 1), 0);  // the PDF is dated: one date for both
+  const std::vector<OutputFile> files = plan_files(house(), options, "out/house");
+  const std::string pdf = plan_pdf(house(), options);
+  unsetenv("SOURCE_DATE_EPOCH");
+  ASSERT_EQ(files.size(), 4u);
+  EXPECT_EQ(files[0].path, "out/house.dxf");
+  EXPECT_EQ(files[0].bytes, plan_dxf(house(), options));
+  EXPECT_EQ(files[1].path, "out/house.svg");
+  EXPECT_EQ(files[1].bytes, plan_svg(house(), options));
+  EXPECT_EQ(files[2].path, "out/house.png");
+  EXPECT_EQ(files[2].bytes, plan_png(house(), options));
+  EXPECT_EQ(files[3].path, "out/house.pdf");
+  EXPECT_EQ(files[3].bytes, pdf);
+}
+
 TEST_F(HousePlan, PerforationsKeepClearOfEveryCutAndCutTheirShareOfEachFold) {
   const test::TempDir dir;
   const std::vector<Fold> folds = folds_of(house());

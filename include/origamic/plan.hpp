@@ -97,7 +97,8 @@ inline double aligned_fold_tolerance_mm(const PixelGrid& grid) { return 1 / grid
 
 /// How much of the plan build_plan makes: all of it, or only its verdict (the faces' statuses,
 /// orientations, depths, areas and folds on top and bottom, the validity, the arrangement's checks),
-/// all that a loop deciding where supports go needs: no lines, regions, inside points or lost faces.
+/// all that a loop deciding where supports go needs: no lines nor their lengths, no regions, inside
+/// points, lost or collapsed faces.
 enum class PlanDetail { Full, Verdict };
 
 /// Builds the exact plan from the raster plan (sheet in mm). Deterministic: the verdict of a Verdict

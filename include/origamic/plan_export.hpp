@@ -8,8 +8,10 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "origamic/fold_style.hpp"
+#include "origamic/output.hpp"
 #include "origamic/oa.hpp"
 #include "origamic/plan.hpp"
 
@@ -99,5 +101,9 @@ std::string plan_png(const Plan& plan, const ExportOptions& options);
 /// keywords and creator are set as PDF metadata. \throws InputError if the sheet does not fit the
 /// paper, OutputError if cairo fails.
 std::string plan_pdf(const Plan& plan, const ExportOptions& options);
+
+/// The plan's four files, rendered in parallel (each is a pure function of the plan): `base` + .dxf,
+/// .svg, .png and .pdf, in that order, not yet written.
+std::vector<OutputFile> plan_files(const Plan& plan, const ExportOptions& options, const std::string& base);
 
 }  // namespace origamic

@@ -42,7 +42,7 @@ struct NarrowStrip {
 struct SupportReport {
   int supports = 0;      // support strips added, before widening merged any
   int rounds = 0;        // rounds of supports chosen
-  int exact_builds = 0;  // exact plans built to confirm the raster graph's verdict
+  int exact_builds = 0;  // exact plans built: verdicts confirming the raster graph's, and the plan kept
   int passes_undone = 0; // passes of rounds undone because they left no fewer faces invalid
   int round_bound = 0;   // the loop's bound: one round per W-wide column of the sheet, plus one
   int orders = 0;        // face orders tried (SupportOptions::orders); the rest is of the one kept

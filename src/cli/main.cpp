@@ -11,7 +11,6 @@
 #include <string_view>
 
 #include <CLI/CLI.hpp>
-#include <tbb/parallel_invoke.h>
 
 #include "origamic/design.hpp"
 #include "origamic/plan_dxf_reader.hpp"
@@ -262,18 +261,8 @@ int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const
   std::string written;
   if (!args.out_dir.empty()) {
     const std::string base = (std::filesystem::path(args.out_dir) / model_name(args.model)).string();
-    // Each file is a pure function of the design: they are rendered on both cores.
-    std::string json, dxf, svg, png, pdf;
-    tbb::parallel_invoke([&] { json = origamic::report_json(result, options); },
-                         [&] { dxf = origamic::plan_dxf(result.plan, exports); },
-                         [&] { svg = origamic::plan_svg(result.plan, exports); },
-                         [&] { png = origamic::plan_png(result.plan, exports); },
-                         [&] { pdf = origamic::plan_pdf(result.plan, exports); });
-    files.push_back({base + ".json", std::move(json)});
-    files.push_back({base + ".dxf", std::move(dxf)});
-    files.push_back({base + ".svg", std::move(svg)});
-    files.push_back({base + ".png", std::move(png)});
-    files.push_back({base + ".pdf", std::move(pdf)});
+    files.push_back({base + ".json", origamic::report_json(result, options)});
+    for (auto& file : origamic::plan_files(result.plan, exports, base)) files.push_back(std::move(file));
     written += "plan: " + base + ".{dxf,svg,png,pdf}\nreport: " + base + ".json\n";
     for (auto& file : origamic::popup_files(result, options, base, popup_options)) {
       written += "3D: " + file.path.string() + "\n";
