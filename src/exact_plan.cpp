@@ -641,6 +641,67 @@ PieceVerdict face_validity(const Validity& by_node, const Pieces& pieces, const 
   return verdict;
 }
 
+// The plan's lines from its inner edges (upper face first, with their kind) and the sheet outline,
+// with the total length of each kind.
+void draw_lines(const std::vector<std::pair<Arrangement::Halfedge_const_handle, LineKind>>& edges, Plan& plan) {
+  std::map<Arrangement::Vertex_const_handle, std::size_t> vertex_index;
+  std::vector<PlanPoint> vertex_points;
+  auto index_of = [&](Arrangement::Vertex_const_handle v) {
+    auto [it, fresh] = vertex_index.try_emplace(v, vertex_points.size());
+    if (fresh) vertex_points.push_back({nearest_double(v->point().x()), nearest_double(v->point().y())});
+    return it->second;
+  };
+  std::vector<std::pair<std::size_t, std::size_t>> by_kind[5];
+  for (const auto& [he, kind] : edges) {
+    const double length = length_of(he);
+    (kind == LineKind::Cut || kind == LineKind::CutOut ? plan.cut_mm : kind == LineKind::Mountain ? plan.mountain_mm : plan.valley_mm) += length;
+    by_kind[static_cast<int>(kind)].emplace_back(index_of(he->source()), index_of(he->target()));
+  }
+  for (const LineKind kind : {LineKind::Cut, LineKind::Mountain, LineKind::Valley, LineKind::CutOut}) {
+    std::vector<PlanPolyline> lines = chain_segments(kind, by_kind[static_cast<int>(kind)], vertex_points);
+    plan.lines.insert(plan.lines.end(), std::make_move_iterator(lines.begin()), std::make_move_iterator(lines.end()));
+  }
+  const Sheet& sheet = plan.sheet;
+  plan.lines.push_back({LineKind::Outline,
+                        {{0, sheet.min_Y()}, {sheet.width_mm, sheet.min_Y()}, {sheet.width_mm, sheet.max_Y()},
+                         {0, sheet.max_Y()}, {0, sheet.min_Y()}}});
+}
+
+// A point inside each face: its pixel nearest the centroid of its pixels.
+void place_inside_points(const Grid<std::int32_t>& labels, const PixelGrid& grid, std::vector<PlanFace>& faces) {
+  const std::size_t n = faces.size();
+  std::vector<double> sum_col(n, 0), sum_row(n, 0), count(n, 0);
+  for (int row = 0; row < labels.rows; ++row)
+    for (int col = 0; col < labels.cols; ++col) {
+      const auto f = static_cast<std::size_t>(labels(col, row));
+      sum_col[f] += col, sum_row[f] += row, count[f] += 1;
+    }
+  std::vector<double> best(n, 1e300);
+  for (int row = 0; row < labels.rows; ++row)
+    for (int col = 0; col < labels.cols; ++col) {
+      const auto f = static_cast<std::size_t>(labels(col, row));
+      const double dc = col - sum_col[f] / count[f], dr = row - sum_row[f] / count[f], d2 = dc * dc + dr * dr;
+      if (d2 < best[f]) best[f] = d2, faces[f].inside = {grid.X(col), grid.Y(row)};
+    }
+}
+
+// Raster faces with pixels but no area in the exact plan. One at most two pixels tall in every
+// column may vanish when the folds on both its sides snap onto their lines (up to a pixel each):
+// collapsed, not lost.
+void count_vanished_faces(const Grid<std::int32_t>& labels, const std::vector<RasterFace>& faces,
+                          const std::vector<double>& area, Plan& plan) {
+  std::vector<int> tallest(faces.size(), 0), run(static_cast<std::size_t>(labels.cols), 0);
+  for (int row = 0; row < labels.rows; ++row)
+    for (int col = 0; col < labels.cols; ++col) {
+      int& r = run[static_cast<std::size_t>(col)];
+      r = row > 0 && labels(col, row) == labels(col, row - 1) ? r + 1 : 1;
+      auto& t = tallest[static_cast<std::size_t>(labels(col, row))];
+      t = std::max(t, r);
+    }
+  for (std::size_t f = 2; f < faces.size(); ++f)
+    if (faces[f].pixels > 0 && !(area[f] > 0)) ++(tallest[f] <= 2 ? plan.collapsed_faces : plan.lost_faces);
+}
+
 }  // namespace
 
 Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& sheet, const PlanOptions& options,
@@ -726,14 +787,6 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
   plan.faces_tile_sheet = std::abs(total - sheet_area) <= 1e-9 * sheet_area;
 
   // Edges: vanish inside a face, folds on their exact line, cuts elsewhere.
-  std::map<Arrangement::Vertex_const_handle, std::size_t> vertex_index;
-  std::vector<PlanPoint> vertex_points;
-  auto index_of = [&](Arrangement::Vertex_const_handle v) {
-    auto [it, fresh] = vertex_index.try_emplace(v, vertex_points.size());
-    if (fresh) vertex_points.push_back({nearest_double(v->point().x()), nearest_double(v->point().y())});
-    return it->second;
-  };
-  std::vector<std::pair<std::size_t, std::size_t>> by_kind[5];
   std::map<FT, std::int32_t> fold_line_ids;
   FaceGraph graph;
   graph.faces = nodes;
@@ -806,47 +859,13 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
   }
   if (detail == PlanDetail::Verdict) return plan;
 
-  for (auto [he, kind] : edges) {
-    if ((verdict.cut_out[static_cast<std::size_t>(pieces.of.at(he->face()))] ||
-                                  verdict.cut_out[static_cast<std::size_t>(pieces.of.at(he->twin()->face()))]))
+  for (auto& [he, kind] : edges)
+    if (verdict.cut_out[static_cast<std::size_t>(pieces.of.at(he->face()))] ||
+        verdict.cut_out[static_cast<std::size_t>(pieces.of.at(he->twin()->face()))])
       kind = LineKind::CutOut;
-    const double length = length_of(he);
-    (kind == LineKind::Cut || kind == LineKind::CutOut ? plan.cut_mm : kind == LineKind::Mountain ? plan.mountain_mm : plan.valley_mm) += length;
-    by_kind[static_cast<int>(kind)].emplace_back(index_of(he->source()), index_of(he->target()));
-  }
-  for (const LineKind kind : {LineKind::Cut, LineKind::Mountain, LineKind::Valley, LineKind::CutOut}) {
-    std::vector<PlanPolyline> lines = chain_segments(kind, by_kind[static_cast<int>(kind)], vertex_points);
-    plan.lines.insert(plan.lines.end(), std::make_move_iterator(lines.begin()), std::make_move_iterator(lines.end()));
-  }
-  plan.lines.push_back({LineKind::Outline,
-                        {{0, sheet.min_Y()}, {sheet.width_mm, sheet.min_Y()}, {sheet.width_mm, sheet.max_Y()},
-                         {0, sheet.max_Y()}, {0, sheet.min_Y()}}});
-  // A point inside each face: its pixel nearest the centroid of its pixels.
-  std::vector<double> sum_col(n, 0), sum_row(n, 0), count(n, 0);
-  for (int row = 0; row < labels.rows; ++row)
-    for (int col = 0; col < labels.cols; ++col) {
-      const auto f = static_cast<std::size_t>(labels(col, row));
-      sum_col[f] += col, sum_row[f] += row, count[f] += 1;
-    }
-  // A face at most two pixels tall in every column may vanish when the folds on both its sides
-  // snap onto their lines (up to a pixel each): collapsed, not lost.
-  std::vector<int> tallest(n, 0), run(static_cast<std::size_t>(labels.cols), 0);
-  for (int row = 0; row < labels.rows; ++row)
-    for (int col = 0; col < labels.cols; ++col) {
-      int& r = run[static_cast<std::size_t>(col)];
-      r = row > 0 && labels(col, row) == labels(col, row - 1) ? r + 1 : 1;
-      auto& t = tallest[static_cast<std::size_t>(labels(col, row))];
-      t = std::max(t, r);
-    }
-  std::vector<double> best(n, 1e300);
-  for (int row = 0; row < labels.rows; ++row)
-    for (int col = 0; col < labels.cols; ++col) {
-      const auto f = static_cast<std::size_t>(labels(col, row));
-      const double dc = col - sum_col[f] / count[f], dr = row - sum_row[f] / count[f], d2 = dc * dc + dr * dr;
-      if (d2 < best[f]) best[f] = d2, plan.faces[f].inside = {maps.grid.X(col), maps.grid.Y(row)};
-    }
-  for (std::size_t f = 2; f < n; ++f)
-    if (slices.faces[f].pixels > 0 && !(area[f] > 0)) ++(tallest[f] <= 2 ? plan.collapsed_faces : plan.lost_faces);
+  draw_lines(edges, plan);
+  place_inside_points(labels, maps.grid, plan.faces);
+  count_vanished_faces(labels, slices.faces, area, plan);
   plan.regions = regions_of(arr, plan.faces);
   return plan;
 }

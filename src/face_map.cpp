@@ -1,0 +1,283 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Edits of a raster plan's face map that slicing and the support loop share: coplanar faces merged,
+// faces in parts split, V/H boundaries moved onto their fold lines (declared in slice.hpp).
+#include <algorithm>
+#include <array>
+#include <climits>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <utility>
+
+#include "bands.hpp"
+#include "origamic/slice.hpp"
+
+namespace origamic {
+namespace {
+
+constexpr int kStep[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
+
+}  // namespace
+
+void merge_coplanar_faces(SliceResult& result) {
+  const std::size_t n = result.faces.size();
+  std::vector<std::int32_t> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&](std::int32_t f) {
+    while (parent[f] != f) f = parent[f] = parent[parent[f]];
+    return f;
+  };
+  Grid<std::int32_t>& face = result.face;
+  std::vector<std::int64_t> pixels(n, 0);
+  bool merged = false;
+  auto join = [&](std::int32_t f, std::int32_t g) {
+    if (g < 2 || g == f) return;
+    const RasterFace &a_face = result.faces[f], &b_face = result.faces[g];
+    // Holes merge with each other whatever plane they came from, and never with paper.
+    if (a_face.hole != b_face.hole) return;
+    if (!a_face.hole && (a_face.orientation != b_face.orientation || a_face.depth_mm != b_face.depth_mm)) return;
+    const std::int32_t a = root(f), b = root(g);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b), merged = true;
+  };
+  // Run by run along the rows, in bands in parallel: a run's pixels are counted at once, and a
+  // stretch of one face below it is met once. Joining is the same in any order.
+  std::array<std::vector<std::int64_t>, kBands> band_pixels;
+  std::array<std::vector<std::pair<std::int32_t, std::int32_t>>, kBands> band_meets;
+  for_bands(face.rows, [&](int band, int row_begin, int row_end) {
+    std::vector<std::int64_t>& count = band_pixels[static_cast<std::size_t>(band)];
+    std::vector<std::pair<std::int32_t, std::int32_t>>& meets = band_meets[static_cast<std::size_t>(band)];
+    count.assign(n, 0);
+    for (int row = row_begin; row < row_end; ++row) {
+      const std::int32_t* here = &face.values[face.index(0, row)];
+      const std::int32_t* below = row + 1 < face.rows ? here + face.cols : nullptr;
+      for (int col = 0; col < face.cols;) {
+        const std::int32_t f = here[col];
+        int end = col + 1;
+        while (end < face.cols && here[end] == f) ++end;
+        if (f >= 0) count[static_cast<std::size_t>(f)] += end - col;
+        if (f >= 2) {
+          if (end < face.cols && here[end] >= 2) meets.emplace_back(f, here[end]);
+          if (below)
+            for (int c = col; c < end; ++c)
+              if (below[c] != f && below[c] >= 2 && (c == col || below[c] != below[c - 1])) meets.emplace_back(f, below[c]);
+        }
+        col = end;
+      }
+    }
+  });
+  for (std::size_t band = 0; band < kBands; ++band) {
+    for (std::size_t f = 0; f < n; ++f) pixels[f] += band_pixels[band][f];
+    for (const auto& [f, g] : band_meets[band]) join(f, g);
+  }
+  const bool emptied = std::any_of(pixels.begin() + std::min<std::size_t>(2, n), pixels.end(), [](std::int64_t p) { return p == 0; });
+  if (!merged && !emptied) {  // the ids stay as they are: no pass over the pixels to relabel them
+    for (std::size_t f = 0; f < n; ++f) result.faces[f].pixels = pixels[f];
+    return;
+  }
+  for (std::size_t f = 0; f < n; ++f)
+    if (const auto r = static_cast<std::size_t>(root(static_cast<std::int32_t>(f))); r != f) pixels[r] += std::exchange(pixels[f], 0);
+  std::vector<std::int32_t> new_id(n, -1);
+  std::vector<RasterFace> faces;
+  for (std::size_t f = 0; f < n; ++f)
+    if (root(static_cast<std::int32_t>(f)) == static_cast<std::int32_t>(f) && (f < 2 || pixels[f] > 0)) {
+      new_id[f] = static_cast<std::int32_t>(faces.size());
+      faces.push_back(result.faces[f]);
+      faces.back().pixels = pixels[f];
+    }
+  for (std::size_t f = 0; f < n; ++f) new_id[f] = new_id[static_cast<std::size_t>(root(static_cast<std::int32_t>(f)))];
+  for_bands(face.rows, [&](int, int row_begin, int row_end) {
+    const std::size_t cols = static_cast<std::size_t>(face.cols);
+    for (std::size_t i = row_begin * cols; i < row_end * cols; ++i)
+      if (std::int32_t& f = face.values[i]; f >= 0) f = new_id[static_cast<std::size_t>(f)];
+  });
+  result.faces = std::move(faces);
+}
+
+std::vector<FacePart> split_disconnected_faces(SliceResult& result, const std::vector<std::int32_t>& faces,
+                                              std::int64_t min_part_px, int min_part_cols) {
+  Grid<std::int32_t>& face = result.face;
+  std::vector<std::uint8_t> wanted(result.faces.size(), 0);
+  for (const std::int32_t f : faces)
+    if (f >= 0 && !result.faces[static_cast<std::size_t>(f)].hole) wanted[static_cast<std::size_t>(f)] = 1;
+  // The wanted faces as runs of pixels along the rows; runs of one face that overlap in
+  // neighbouring rows are 4-connected. Union-find keeps the first run in row-major order as each
+  // part's root, so the parts come out in the order of their first pixel.
+  struct Run {
+    int row, c0, c1;  // pixels [c0, c1) of the row
+    std::int32_t face;
+  };
+  std::vector<Run> runs;
+  std::vector<std::uint32_t> parent;
+  auto root = [&](std::uint32_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::size_t previous_row = 0;  // where the runs of the row above begin
+  for (int row = 0; row < face.rows; ++row) {
+    const std::int32_t* line = &face.values[face.index(0, row)];
+    const std::size_t this_row = runs.size();
+    for (int c = 0; c < face.cols;) {
+      const std::int32_t f = line[c];
+      int end = c + 1;
+      while (end < face.cols && line[end] == f) ++end;
+      if (f >= 0 && wanted[static_cast<std::size_t>(f)]) {
+        runs.push_back({row, c, end, f});
+        parent.push_back(static_cast<std::uint32_t>(parent.size()));
+      }
+      c = end;
+    }
+    // Both rows' runs are sorted by column: one merge-like sweep finds the overlapping pairs.
+    for (std::size_t a = previous_row, b = this_row; a < this_row && b < runs.size();) {
+      if (runs[a].row == row - 1 && runs[a].face == runs[b].face && runs[a].c0 < runs[b].c1 && runs[b].c0 < runs[a].c1) {
+        const std::uint32_t ra = root(static_cast<std::uint32_t>(a)), rb = root(static_cast<std::uint32_t>(b));
+        parent[std::max(ra, rb)] = std::min(ra, rb);
+      }
+      (runs[a].c1 < runs[b].c1 ? a : b) += 1;
+    }
+    previous_row = this_row;
+  }
+  // part_runs[i]: the runs of part i, in row-major order.
+  std::vector<std::int32_t> part_of_root(runs.size(), -1);
+  std::vector<std::vector<std::uint32_t>> part_runs;
+  std::vector<std::int32_t> part_face;
+  std::vector<std::int64_t> part_size;
+  for (std::uint32_t i = 0; i < runs.size(); ++i) {
+    std::int32_t& part = part_of_root[root(i)];
+    if (part < 0) {
+      part = static_cast<std::int32_t>(part_runs.size());
+      part_runs.emplace_back();
+      part_face.push_back(runs[i].face);
+      part_size.push_back(0);
+    }
+    part_runs[static_cast<std::size_t>(part)].push_back(i);
+    part_size[static_cast<std::size_t>(part)] += runs[i].c1 - runs[i].c0;
+  }
+  const auto paint = [&](std::size_t part, std::int32_t id) {
+    for (const std::uint32_t k : part_runs[part]) std::fill_n(&face.values[face.index(runs[k].c0, runs[k].row)], runs[k].c1 - runs[k].c0, id);
+  };
+  // The largest part of each face keeps its id (the first of equals, for determinism).
+  std::vector<std::int32_t> keeper(result.faces.size(), -1);
+  for (std::size_t i = 0; i < part_runs.size(); ++i) {
+    std::int32_t& k = keeper[static_cast<std::size_t>(part_face[i])];
+    if (k < 0 || part_size[i] > part_size[static_cast<std::size_t>(k)]) k = static_cast<std::int32_t>(i);
+  }
+  std::vector<FacePart> created;
+  for (std::size_t i = 0; i < part_runs.size(); ++i) {
+    const auto f = static_cast<std::size_t>(part_face[i]);
+    const std::int64_t size = part_size[i];
+    const bool kept = keeper[f] == static_cast<std::int32_t>(i);
+    if (kept && (f < 2 || size >= min_part_px)) {
+      result.faces[f].pixels = size;
+      continue;
+    }
+    int lo = INT_MAX, hi = -1;
+    for (const std::uint32_t k : part_runs[i]) lo = std::min(lo, runs[k].c0), hi = std::max(hi, runs[k].c1 - 1);
+    if (size < min_part_px || (!kept && hi - lo + 1 < min_part_cols)) {
+      // A crumb joins the face it shares the most pixel sides with.
+      std::map<std::int32_t, int> sides;
+      for (const std::uint32_t k : part_runs[i])
+        for (int c = runs[k].c0; c < runs[k].c1; ++c)
+          for (const auto& [dc, dr] : kStep)
+            if (face.contains(c + dc, runs[k].row + dr)) {
+              const std::int32_t g = face(c + dc, runs[k].row + dr);
+              if (g >= 0 && g != static_cast<std::int32_t>(f) && !result.faces[static_cast<std::size_t>(g)].hole) ++sides[g];
+            }
+      if (!sides.empty()) {
+        const std::int32_t into = std::ranges::max_element(sides, {}, [](const auto& s) { return s.second; })->first;
+        paint(i, into);
+        result.faces[static_cast<std::size_t>(into)].pixels += size;
+        if (kept) result.faces[f].pixels = 0;
+        continue;
+      }
+      if (kept) {
+        result.faces[f].pixels = size;
+        continue;
+      }
+    }
+    const auto id = static_cast<std::int32_t>(result.faces.size());
+    RasterFace piece = result.faces[f];
+    piece.pixels = size;
+    result.faces.push_back(piece);
+    paint(i, id);
+    created.push_back({id, static_cast<std::int32_t>(f)});
+  }
+  return created;
+}
+
+namespace {
+
+// Where faces a (row r) and b (row r + 1 below it) should meet: their fold line Y = h - d lies
+// between rows t and t + 1, Y = (rows_above_fold - t - 1) / px_per_mm. -1 when they meet on no fold
+// within tolerance_mm of their boundary (and for a line above the sheet, which nothing can reach).
+int fold_row(const SliceResult& result, const PixelGrid& grid, double tolerance_mm, std::int32_t a, std::int32_t b, int r) {
+  if (a == b || a < 0 || b < 0) return -1;
+  const RasterFace &fa = result.faces[static_cast<std::size_t>(a)], &fb = result.faces[static_cast<std::size_t>(b)];
+  if (fa.orientation == fb.orientation || fa.hole || fb.hole) return -1;
+  const double fold_Y = fa.orientation == Orientation::H ? fa.depth_mm - fb.depth_mm : fb.depth_mm - fa.depth_mm;
+  const double edge_Y = grid.Y(r) - 0.5 / grid.px_per_mm;
+  if (!(std::abs(edge_Y - fold_Y) <= tolerance_mm)) return -1;
+  return static_cast<int>(std::lround(grid.rows_above_fold - 1 - fold_Y * grid.px_per_mm));
+}
+
+// One sweep of align_folds_to_lines over one column; returns how many pixels changed face.
+std::int64_t align_column(SliceResult& result, const PixelGrid& grid, double tolerance_mm, int col) {
+  std::int64_t moved = 0;
+  Grid<std::int32_t>& face = result.face;
+  auto count = [&](std::int32_t f, int delta) { result.faces[static_cast<std::size_t>(f)].pixels += delta; };
+  for (int r = 0; r + 1 < face.rows; ++r) {
+    const std::int32_t a = face(col, r), b = face(col, r + 1);  // a above, b below
+    const int t = fold_row(result, grid, tolerance_mm, a, b, r);
+    if (t == -1 || t == r) continue;
+    if (t < r) {  // up: b takes rows t + 1 .. r if they are all a and a keeps row t
+      bool free = t >= 0 && face(col, t) == a;
+      for (int k = t + 1; free && k <= r; ++k) free = face(col, k) == a;
+      if (!free) continue;
+      for (int k = t + 1; k <= r; ++k) face(col, k) = b, count(a, -1), count(b, 1), ++moved;
+    } else {  // down: a takes rows r + 1 .. t if they are all b and b keeps row t + 1
+      bool free = t + 1 < face.rows && face(col, t + 1) == b;
+      for (int k = r + 1; free && k <= t; ++k) free = face(col, k) == b;
+      if (!free) continue;
+      for (int k = r + 1; k <= t; ++k) face(col, k) = a, count(b, -1), count(a, 1), ++moved;
+      r = t;  // continue below the moved boundary
+    }
+  }
+  return moved;
+}
+
+// The first sweep of align_folds_to_lines; returns the columns in which pixels changed face.
+// Columns are independent, so only those with a boundary off its line are walked: a row-major scan
+// finds them far faster than walking every column down.
+std::vector<int> align_sweep(SliceResult& result, const PixelGrid& grid, double tolerance_mm) {
+  const Grid<std::int32_t>& face = result.face;
+  std::vector<std::uint8_t> off_line(static_cast<std::size_t>(face.cols), 0);
+  for (int r = 0; r + 1 < face.rows; ++r) {
+    const std::int32_t* above = &face.values[face.index(0, r)];
+    const std::int32_t* below = above + face.cols;
+    bool last_off = false;  // fold_row of the previous column's pair: the same pair gives the same row
+    for (int col = 0; col < face.cols; ++col) {
+      if (above[col] == below[col]) continue;
+      if (col == 0 || above[col] != above[col - 1] || below[col] != below[col - 1]) {
+        const int t = fold_row(result, grid, tolerance_mm, above[col], below[col], r);
+        last_off = t != -1 && t != r;
+      }
+      off_line[static_cast<std::size_t>(col)] |= last_off;
+    }
+  }
+  std::vector<int> moved;
+  for (int col = 0; col < face.cols; ++col)
+    if (off_line[static_cast<std::size_t>(col)] && align_column(result, grid, tolerance_mm, col) > 0) moved.push_back(col);
+  return moved;
+}
+
+}  // namespace
+
+void align_folds_to_lines(SliceResult& result, const PixelGrid& grid, double tolerance_mm) {
+  // A moved boundary can free another one in its column: sweep those columns again until nothing
+  // moves, so that aligning an aligned plan changes nothing (build_plan aligns what it is given).
+  // Columns are independent, so one in which nothing moved would not move on a later sweep.
+  std::vector<int> moved = align_sweep(result, grid, tolerance_mm);
+  for (int sweep = 1; sweep < 8 && !moved.empty(); ++sweep)
+    std::erase_if(moved, [&](int col) { return align_column(result, grid, tolerance_mm, col) == 0; });
+}
+
+}  // namespace origamic
