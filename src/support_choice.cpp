@@ -23,8 +23,9 @@ class CandidateFinder {
  public:
   // Candidates will be asked of the faces in `wanted` only.
   CandidateFinder(const RasterMaps& maps, const SliceResult& slices, const std::vector<std::int32_t>& wanted, double split_cost,
-                  bool below_tips)
-      : grid_(maps.grid), face_(slices.face), faces_(slices.faces), split_cost_(split_cost), below_tips_(below_tips),
+                  Reach reach)
+      : grid_(maps.grid), face_(slices.face), faces_(slices.faces), split_cost_(split_cost), below_tips_(reach.below_tips),
+        corners_(reach.corners),
         px_mm_(1 / maps.grid.px_per_mm), block_(slices.block_px), slot_(slices.faces.size(), -1) {
     for (const std::int32_t f : wanted)
       if (int& k = slot_[static_cast<std::size_t>(f)]; k < 0) k = static_cast<int>(columns_.size()), columns_.push_back({INT_MAX, -1});
@@ -61,13 +62,21 @@ class CandidateFinder {
     // The block columns, and the two flush with the face's ends: a support there trims the faces it
     // crosses where they end with the face, instead of cutting them in two.
     const auto [lo, hi] = columns_[static_cast<std::size_t>(slot_[static_cast<std::size_t>(f)])];
-    std::vector<int> starts;
-    for (int c0 = std::max(0, lo) / block_ * block_; c0 <= hi && c0 + block_ <= face_.cols; c0 += block_) starts.push_back(c0);
+    // With Reach::corners, one more at each end, extended a strip width beyond the face.
+    struct Start {
+      int c0, c1;
+      double extra_cost;
+    };
+    std::vector<Start> starts;
+    for (int c0 = std::max(0, lo) / block_ * block_; c0 <= hi && c0 + block_ <= face_.cols; c0 += block_) starts.push_back({c0, c0 + block_, 0});
     for (const int c0 : {lo, hi + 1 - block_})
-      if (c0 >= 0 && c0 + block_ <= face_.cols && c0 % block_ != 0) starts.push_back(c0);
+      if (c0 >= 0 && c0 + block_ <= face_.cols && c0 % block_ != 0) starts.push_back({c0, c0 + block_, 0});
+    const double corner_cost = block_ * px_mm_;
+    if (corners_ && lo - block_ >= 0 && lo + block_ <= face_.cols) starts.push_back({lo - block_, lo + block_, corner_cost});
+    if (corners_ && hi + 1 - block_ >= 0 && hi + 1 + block_ <= face_.cols)
+      starts.push_back({hi + 1 - block_, hi + 1 + block_, corner_cost});
     BlockColumn column(face_.rows);
-    for (const int c0 : starts) {
-      const int c1 = c0 + block_;
+    for (const auto [c0, c1, extra_cost] : starts) {
       column.reset(c0, c1);
       // The edge row: f's top (bottom) at the block column's centre. A support needs f along at
       // least half of its near side and its target along half of its far side: slices of curved
@@ -97,6 +106,7 @@ class CandidateFinder {
         const double d = face.orientation == Orientation::V ? face.depth_mm : face.depth_mm - edge_Y;
         if (auto c = walk(f, column, row, up, h, d)) {
           c->taken = taken;
+          c->cost += extra_cost;
           candidates.push_back(*c);
           if (c->cost < split_cost_) break;  // the first that cuts nothing: it takes least of f
         }
@@ -211,7 +221,7 @@ class CandidateFinder {
   const Grid<std::int32_t>& face_;
   const std::vector<RasterFace>& faces_;
   double split_cost_;
-  bool below_tips_;
+  bool below_tips_, corners_;
   double px_mm_;
   int block_;
   std::vector<int> slot_;  // per face: its place in the tables below, -1 for faces not wanted
@@ -244,7 +254,7 @@ void widen(const Grid<std::int32_t>& face, const Grid<std::uint8_t>& claimed, Ca
 std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const Standing& standing,
                                        const std::vector<std::int32_t>& invalid, const SupportOptions& options,
                                        Reach reach) {
-  const CandidateFinder finder(maps, slices, invalid, options.split_cost_mm, reach.below_tips);
+  const CandidateFinder finder(maps, slices, invalid, options.split_cost_mm, reach);
   Grid<std::uint8_t> claimed(slices.face.cols, slices.face.rows, 0);
   std::vector<Candidate> chosen;
   // Seed: an edge already folded to a face is not supported again; a floating face gets both. A

@@ -40,6 +40,10 @@ struct Reach {
   // Hold a face that fills half a W-wide block only farther than 2 W in from its edge (the tip of
   // a tapering facet, a spire's) where it does, the support taking the tip.
   bool below_tips = false;
+  // Seed §4.4: at each end of a face's edge, also a support extended a strip width beyond the face
+  // (twice as wide), at an extra cost of W: it can reach a face behind the corner that a W-wide one
+  // cannot.
+  bool corners = false;
 };
 
 /// Supports for the invalid faces, chosen greedily in their order, widened, never overlapping; not

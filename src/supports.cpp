@@ -126,14 +126,15 @@ std::vector<std::int32_t> unsupported(const Standing& standing, bool allow_dangl
 constexpr int kSplitRetryRounds = 8;
 // The orders from this one on (and the last, should there be fewer) may cut faces in two again.
 constexpr int kSplitRetryFromOrder = 3;
-// The orders from this one on (and the last) may hold tapering faces below their tips (Reach): the
-// first keeps to the plain rules, which most models stand by.
+// Later orders reach farther (Reach), each from its order on (and at the last, should there be
+// fewer): the first keeps to the plain rules, which most models stand by, and fast.
 constexpr int kBelowTipsFromOrder = 2;
+constexpr int kCornersFromOrder = 3;
 
 // One greedy run of the support loop in the face order that `random` draws.
 Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sheet& sheet,
                             const PlanOptions& plan_options, const SupportOptions& options, std::mt19937& random,
-                            bool retry_splits, bool below_tips) {
+                            bool retry_splits, Reach reach) {
   Supported result;
   SupportReport& report = result.report;
   report.round_bound = slices.face.cols / std::max(1, slices.block_px) + 1;
@@ -183,7 +184,7 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
       ++report.rounds;
       std::shuffle(invalid.begin(), invalid.end(), random);
       const bool splits = allow_splits || split_rounds_left-- > 0;
-      const std::vector<Candidate> chosen = choose_supports(maps, slices, standing, invalid, options, {splits, below_tips});
+      const std::vector<Candidate> chosen = choose_supports(maps, slices, standing, invalid, options, {splits, reach.below_tips, reach.corners});
       if (chosen.empty()) return std::to_string(invalid.size()) + " faces invalid and no support reaches them";
       report.supports += static_cast<int>(chosen.size());
       paint_supports(chosen, maps.grid, tolerance, crumb_px, slices);
@@ -311,9 +312,10 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
   for (int order = 1; order <= std::max(1, options.orders); ++order) {
     const bool last = order >= options.orders;
     const bool retry_splits = order >= std::min(options.orders, kSplitRetryFromOrder);
-    const bool below_tips = order >= std::min(options.orders, kBelowTipsFromOrder);
+    const Reach reach{true, order >= std::min(options.orders, kBelowTipsFromOrder),
+                      order >= std::min(options.orders, kCornersFromOrder)};
     Supported run = supports_in_order(maps, last ? std::move(slices) : slices, sheet, plan_options, options, random,
-                                      retry_splits, below_tips);
+                                      retry_splits, reach);
     const bool done = stands(run, options.allow_dangling);
     const bool better = !best || shortfall(run, options.allow_dangling) < shortfall(*best, options.allow_dangling);
     if (done || better) best = std::move(run);
