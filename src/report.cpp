@@ -132,6 +132,7 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
                     {"exact_builds", result.supports.exact_builds},
                     {"passes_undone", result.supports.passes_undone},
                     {"cut_out", result.supports.cut_out},
+                    {"cut_out_share", result.supports.cut_out_share},
                     {"narrow_strips", narrow_json(result.supports.narrow)},
                     {"round_bound", result.supports.round_bound},
                     {"orders", result.supports.orders},

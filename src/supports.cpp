@@ -275,6 +275,7 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
         break;
       }
       cut_out_pixels += more;
+      report.cut_out_share = static_cast<double>(cut_out_pixels) / static_cast<double>(model_pixels);
       for (const std::int32_t f : invalid)
         if (pixels(f) <= limit) cut_out(f);
     }

@@ -43,9 +43,10 @@ problems += [k for k in ("lost_faces", "unresolved_crossings") if x[k] != 0]
 if status == 0 and c["floating"] + c["dangling"] + c["invalid"] != 0: problems.append("exit 0 but invalid faces")
 if status == 3 and not s["stop_reason"]: problems.append("invalid without a reason")
 if status == 3 and not name.startswith("bad_"): problems.append("invalid: only a bad_* model may be")
+if s["cut_out_share"] > 0.25: problems.append("over a quarter of the model cut out")
 if status not in (0, 3): problems.append(f"exit {status}")
 elif (status == 0) != (validated == 0): problems.append(f"design exit {status} but validate exit {validated}")
-head = f'{c["faces"]} faces, {s["added"]} supports, {c["removed"]} removed'
+head = f'{c["faces"]} faces, {s["added"]} supports, {c["removed"]} removed ({100 * s["cut_out_share"]:.1f}% of the model)'
 if problems: print("FAIL " + head + ": " + ", ".join(problems))
 elif status == 0: print("VALID " + head)
 else: print(f'INVALID {head}: {c["floating"]} floating, {c["dangling"]} dangling, {c["invalid"]} invalid: {s["stop_reason"]}')

@@ -44,6 +44,9 @@ struct SupportReport {
   int rounds = 0;        // rounds of supports chosen
   int exact_builds = 0;  // exact plans built: verdicts confirming the raster graph's, and the plan kept
   int passes_undone = 0; // passes of rounds undone because they left no fewer faces invalid
+  // The share of the model's pixels in the faces cut out (pieces of the back plane or the floor
+  // aside), counted as they are cut; never over a quarter.
+  double cut_out_share = 0;
   int round_bound = 0;   // the loop's bound: one round per W-wide column of the sheet, plus one
   int orders = 0;        // face orders tried (SupportOptions::orders); the rest is of the one kept
   bool converged = false;
