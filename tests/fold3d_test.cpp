@@ -298,10 +298,17 @@ Rgb8 triangle_colour(const FoldedPopup& popup, std::size_t t) {
   return paper_colour(popup.regions[static_cast<std::size_t>(popup.triangle_region[t])], popup.triangle_surface[t], true);
 }
 
+// The box folded at an angle, as thin paper and as 0.4 mm card.
+std::vector<FoldedPopup> folded_boxes(double angle_deg) {
+  std::vector<FoldedPopup> popups;
+  for (const double thickness : {0.0, 0.4})
+    popups.push_back(fold_popup(box_regions(), Sheet{}, {.angle_deg = angle_deg, .thickness_mm = thickness}));
+  return popups;
+}
+
 TEST(Fold3d, MeshFilesReadBackWithTheSameVerticesFacesAndColours) {
   const test::TempDir dir;
-  for (const double thickness : {0.0, 0.4}) {
-    const FoldedPopup popup = fold_popup(box_regions(), Sheet{}, {.angle_deg = 90, .thickness_mm = thickness});
+  for (const FoldedPopup& popup : folded_boxes(90)) {
     std::set<std::array<int, 3>> colours;
     for (std::size_t t = 0; t < popup.triangles.size(); ++t) {
       const Rgb8 c = triangle_colour(popup, t);
@@ -364,8 +371,8 @@ TEST(Fold3d, MeshFilesReadBackWithTheSameVerticesFacesAndColours) {
 // glTF read back by tests/read_gltf.py, the container and accessors parsed by the standard library.
 TEST(Fold3d, GltfAndGlbReadBackWithTheSameVerticesTrianglesAndColoursInMetres) {
   const test::TempDir dir;
-  for (const double thickness : {0.0, 0.4}) {
-    const FoldedPopup popup = fold_popup(box_regions(), Sheet{}, {.angle_deg = 63, .thickness_mm = thickness});
+  for (const FoldedPopup& popup : folded_boxes(63)) {
+    const double thickness = popup.options.thickness_mm;
     // Every triangle with its colour; the file groups them by colour, so compare as multisets.
     std::multiset<std::array<int, 6>> expected;
     for (std::size_t t = 0; t < popup.triangles.size(); ++t) {
