@@ -231,5 +231,20 @@ TEST(Supports, FromTheThirdOrderOnCornerSupportsHoldAConicalRoof) {
   EXPECT_LE(r.supports.cut_out_share, 0.1);
 }
 
+// Passes of rounds that held nothing are undone: the slices go back to those of the last exact
+// verdict. The plan kept must be the exact plan of the slices kept, built afresh: no pass, undone
+// or not, may leave them apart.
+TEST(Supports, ThePlanKeptIsTheExactPlanOfTheSlicesKept) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  const DesignResult r = standing_design("seedlike/sphere.stl");
+  ASSERT_GT(r.supports.passes_undone, 0) << "a design with undone passes";
+  const Plan fresh = build_plan(r.maps, r.slices, DesignOptions{}.sheet, PlanOptions{});
+  EXPECT_EQ(fresh.validity.status, r.plan.validity.status);
+  EXPECT_EQ(fresh.lines.size(), r.plan.lines.size());
+  EXPECT_EQ(fresh.cut_mm, r.plan.cut_mm);
+  EXPECT_EQ(fresh.mountain_mm, r.plan.mountain_mm);
+  EXPECT_EQ(fresh.valley_mm, r.plan.valley_mm);
+}
+
 }  // namespace
 }  // namespace origamic
