@@ -74,7 +74,8 @@ Grid<std::int32_t> labels_inside_sheet(const Grid<std::int32_t>& face) {
   Grid<std::int32_t> labels = face;
   std::vector<std::pair<int, int>> ring, next;
   // Only a pixel whose row and column lie next to (or on) ones with outside pixels can border one.
-  std::vector<std::uint8_t> row_out(static_cast<std::size_t>(labels.rows), 0), col_out(static_cast<std::size_t>(labels.cols), 0);
+  std::vector<std::uint8_t> row_out(static_cast<std::size_t>(labels.rows), 0),
+      col_out(static_cast<std::size_t>(labels.cols), 0);
   for (int row = 0; row < labels.rows; ++row)
     for (int col = 0; col < labels.cols; ++col)
       if (labels(col, row) < 0) row_out[static_cast<std::size_t>(row)] = col_out[static_cast<std::size_t>(col)] = 1;
@@ -117,19 +118,22 @@ std::vector<Chain> trace_chains(const Grid<std::int32_t>& labels) {
   };
   for (int r = 1; r < rows; ++r)  // between pixel rows r - 1 (above) and r: walking +X, above is left
     for (int c = 0; c < cols; ++c)
-      if (labels(c, r - 1) != labels(c, r)) edges.push_back(directed(corner(c, r), corner(c + 1, r), labels(c, r - 1), labels(c, r)));
+      if (labels(c, r - 1) != labels(c, r))
+        edges.push_back(directed(corner(c, r), corner(c + 1, r), labels(c, r - 1), labels(c, r)));
   // Between pixel columns c - 1 and c, walking +Y (up), c - 1 on the left: column by column, as the
   // tracing order depends on it, but found row by row (columns are far apart in memory).
   std::vector<std::size_t> next_of_column(static_cast<std::size_t>(cols) + 1, 0);
   for (int r = 0; r < rows; ++r)
     for (int c = 1; c < cols; ++c) next_of_column[static_cast<std::size_t>(c) + 1] += labels(c - 1, r) != labels(c, r);
   next_of_column[1] = edges.size();
-  for (int c = 1; c < cols; ++c) next_of_column[static_cast<std::size_t>(c) + 1] += next_of_column[static_cast<std::size_t>(c)];
+  for (int c = 1; c < cols; ++c)
+    next_of_column[static_cast<std::size_t>(c) + 1] += next_of_column[static_cast<std::size_t>(c)];
   edges.resize(next_of_column[static_cast<std::size_t>(cols)]);
   for (int r = 0; r < rows; ++r)
     for (int c = 1; c < cols; ++c)
       if (labels(c - 1, r) != labels(c, r))
-        edges[next_of_column[static_cast<std::size_t>(c)]++] = directed(corner(c, r + 1), corner(c, r), labels(c - 1, r), labels(c, r));
+        edges[next_of_column[static_cast<std::size_t>(c)]++] =
+            directed(corner(c, r + 1), corner(c, r), labels(c - 1, r), labels(c, r));
 
   const std::size_t corners = static_cast<std::size_t>(corner_cols) * (rows + 1);
   std::vector<std::uint8_t> degree(corners, 0);
@@ -654,7 +658,9 @@ void draw_lines(const std::vector<std::pair<Arrangement::Halfedge_const_handle, 
   std::vector<std::pair<std::size_t, std::size_t>> by_kind[5];
   for (const auto& [he, kind] : edges) {
     const double length = length_of(he);
-    (kind == LineKind::Cut || kind == LineKind::CutOut ? plan.cut_mm : kind == LineKind::Mountain ? plan.mountain_mm : plan.valley_mm) += length;
+    (kind == LineKind::Cut || kind == LineKind::CutOut ? plan.cut_mm
+     : kind == LineKind::Mountain                      ? plan.mountain_mm
+                                                       : plan.valley_mm) += length;
     by_kind[static_cast<int>(kind)].emplace_back(index_of(he->source()), index_of(he->target()));
   }
   for (const LineKind kind : {LineKind::Cut, LineKind::Mountain, LineKind::Valley, LineKind::CutOut}) {
@@ -663,8 +669,11 @@ void draw_lines(const std::vector<std::pair<Arrangement::Halfedge_const_handle, 
   }
   const Sheet& sheet = plan.sheet;
   plan.lines.push_back({LineKind::Outline,
-                        {{0, sheet.min_Y()}, {sheet.width_mm, sheet.min_Y()}, {sheet.width_mm, sheet.max_Y()},
-                         {0, sheet.max_Y()}, {0, sheet.min_Y()}}});
+                        {{0, sheet.min_Y()},
+                         {sheet.width_mm, sheet.min_Y()},
+                         {sheet.width_mm, sheet.max_Y()},
+                         {0, sheet.max_Y()},
+                         {0, sheet.min_Y()}}});
 }
 
 // A point inside each face: its pixel nearest the centroid of its pixels.

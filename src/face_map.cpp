@@ -59,7 +59,8 @@ void merge_coplanar_faces(SliceResult& result) {
           if (end < face.cols && here[end] >= 2) meets.emplace_back(f, here[end]);
           if (below)
             for (int c = col; c < end; ++c)
-              if (below[c] != f && below[c] >= 2 && (c == col || below[c] != below[c - 1])) meets.emplace_back(f, below[c]);
+              if (below[c] != f && below[c] >= 2 && (c == col || below[c] != below[c - 1]))
+                meets.emplace_back(f, below[c]);
         }
         col = end;
       }
@@ -69,13 +70,15 @@ void merge_coplanar_faces(SliceResult& result) {
     for (std::size_t f = 0; f < n; ++f) pixels[f] += band_pixels[band][f];
     for (const auto& [f, g] : band_meets[band]) join(f, g);
   }
-  const bool emptied = std::any_of(pixels.begin() + std::min<std::size_t>(2, n), pixels.end(), [](std::int64_t p) { return p == 0; });
+  const bool emptied =
+      std::any_of(pixels.begin() + std::min<std::size_t>(2, n), pixels.end(), [](std::int64_t p) { return p == 0; });
   if (!merged && !emptied) {  // the ids stay as they are: no pass over the pixels to relabel them
     for (std::size_t f = 0; f < n; ++f) result.faces[f].pixels = pixels[f];
     return;
   }
   for (std::size_t f = 0; f < n; ++f)
-    if (const auto r = static_cast<std::size_t>(root(static_cast<std::int32_t>(f))); r != f) pixels[r] += std::exchange(pixels[f], 0);
+    if (const auto r = static_cast<std::size_t>(root(static_cast<std::int32_t>(f))); r != f)
+      pixels[r] += std::exchange(pixels[f], 0);
   std::vector<std::int32_t> new_id(n, -1);
   std::vector<RasterFace> faces;
   for (std::size_t f = 0; f < n; ++f)
@@ -94,7 +97,7 @@ void merge_coplanar_faces(SliceResult& result) {
 }
 
 std::vector<FacePart> split_disconnected_faces(SliceResult& result, const std::vector<std::int32_t>& faces,
-                                              std::int64_t min_part_px, int min_part_cols) {
+                                               std::int64_t min_part_px, int min_part_cols) {
   Grid<std::int32_t>& face = result.face;
   std::vector<std::uint8_t> wanted(result.faces.size(), 0);
   for (const std::int32_t f : faces)
@@ -128,7 +131,8 @@ std::vector<FacePart> split_disconnected_faces(SliceResult& result, const std::v
     }
     // Both rows' runs are sorted by column: one merge-like sweep finds the overlapping pairs.
     for (std::size_t a = previous_row, b = this_row; a < this_row && b < runs.size();) {
-      if (runs[a].row == row - 1 && runs[a].face == runs[b].face && runs[a].c0 < runs[b].c1 && runs[b].c0 < runs[a].c1) {
+      if (runs[a].row == row - 1 && runs[a].face == runs[b].face && runs[a].c0 < runs[b].c1 &&
+          runs[b].c0 < runs[a].c1) {
         const std::uint32_t ra = root(static_cast<std::uint32_t>(a)), rb = root(static_cast<std::uint32_t>(b));
         parent[std::max(ra, rb)] = std::min(ra, rb);
       }
@@ -153,7 +157,8 @@ std::vector<FacePart> split_disconnected_faces(SliceResult& result, const std::v
     part_size[static_cast<std::size_t>(part)] += runs[i].c1 - runs[i].c0;
   }
   const auto paint = [&](std::size_t part, std::int32_t id) {
-    for (const std::uint32_t k : part_runs[part]) std::fill_n(&face.values[face.index(runs[k].c0, runs[k].row)], runs[k].c1 - runs[k].c0, id);
+    for (const std::uint32_t k : part_runs[part])
+      std::fill_n(&face.values[face.index(runs[k].c0, runs[k].row)], runs[k].c1 - runs[k].c0, id);
   };
   // The largest part of each face keeps its id (the first of equals, for determinism).
   std::vector<std::int32_t> keeper(result.faces.size(), -1);
@@ -180,7 +185,8 @@ std::vector<FacePart> split_disconnected_faces(SliceResult& result, const std::v
           for (const auto& [dc, dr] : kStep)
             if (face.contains(c + dc, runs[k].row + dr)) {
               const std::int32_t g = face(c + dc, runs[k].row + dr);
-              if (g >= 0 && g != static_cast<std::int32_t>(f) && !result.faces[static_cast<std::size_t>(g)].hole) ++sides[g];
+              if (g >= 0 && g != static_cast<std::int32_t>(f) && !result.faces[static_cast<std::size_t>(g)].hole)
+                ++sides[g];
             }
       if (!sides.empty()) {
         const std::int32_t into = std::ranges::max_element(sides, {}, [](const auto& s) { return s.second; })->first;
@@ -209,7 +215,8 @@ namespace {
 // Where faces a (row r) and b (row r + 1 below it) should meet: their fold line Y = h - d lies
 // between rows t and t + 1, Y = (rows_above_fold - t - 1) / px_per_mm. -1 when they meet on no fold
 // within tolerance_mm of their boundary (and for a line above the sheet, which nothing can reach).
-int fold_row(const SliceResult& result, const PixelGrid& grid, double tolerance_mm, std::int32_t a, std::int32_t b, int r) {
+int fold_row(const SliceResult& result, const PixelGrid& grid, double tolerance_mm, std::int32_t a, std::int32_t b,
+             int r) {
   if (a == b || a < 0 || b < 0) return -1;
   const RasterFace &fa = result.faces[static_cast<std::size_t>(a)], &fb = result.faces[static_cast<std::size_t>(b)];
   if (fa.orientation == fb.orientation || fa.hole || fb.hole) return -1;
@@ -265,7 +272,8 @@ std::vector<int> align_sweep(SliceResult& result, const PixelGrid& grid, double 
   }
   std::vector<int> moved;
   for (int col = 0; col < face.cols; ++col)
-    if (off_line[static_cast<std::size_t>(col)] && align_column(result, grid, tolerance_mm, col) > 0) moved.push_back(col);
+    if (off_line[static_cast<std::size_t>(col)] && align_column(result, grid, tolerance_mm, col) > 0)
+      moved.push_back(col);
   return moved;
 }
 

@@ -3,6 +3,7 @@
 
 #include <cairo.h>
 #include <dxflib/dl_dxf.h>
+#include <tbb/parallel_invoke.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -17,8 +18,6 @@
 #include <sstream>
 #include <string_view>
 #include <vector>
-
-#include <tbb/parallel_invoke.h>
 
 #include "origamic/error.hpp"
 #include "origamic/mm_text.hpp"
@@ -319,7 +318,9 @@ std::vector<OutputFile> plan_files(const Plan& plan, const ExportOptions& option
   std::string dxf, svg, png, pdf;
   tbb::parallel_invoke([&] { dxf = plan_dxf(plan, options); }, [&] { svg = plan_svg(plan, options); },
                        [&] { png = plan_png(plan, options); }, [&] { pdf = plan_pdf(plan, options); });
-  return {{base + ".dxf", std::move(dxf)}, {base + ".svg", std::move(svg)}, {base + ".png", std::move(png)},
+  return {{base + ".dxf", std::move(dxf)},
+          {base + ".svg", std::move(svg)},
+          {base + ".png", std::move(png)},
           {base + ".pdf", std::move(pdf)}};
 }
 

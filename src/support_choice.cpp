@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "support_choice.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
 #include <climits>
@@ -12,8 +14,6 @@
 #include <tuple>
 #include <utility>
 
-#include <tbb/parallel_for.h>
-
 #include "bands.hpp"
 
 namespace origamic {
@@ -22,11 +22,17 @@ namespace {
 class CandidateFinder {
  public:
   // Candidates will be asked of the faces in `wanted` only.
-  CandidateFinder(const RasterMaps& maps, const SliceResult& slices, const std::vector<std::int32_t>& wanted, double split_cost,
-                  Reach reach)
-      : grid_(maps.grid), face_(slices.face), faces_(slices.faces), split_cost_(split_cost), below_tips_(reach.below_tips),
+  CandidateFinder(const RasterMaps& maps, const SliceResult& slices, const std::vector<std::int32_t>& wanted,
+                  double split_cost, Reach reach)
+      : grid_(maps.grid),
+        face_(slices.face),
+        faces_(slices.faces),
+        split_cost_(split_cost),
+        below_tips_(reach.below_tips),
         corners_(reach.corners),
-        px_mm_(1 / maps.grid.px_per_mm), block_(slices.block_px), slot_(slices.faces.size(), -1) {
+        px_mm_(1 / maps.grid.px_per_mm),
+        block_(slices.block_px),
+        slot_(slices.faces.size(), -1) {
     for (const std::int32_t f : wanted)
       if (int& k = slot_[static_cast<std::size_t>(f)]; k < 0) k = static_cast<int>(columns_.size()), columns_.push_back({INT_MAX, -1});
     first_.assign(columns_.size() * static_cast<std::size_t>(face_.cols), -1);
@@ -50,7 +56,8 @@ class CandidateFinder {
     });
     for (const auto& band : band_columns)
       for (std::size_t slot = 0; slot < columns_.size(); ++slot)
-        columns_[slot] = {std::min(columns_[slot].first, band[slot].first), std::max(columns_[slot].second, band[slot].second)};
+        columns_[slot] = {std::min(columns_[slot].first, band[slot].first),
+                          std::max(columns_[slot].second, band[slot].second)};
   }
 
   // Candidates from the top (up = true) or bottom edge of face f, one per W-wide block column that
@@ -68,11 +75,13 @@ class CandidateFinder {
       double extra_cost;
     };
     std::vector<Start> starts;
-    for (int c0 = std::max(0, lo) / block_ * block_; c0 <= hi && c0 + block_ <= face_.cols; c0 += block_) starts.push_back({c0, c0 + block_, 0});
+    for (int c0 = std::max(0, lo) / block_ * block_; c0 <= hi && c0 + block_ <= face_.cols; c0 += block_)
+      starts.push_back({c0, c0 + block_, 0});
     for (const int c0 : {lo, hi + 1 - block_})
       if (c0 >= 0 && c0 + block_ <= face_.cols && c0 % block_ != 0) starts.push_back({c0, c0 + block_, 0});
     const double corner_cost = block_ * px_mm_;
-    if (corners_ && lo - block_ >= 0 && lo + block_ <= face_.cols) starts.push_back({lo - block_, lo + block_, corner_cost});
+    if (corners_ && lo - block_ >= 0 && lo + block_ <= face_.cols)
+      starts.push_back({lo - block_, lo + block_, corner_cost});
     if (corners_ && hi + 1 - block_ >= 0 && hi + 1 + block_ <= face_.cols)
       starts.push_back({hi + 1 - block_, hi + 1 + block_, corner_cost});
     BlockColumn column(face_.rows);
@@ -164,7 +173,8 @@ class CandidateFinder {
       row.Y = finder.grid_.Y(r);
       row.from = faces_.size();
       for (int c = c0_; c < c1_; ++c)
-        if (const std::int32_t x = finder.face_(c, r); faces_.size() == row.from || faces_.back() != x) faces_.push_back(x);
+        if (const std::int32_t x = finder.face_(c, r); faces_.size() == row.from || faces_.back() != x)
+          faces_.push_back(x);
       row.to = faces_.size();
       return row;
     }

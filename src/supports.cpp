@@ -96,10 +96,12 @@ Standing raster_standing(const PixelGrid& grid, const SliceResult& slices, doubl
         const std::int32_t upper = above[c], lower = below[c];
         if (upper == lower || upper < 0 || lower < 0) continue;
         if (c > 0 && upper == above[c - 1] && lower == below[c - 1]) continue;  // the same pair, already seen
-        const RasterFace &fu = slices.faces[static_cast<std::size_t>(upper)], &fl = slices.faces[static_cast<std::size_t>(lower)];
+        const RasterFace &fu = slices.faces[static_cast<std::size_t>(upper)],
+                         &fl = slices.faces[static_cast<std::size_t>(lower)];
         if (fu.orientation == fl.orientation || fu.hole || fl.hole) continue;
         const double fold_Y = fu.orientation == Orientation::H ? fu.depth_mm - fl.depth_mm : fl.depth_mm - fu.depth_mm;
-        if (std::abs(edge_Y - fold_Y) <= tolerance) bands[static_cast<std::size_t>(band)].push_back({upper, lower, fold_Y});
+        if (std::abs(edge_Y - fold_Y) <= tolerance)
+          bands[static_cast<std::size_t>(band)].push_back({upper, lower, fold_Y});
       }
     }
   });
@@ -184,7 +186,8 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
       ++report.rounds;
       std::shuffle(invalid.begin(), invalid.end(), random);
       const bool splits = allow_splits || split_rounds_left-- > 0;
-      const std::vector<Candidate> chosen = choose_supports(maps, slices, standing, invalid, options, {splits, reach.below_tips, reach.corners});
+      const std::vector<Candidate> chosen =
+          choose_supports(maps, slices, standing, invalid, options, {splits, reach.below_tips, reach.corners});
       if (chosen.empty()) return std::to_string(invalid.size()) + " faces invalid and no support reaches them";
       report.supports += static_cast<int>(chosen.size());
       paint_supports(chosen, maps.grid, tolerance, crumb_px, slices);

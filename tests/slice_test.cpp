@@ -242,9 +242,9 @@ TEST(Slice, AFaceIsInPartsOnlyWhereNoPathOfSidesJoinsThem) {
   s.face = Grid<std::int32_t>(10, 7, kBackFace);
   s.faces = {{Orientation::V, 0}, {Orientation::H, 0}, {Orientation::V, 4}};
   for (int r = 0; r < 2; ++r)
-    for (int c = 0; c < 2; ++c) s.face(c, r) = 2;  // the square: 4 px, met first in row-major order
+    for (int c = 0; c < 2; ++c) s.face(c, r) = 2;               // the square: 4 px, met first in row-major order
   for (int r = 2; r < 7; ++r) s.face(2, r) = s.face(6, r) = 2;  // the U's arms, 5 px each
-  for (int c = 3; c < 6; ++c) s.face(c, 6) = 2;                  // its bottom: 3 px
+  for (int c = 3; c < 6; ++c) s.face(c, 6) = 2;                 // its bottom: 3 px
   const std::vector<FacePart> parts = split_disconnected_faces(s, {2}, 1, 0);
   ASSERT_EQ(parts.size(), 1u);
   EXPECT_EQ(parts[0].from, 2);

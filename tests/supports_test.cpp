@@ -208,7 +208,8 @@ DesignResult standing_design(const char* model, int orders = DesignOptions{}.sup
 // order, allowed all of it at once (it is the last), stands too: the reach holds the ring.
 TEST(Supports, LaterOrdersReachFartherSoAFlatRingStands) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
-  EXPECT_GE(standing_design("prim_torus.stl").supports.orders, 2) << "the first order, by the plain rules, does not stand";
+  EXPECT_GE(standing_design("prim_torus.stl").supports.orders, 2)
+      << "the first order, by the plain rules, does not stand";
   EXPECT_EQ(standing_design("prim_torus.stl", 1).supports.orders, 1);
 }
 

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "origamic/fold_style.hpp"
-#include "origamic/output.hpp"
 #include "origamic/oa.hpp"
+#include "origamic/output.hpp"
 #include "origamic/plan.hpp"
 
 namespace origamic {
