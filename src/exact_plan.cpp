@@ -713,8 +713,23 @@ void count_vanished_faces(const Grid<std::int32_t>& labels, const std::vector<Ra
 
 }  // namespace
 
-Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& sheet, const PlanOptions& options,
-                PlanDetail detail) {
+// What a verdict leaves for drawing the plan in full: the arrangement and what was read off it.
+struct PlanBuild::State {
+  PixelGrid grid;
+  std::vector<RasterFace> faces;
+  Grid<std::int32_t> labels;
+  Built built;
+  Pieces pieces;
+  std::vector<double> area;  // per raster face
+  std::vector<std::pair<Arrangement::Halfedge_const_handle, LineKind>> edges;  // inner edges, upper face first
+  std::vector<std::uint8_t> cut_out;                                            // per piece: a crumb, cut out
+  Plan plan;                                                                    // the verdict
+};
+
+PlanBuild::PlanBuild(const RasterMaps& maps, const SliceResult& sliced, const Sheet& sheet, const PlanOptions& options)
+    : state_(std::make_unique<State>()) {
+  State& state = *state_;  // built in place: the handles read off the arrangement stay valid
+  state.grid = maps.grid;
   // §4.5 in two steps: the raster boundaries move to the pixel row nearest their fold line where
   // they can (align_folds_to_lines; a no-op on plans already aligned), then only those within half a
   // pixel snap onto it. Snapping farther could carry a fold across a neighbouring boundary, which
@@ -726,18 +741,19 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
   slices.faces = sliced.faces;
   align_folds_to_lines(slices, maps.grid, fold_snap_tolerance_mm(options, slices, maps.grid));
   const Lattice lattice(maps.grid, sheet);
-  const Grid<std::int32_t> labels = labels_inside_sheet(slices.face);
+  state.labels = labels_inside_sheet(slices.face);
+  const Grid<std::int32_t>& labels = state.labels;
   const std::vector<Chain> chains = trace_chains(labels);
   const double px_mm = 1 / maps.grid.px_per_mm;
   const double simplify_mm = std::min(options.simplify_mm, px_mm);
   const double fold_tolerance = aligned_fold_tolerance_mm(maps.grid);
 
-  Plan plan;
+  Plan& plan = state.plan;
   plan.sheet = sheet;
   // Simplification or snapping that makes two boundaries cross would change the plan's topology:
   // the chains involved fall back a step (unsimplified, then their pixel contour) until none does.
   std::vector<Fallback> fallback(chains.size(), Fallback::None);
-  Built built;
+  Built& built = state.built;
   for (;;) {
     built = Built{};
     build_arrangement(chains, fallback, slices.faces, lattice, sheet, simplify_mm, fold_tolerance, built);
@@ -764,9 +780,11 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
 
   // Faces: exact areas per label, and the tiling check.
   const std::size_t n = slices.faces.size();
-  std::vector<double> area(n, 0.0);
+  std::vector<double>& area = state.area;
+  area.assign(n, 0.0);
   double total = 0;
-  const Pieces pieces = pieces_of(arr);
+  state.pieces = pieces_of(arr);
+  const Pieces& pieces = state.pieces;
   std::vector<double> piece_area(pieces.label.size(), 0.0);
   for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
     if (f->is_unbounded()) continue;
@@ -804,7 +822,7 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
     graph.holes[static_cast<std::size_t>(node[p])] = slices.faces[static_cast<std::size_t>(pieces.label[p])].hole;
   auto node_of = [&](Arrangement::Face_const_handle f) { return node[static_cast<std::size_t>(pieces.of.at(f))]; };
   std::vector<bool> fold_on_top(n, false), fold_on_bottom(n, false);
-  std::vector<std::pair<Arrangement::Halfedge_const_handle, LineKind>> edges;  // inner edges, upper face first
+  auto& edges = state.edges;
   for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
     Arrangement::Halfedge_const_handle he = e;
     if (he->direction() != CGAL::ARR_LEFT_TO_RIGHT) he = he->twin();  // he->face() is above or left
@@ -866,17 +884,32 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& sliced, const Sheet& 
     face.support = slices.faces[f].support;
     face.status = plan.validity.status[f];
   }
-  if (detail == PlanDetail::Verdict) return plan;
+  state.cut_out = verdict.cut_out;
+  state.faces = std::move(slices.faces);
+}
 
+PlanBuild::~PlanBuild() = default;
+PlanBuild::PlanBuild(PlanBuild&&) noexcept = default;
+PlanBuild& PlanBuild::operator=(PlanBuild&&) noexcept = default;
+
+const Plan& PlanBuild::verdict() const { return state_->plan; }
+
+Plan PlanBuild::full() const {
+  const State& state = *state_;
+  Plan plan = state.plan;
+  auto edges = state.edges;
+  const auto cut_out = [&](Arrangement::Face_const_handle f) { return state.cut_out[static_cast<std::size_t>(state.pieces.of.at(f))]; };
   for (auto& [he, kind] : edges)
-    if (verdict.cut_out[static_cast<std::size_t>(pieces.of.at(he->face()))] ||
-        verdict.cut_out[static_cast<std::size_t>(pieces.of.at(he->twin()->face()))])
-      kind = LineKind::CutOut;
+    if (cut_out(he->face()) || cut_out(he->twin()->face())) kind = LineKind::CutOut;
   draw_lines(edges, plan);
-  place_inside_points(labels, maps.grid, plan.faces);
-  count_vanished_faces(labels, slices.faces, area, plan);
-  plan.regions = regions_of(arr, plan.faces);
+  place_inside_points(state.labels, state.grid, plan.faces);
+  count_vanished_faces(state.labels, state.faces, state.area, plan);
+  plan.regions = regions_of(state.built.arrangement, plan.faces);
   return plan;
+}
+
+Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& sheet, const PlanOptions& options) {
+  return PlanBuild(maps, slices, sheet, options).full();
 }
 
 }  // namespace origamic

@@ -152,8 +152,8 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
   int split_rounds_left = 0;
   Standing standing;
   // The face map and faces the last exact verdict was built of: an undone pass goes back to them, and
-  // so does the end (the plan kept is built in full from them; a crumb joined to a neighbour after
-  // the verdict would make it disagree).
+  // so does the end (the plan kept is drawn in full from that verdict; a crumb joined to a
+  // neighbour after it would make them disagree).
   std::pair<Grid<std::int32_t>, std::vector<RasterFace>> confirmed;
   // Rounds run on the raster graph; the exact plan, built when they end, has the last word and
   // the next rounds start from its verdict.
@@ -161,8 +161,11 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
     standing = raster_standing(maps.grid, slices, aligned_fold_tolerance_mm(maps.grid));
     exact = false;
   };
+  // The exact plan of the last verdict, kept: the plan kept is drawn in full from it.
+  std::optional<PlanBuild> last_build;
   auto confirm = [&] {
-    result.plan = build_plan(maps, slices, sheet, plan_options, PlanDetail::Verdict);
+    last_build.emplace(maps, slices, sheet, plan_options);
+    result.plan = last_build->verdict();
     confirmed = {slices.face, slices.faces};
     ++report.exact_builds;
     standing = standing_of(result.plan);
@@ -290,6 +293,7 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
   if (report.converged) report.stop_reason.clear();
   slices.face = std::move(confirmed.first);
   slices.faces = std::move(confirmed.second);
+  result.plan = last_build->full();
   report.narrow = narrow_strips(slices, maps.grid);
   result.slices = std::move(slices);
   return result;
@@ -326,9 +330,6 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
     best->report.orders = order;
     if (done) break;
   }
-  // The loop built verdicts; the plan chosen is built in full, from the same slices.
-  best->plan = build_plan(maps, best->slices, sheet, plan_options);
-  ++best->report.exact_builds;
   return std::move(*best);
 }
 

@@ -269,7 +269,7 @@ TEST(Plan, AVerdictBuildDecidesAsTheFullBuildAndDrawsNothing) {
   options.placement.up = UpAxis::Z;
   options.supports.enabled = false;  // sliced, unsupported: floating and invalid faces, in pieces
   const DesignResult r = design(test::models_dir() / "seedlike" / "sphere.stl", options);
-  const Plan verdict = build_plan(r.maps, r.slices, options.sheet, options.plan, PlanDetail::Verdict);
+  const Plan verdict = PlanBuild(r.maps, r.slices, options.sheet, options.plan).verdict();
   const Plan& full = r.plan;
   ASSERT_GT(full.validity.floating + full.validity.invalid, 0) << "a plan with something to decide";
   EXPECT_EQ(verdict.validity.status, full.validity.status);

@@ -155,8 +155,12 @@ TEST(Slice, ARoofRisingToTheBackPlaneEndsOnItsFoldThereNotBehindIt) {
       const std::int32_t f = p.slices.face(col, row);
       ASSERT_GE(f, 0);
       const RasterFace& face = p.slices.faces[static_cast<std::size_t>(f)];
-      if (f >= 2 && face.orientation == Orientation::H) EXPECT_LE(grid.Y(row), face.depth_mm) << col << ", " << row;
-      if (f >= 2 && face.orientation == Orientation::V) EXPECT_GE(grid.Y(row), -face.depth_mm) << col << ", " << row;
+      if (f >= 2 && face.orientation == Orientation::H) {
+        EXPECT_LE(grid.Y(row), face.depth_mm) << col << ", " << row;
+      }
+      if (f >= 2 && face.orientation == Orientation::V) {
+        EXPECT_GE(grid.Y(row), -face.depth_mm) << col << ", " << row;
+      }
       // The top terrace meets the back plane on its fold line Y = h, to the pixel.
       if (f == kBackFace && grid.X(col) > 45 && grid.X(col) < 145 && p.slices.face(col, row + 1) >= 2 &&
           p.slices.faces[static_cast<std::size_t>(p.slices.face(col, row + 1))].depth_mm == top) {

@@ -165,7 +165,9 @@ TEST(Supports, ShippedHouseStandsAtTheDefaultOptions) {
   options.supports.orders = 1;
   const DesignResult once = design(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj", options);
   EXPECT_EQ(once.supports.orders, 1);
-  if (!plan_stands(once.plan.validity, false)) EXPECT_FALSE(once.supports.stop_reason.empty());
+  if (!plan_stands(once.plan.validity, false)) {
+    EXPECT_FALSE(once.supports.stop_reason.empty());
+  }
 }
 
 // The windmill's sails are strips that part pieces of the back plane from it; with nothing to hold

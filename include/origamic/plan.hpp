@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "origamic/oa.hpp"
@@ -95,16 +96,27 @@ inline double fold_snap_tolerance_mm(const PlanOptions& options, const SliceResu
 /// pixel, and a hair for the rounding of Y.
 inline double aligned_fold_tolerance_mm(const PixelGrid& grid) { return 1 / grid.px_per_mm + 1e-9; }
 
-/// How much of the plan build_plan makes: all of it, or only its verdict (the faces' statuses,
-/// orientations, depths, areas and folds on top and bottom, the validity, the arrangement's checks),
-/// all that a loop deciding where supports go needs: no lines nor their lengths, no regions, inside
-/// points, lost or collapsed faces.
-enum class PlanDetail { Full, Verdict };
+/// Builds the exact plan from the raster plan (sheet in mm). Deterministic. Not reentrant: the exact
+/// numbers are built without thread safety (see exact_plan.cpp), so one call at a time per process.
+Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& sheet, const PlanOptions& options);
 
-/// Builds the exact plan from the raster plan (sheet in mm). Deterministic: the verdict of a Verdict
-/// build is that of the Full one. Not reentrant: the exact numbers are built without thread safety
-/// (see exact_plan.cpp), so one call at a time per process.
-Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& sheet, const PlanOptions& options,
-                PlanDetail detail = PlanDetail::Full);
+/// build_plan in two steps, for a loop that decides on many verdicts and keeps one: the verdict
+/// (the faces' statuses, orientations, depths, areas and folds on top and bottom, the validity, the
+/// arrangement's checks; no lines nor their lengths, no regions, inside points, lost or collapsed
+/// faces), then, from the arrangement kept, the plan in full, as build_plan gives it. Same rules.
+class PlanBuild {
+ public:
+  PlanBuild(const RasterMaps& maps, const SliceResult& slices, const Sheet& sheet, const PlanOptions& options);
+  ~PlanBuild();
+  PlanBuild(PlanBuild&&) noexcept;
+  PlanBuild& operator=(PlanBuild&&) noexcept;
+
+  const Plan& verdict() const;
+  Plan full() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 }  // namespace origamic
