@@ -70,6 +70,7 @@ RayScene::RayScene(TriangleMesh oa_mesh) : impl_(std::make_unique<Impl>()) {
       geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), s.mesh.triangles.size()));
   for (std::size_t i = 0; i < s.mesh.triangles.size(); ++i)
     for (std::size_t k = 0; k < 3; ++k) indices[3 * i + k] = s.mesh.triangles[i][k];
+  rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_LOW);
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(s.scene, geometry);
   rtcReleaseGeometry(geometry);
