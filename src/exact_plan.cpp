@@ -14,6 +14,7 @@
 #include <numeric>
 #include <utility>
 
+#include "bands.hpp"
 #include "exact_kernel.hpp"
 
 namespace origamic {
@@ -70,8 +71,7 @@ struct Chain {
 
 // The face map, with pixels whose centre fell outside the sheet (the partial last row or column)
 // given the face of the nearest pixel inside, so the arrangement covers the sheet to its edge.
-Grid<std::int32_t> labels_inside_sheet(const Grid<std::int32_t>& face) {
-  Grid<std::int32_t> labels = face;
+Grid<std::int32_t> labels_inside_sheet(Grid<std::int32_t> labels) {
   std::vector<std::pair<int, int>> ring, next;
   // Only a pixel whose row and column lie next to (or on) ones with outside pixels can border one.
   std::vector<std::uint8_t> row_out(static_cast<std::size_t>(labels.rows), 0),
@@ -116,24 +116,38 @@ std::vector<Chain> trace_chains(const Grid<std::int32_t>& labels) {
   auto directed = [](std::size_t a, std::size_t b, std::int32_t left, std::int32_t right) {
     return left < right ? Edge{a, b, left, right} : Edge{b, a, right, left};
   };
-  for (int r = 1; r < rows; ++r)  // between pixel rows r - 1 (above) and r: walking +X, above is left
-    for (int c = 0; c < cols; ++c)
-      if (labels(c, r - 1) != labels(c, r))
-        edges.push_back(directed(corner(c, r), corner(c + 1, r), labels(c, r - 1), labels(c, r)));
+  // The scans run in bands of rows in parallel; each band's edges keep their place in the order.
+  // Between pixel rows r - 1 (above) and r, walking +X, above on the left: row by row.
+  std::array<std::vector<Edge>, kBands> band_edges;
+  for_bands(rows - 1, [&](int band, int begin, int end) {
+    for (int r = begin + 1; r < end + 1; ++r)
+      for (int c = 0; c < cols; ++c)
+        if (labels(c, r - 1) != labels(c, r))
+          band_edges[static_cast<std::size_t>(band)].push_back(
+              directed(corner(c, r), corner(c + 1, r), labels(c, r - 1), labels(c, r)));
+  });
+  for (const std::vector<Edge>& band : band_edges) edges.insert(edges.end(), band.begin(), band.end());
   // Between pixel columns c - 1 and c, walking +Y (up), c - 1 on the left: column by column, as the
-  // tracing order depends on it, but found row by row (columns are far apart in memory).
-  std::vector<std::size_t> next_of_column(static_cast<std::size_t>(cols) + 1, 0);
-  for (int r = 0; r < rows; ++r)
-    for (int c = 1; c < cols; ++c) next_of_column[static_cast<std::size_t>(c) + 1] += labels(c - 1, r) != labels(c, r);
-  next_of_column[1] = edges.size();
-  for (int c = 1; c < cols; ++c)
-    next_of_column[static_cast<std::size_t>(c) + 1] += next_of_column[static_cast<std::size_t>(c)];
-  edges.resize(next_of_column[static_cast<std::size_t>(cols)]);
-  for (int r = 0; r < rows; ++r)
-    for (int c = 1; c < cols; ++c)
-      if (labels(c - 1, r) != labels(c, r))
-        edges[next_of_column[static_cast<std::size_t>(c)]++] =
-            directed(corner(c, r + 1), corner(c, r), labels(c - 1, r), labels(c, r));
+  // tracing order depends on it, but found row by row (columns are far apart in memory): each band
+  // counts its edges per column, and then writes them where its rows fall in each column.
+  std::array<std::vector<std::size_t>, kBands> band_next;  // per band and column: where its next edge goes
+  for_bands(rows, [&](int band, int begin, int end) {
+    std::vector<std::size_t>& count = band_next[static_cast<std::size_t>(band)];
+    count.assign(static_cast<std::size_t>(cols), 0);
+    for (int r = begin; r < end; ++r)
+      for (int c = 1; c < cols; ++c) count[static_cast<std::size_t>(c)] += labels(c - 1, r) != labels(c, r);
+  });
+  std::size_t total = edges.size();
+  for (std::size_t c = 1; c < static_cast<std::size_t>(cols); ++c)
+    for (std::vector<std::size_t>& next : band_next) total += std::exchange(next[c], total);
+  edges.resize(total);
+  for_bands(rows, [&](int band, int begin, int end) {
+    std::vector<std::size_t>& next = band_next[static_cast<std::size_t>(band)];
+    for (int r = begin; r < end; ++r)
+      for (int c = 1; c < cols; ++c)
+        if (labels(c - 1, r) != labels(c, r))
+          edges[next[static_cast<std::size_t>(c)]++] = directed(corner(c, r + 1), corner(c, r), labels(c - 1, r), labels(c, r));
+  });
 
   const std::size_t corners = static_cast<std::size_t>(corner_cols) * (rows + 1);
   std::vector<std::uint8_t> degree(corners, 0);
@@ -741,7 +755,7 @@ PlanBuild::PlanBuild(const RasterMaps& maps, const SliceResult& sliced, const Sh
   slices.faces = sliced.faces;
   align_folds_to_lines(slices, maps.grid, fold_snap_tolerance_mm(options, slices, maps.grid));
   const Lattice lattice(maps.grid, sheet);
-  state.labels = labels_inside_sheet(slices.face);
+  state.labels = labels_inside_sheet(std::move(slices.face));  // the face map is not read again
   const Grid<std::int32_t>& labels = state.labels;
   const std::vector<Chain> chains = trace_chains(labels);
   const double px_mm = 1 / maps.grid.px_per_mm;
