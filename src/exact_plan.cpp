@@ -4,8 +4,6 @@
 // Exact numbers here are never shared between threads (see exact_kernel.hpp).
 #define CGAL_HAS_NO_THREADS 1
 
-#include "origamic/plan.hpp"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -16,6 +14,7 @@
 
 #include "bands.hpp"
 #include "exact_kernel.hpp"
+#include "origamic/plan.hpp"
 
 namespace origamic {
 namespace {
@@ -146,7 +145,8 @@ std::vector<Chain> trace_chains(const Grid<std::int32_t>& labels) {
     for (int r = begin; r < end; ++r)
       for (int c = 1; c < cols; ++c)
         if (labels(c - 1, r) != labels(c, r))
-          edges[next[static_cast<std::size_t>(c)]++] = directed(corner(c, r + 1), corner(c, r), labels(c - 1, r), labels(c, r));
+          edges[next[static_cast<std::size_t>(c)]++] =
+              directed(corner(c, r + 1), corner(c, r), labels(c - 1, r), labels(c, r));
   });
 
   const std::size_t corners = static_cast<std::size_t>(corner_cols) * (rows + 1);
