@@ -212,7 +212,8 @@ TEST(Supports, LaterOrdersReachFartherSoAFlatRingStands) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   EXPECT_GE(standing_design("prim_torus.stl").supports.orders, 2)
       << "the first order, by the plain rules, does not stand";
-  EXPECT_EQ(standing_design("prim_torus.stl", 1).supports.orders, 1);
+  const DesignResult one = standing_design("prim_torus.stl", 1);  // asserts that it stands
+  EXPECT_GT(one.supports.supports, 0);
 }
 
 // A tower whose faceted facade tapers: its facets slice into V faces narrowing to tips far longer
