@@ -31,6 +31,7 @@
 
 #include "fold_gltf.hpp"
 #include "origamic/error.hpp"
+#include "origamic/plan.hpp"
 #include "quiet_openmesh.hpp"
 
 namespace origamic {
@@ -141,8 +142,9 @@ void check_finite(const PlanRegion& region, std::size_t index) {
 }
 
 // The fold edges of each region: a horizontal ring edge whose reverse is a ring edge of a placed
-// region of the other orientation (the rings hold every vertex of the plan's arrangement, so the
-// two faces of a fold share its edges exactly).
+// region of the other orientation, on their fold line Y = h - d (the rings hold every vertex of the
+// plan's arrangement, so the two faces of a fold share its edges exactly; elsewhere such an edge is
+// a cut, and the faces do not meet there in 3D).
 struct FoldEdge {
   double Y, X_low, X_high;
   bool region_above;            // the region lies on the +Y side of its fold
@@ -167,6 +169,9 @@ std::vector<std::vector<FoldEdge>> fold_edges(const std::vector<PlanRegion>& reg
   each_horizontal_edge([&](std::size_t r, PlanPoint a, PlanPoint b) {
     const auto across = horizontal.find({b.X, b.Y, a.X, a.Y});
     if (across == horizontal.end() || regions[across->second].orientation == regions[r].orientation) return;
+    const PlanRegion &v = regions[r].orientation == Orientation::V ? regions[r] : regions[across->second],
+                     &h = regions[r].orientation == Orientation::H ? regions[r] : regions[across->second];
+    if (!(std::abs(a.Y - (h.depth_mm - v.depth_mm)) <= kFoldLineTolerance_mm)) return;
     // With the region on the left of its ring's edges, an edge running to +X has it above.
     folds[r].push_back({a.Y, std::min(a.X, b.X), std::max(a.X, b.X), b.X > a.X, regions[across->second].orientation});
   });

@@ -253,6 +253,29 @@ TEST(Fold3d, ThickPaperMakesClosedSlabsMitredAtTheFolds) {
   }
 }
 
+// A horizontal edge between a V face and an H face off their fold line Y = h - d is a cut: the faces
+// do not meet there in 3D, and thick card gets no mitre on it. Each slab is then exactly its area
+// times the thickness (a mitred fold would add or take a t-by-t half square along the edge).
+TEST(Fold3d, AnEdgeOffTheFoldLineIsACutAndGetsNoMitre) {
+  const double t = 0.4, W = Sheet{}.width_mm, half = Sheet{}.half_height_mm(), cut_Y = kH + 5;
+  std::vector<PlanRegion> regions(2);
+  regions[0].orientation = Orientation::V;  // the back plane, notched down to the cut
+  regions[0].rings = {{{0, 0}, {kX0, 0}, {kX0, cut_Y}, {kX1, cut_Y}, {kX1, 0}, {W, 0}, {W, half}, {0, half}}};
+  regions[1].orientation = Orientation::H;  // at height kH: its fold line with the back plane is Y = kH
+  regions[1].depth_mm = kH;
+  regions[1].rings = {{{kX0, cut_Y - 10}, {kX1, cut_Y - 10}, {kX1, cut_Y}, {kX0, cut_Y}}};
+  for (PlanRegion& r : regions) r.placed = true;
+  const FoldedPopup popup = fold_popup(regions, Sheet{}, {.angle_deg = 90, .thickness_mm = t});
+  std::vector<double> volume(regions.size(), 0.0);
+  for (std::size_t i = 0; i < popup.triangles.size(); ++i) {
+    const auto& tri = popup.triangles[i];
+    const glm::dvec3 &a = popup.positions[tri[0]], &b = popup.positions[tri[1]], &c = popup.positions[tri[2]];
+    volume[static_cast<std::size_t>(popup.triangle_region[i])] += glm::dot(a, glm::cross(b, c)) / 6;
+  }
+  for (std::size_t r = 0; r < regions.size(); ++r)
+    EXPECT_NEAR(volume[r], t * test::twice_signed_area(regions[r].rings[0]) / 2, 1e-6) << "region " << r;
+}
+
 TEST(Fold3d, RegionsTheFoldsDoNotPlaceAreLeftOut) {
   std::vector<PlanRegion> regions = box_regions();
   regions[3].placed = false;  // the top, as a plan read from its lines might leave it
