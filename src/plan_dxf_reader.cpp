@@ -94,6 +94,7 @@ class Reader : public DL_CreationAdapter {
       throw InputError(name_ + ": a POLYLINE on layer " + getAttributes().getLayer() +
                        " is not in the XY plane (extrusion is not +-Z)");
     polyline_ = PlanPolyline{layer->kind, {}, layer->perforation};
+    polyline_layer_ = layer->name;
     closed_ = (data.flags & 1) != 0;
     mirrored_ = !world && direction[2] < 0;
   }
@@ -101,7 +102,7 @@ class Reader : public DL_CreationAdapter {
   void addVertex(const DL_VertexData& data) override {
     if (!polyline_) return;
     if (data.bulge != 0)
-      throw InputError(name_ + ": an arc (bulge) in a polyline on layer " + layer_name(polyline_->kind) +
+      throw InputError(name_ + ": an arc (bulge) in a polyline on layer " + polyline_layer_ +
                        "; arcs are not supported: flatten them into straight segments");
     check_finite({data.x, data.y}, "VERTEX");
     polyline_->points.push_back({mirrored_ ? -data.x : data.x, data.y});
@@ -171,6 +172,7 @@ class Reader : public DL_CreationAdapter {
   std::vector<Layer> layers_;
   std::set<std::string> other_layers_;
   std::optional<PlanPolyline> polyline_;
+  std::string polyline_layer_;  // the current polyline's layer, as the reader names it
   bool closed_ = false, mirrored_ = false, in_block_ = false;
   int insunits_ = 4;
 

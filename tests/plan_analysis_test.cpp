@@ -552,6 +552,9 @@ TEST(PlanDxfReader, BadFilesAreRejectedNamingTheFile) {
   expect_rejected("binary.dxf", std::string("AutoCAD Binary DXF\r\n\x1a\0", 22), "binary");
   expect_rejected("bulge.dxf", dxf_of("0\nLWPOLYLINE\n8\nCUT\n90\n2\n70\n0\n10\n0\n20\n0\n42\n1\n10\n5\n20\n0\n"),
                   "arc");
+  expect_rejected("bulge_perf.dxf",
+                  dxf_of("0\nLWPOLYLINE\n8\nPERF_MOUNTAIN\n90\n2\n70\n0\n10\n0\n20\n0\n42\n1\n10\n5\n20\n0\n"),
+                  "on layer PERF_MOUNTAIN");  // its own layer, not the first of its kind
   expect_rejected("circle.dxf", dxf_of("0\nCIRCLE\n8\nCUT\n10\n0\n20\n0\n40\n5\n"), "CIRCLE");
   expect_rejected("insert.dxf", dxf_of("0\nINSERT\n8\n0\n2\nframe\n10\n0\n20\n0\n"), "INSERT");
   expect_rejected("layers.dxf", dxf_of("0\nLINE\n8\nSCHNITT\n10\n0\n20\n0\n11\n9\n21\n9\n"), "SCHNITT");
