@@ -122,7 +122,7 @@ std::string gltf_bytes(const FoldedPopup& popup, const std::string& name, bool b
     primitive.mode = TINYGLTF_MODE_TRIANGLES;
     mesh.primitives.push_back(primitive);
   }
-  model.buffers.push_back(buffer);
+  if (!buffer.data.empty()) model.buffers.push_back(buffer);  // glTF has no empty buffers either
   tinygltf::Node node;
   node.name = "popup";
   if (!mesh.primitives.empty()) {  // glTF has no empty meshes: a popup with no faces is an empty node

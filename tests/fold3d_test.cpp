@@ -462,6 +462,22 @@ Plan designed_box_plan() {
   return build_plan(maps, slices, sheet, PlanOptions{});
 }
 
+// A popup with nothing placed still makes valid glTF: an empty node, and no empty buffer.
+TEST(Fold3d, AnEmptyPopupIsValidGltf) {
+  const test::TempDir dir;
+  std::vector<PlanRegion> regions = box_regions();
+  for (PlanRegion& r : regions) r.placed = false;
+  const FoldedPopup popup = fold_popup(regions, Sheet{}, {});
+  ASSERT_TRUE(popup.positions.empty());
+  for (const auto& [name, format] : {std::pair{"empty.gltf", MeshFormat::Gltf}, std::pair{"empty.glb", MeshFormat::Glb}}) {
+    write_files(folded_mesh_files(popup, dir / name, format));
+    const test::CommandResult r =
+        test::shell("/usr/bin/python3 " + std::string(ORIGAMIC_TESTS_DIR) + "/read_gltf.py " + test::quoted(dir / name));
+    ASSERT_EQ(r.status, 0) << name << ": " << r.output;
+    EXPECT_TRUE(nlohmann::json::parse(r.output)["positions"].empty()) << name;
+  }
+}
+
 TEST(Fold3d, ADesignedBoxFoldsIntoTheBoxAndFlatIntoItsPlan) {
   const Plan plan = designed_box_plan();
   ASSERT_EQ(plan.regions.size(), 4u);

@@ -29,15 +29,16 @@ def load(path):
         assert chunks[0][0] == b"JSON", "GLB starts with its JSON chunk"
         doc = json.loads(chunks[0][1])
         binary = chunks[1][1] if len(chunks) > 1 and chunks[1][0] == b"BIN\x00" else b""
-        buffers = [binary if "uri" not in b else None for b in doc["buffers"]]
+        buffers = [binary if "uri" not in b else None for b in doc.get("buffers", [])]
     else:
         doc = json.loads(data)
         buffers = []
-        for b in doc["buffers"]:
+        for b in doc.get("buffers", []):
             prefix, _, payload = b["uri"].partition(",")
             assert prefix.startswith("data:") and prefix.endswith(";base64"), "embedded buffer"
             buffers.append(base64.b64decode(payload))
-    for b, raw in zip(doc["buffers"], buffers):
+    for b, raw in zip(doc.get("buffers", []), buffers):
+        assert b["byteLength"] >= 1, "a buffer's byteLength is at least 1 (glTF 2.0 schema)"
         assert len(raw) >= b["byteLength"], "buffer shorter than its byteLength"
     return doc, buffers
 
