@@ -308,6 +308,11 @@ FoldedPopup fold_popup(const std::vector<PlanRegion>& regions, const Sheet& shee
   return popup;
 }
 
+Rgb8 triangle_colour(const FoldedPopup& popup, std::size_t t, bool mark_unsupported) {
+  return paper_colour(popup.regions[static_cast<std::size_t>(popup.triangle_region[t])], popup.triangle_surface[t],
+                      mark_unsupported);
+}
+
 Rgb8 paper_colour(const FoldedRegion& region, PaperSurface surface, bool mark_unsupported) {
   if (surface == PaperSurface::Edge) return {150, 138, 120};
   const bool v = region.orientation == Orientation::V;
@@ -330,8 +335,7 @@ std::vector<OutputFile> folded_mesh_files(const FoldedPopup& popup, const std::f
     const OmMesh::FaceHandle f =
         mesh.add_face(mesh.vertex_handle(t[0]), mesh.vertex_handle(t[1]), mesh.vertex_handle(t[2]));
     if (!f.is_valid()) throw std::logic_error("folded_mesh_files: a triangle fold_popup added is refused");
-    const Rgb8 c =
-        paper_colour(popup.regions[static_cast<std::size_t>(popup.triangle_region[i])], popup.triangle_surface[i], true);
+    const Rgb8 c = triangle_colour(popup, i, true);
     mesh.set_color(f, {c.r, c.g, c.b});
   }
   OpenMesh::IO::Options options = OpenMesh::IO::Options::FaceColor;

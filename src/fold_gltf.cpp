@@ -70,8 +70,7 @@ std::string gltf_bytes(const FoldedPopup& popup, const std::string& name, bool b
   std::vector<Rgb8> colours;
   std::vector<std::vector<std::uint32_t>> indices;
   for (std::size_t i = 0; i < popup.triangles.size(); ++i) {
-    const Rgb8 c = paper_colour(popup.regions[static_cast<std::size_t>(popup.triangle_region[i])],
-                                popup.triangle_surface[i], true);
+    const Rgb8 c = triangle_colour(popup, i, true);
     const auto [it, added] = colour_group.try_emplace({c.r, c.g, c.b}, colours.size());
     if (added) {
       colours.push_back(c);

@@ -142,7 +142,7 @@ ColouredMesh popup_scene(const FoldedPopup& popup, bool mark_unsupported) {
   for (std::size_t i = 0; i < popup.triangles.size(); ++i) {
     const auto region = static_cast<std::size_t>(popup.triangle_region[i]);
     const FoldedRegion& r = popup.regions[region];
-    scene.colours.push_back(paper_colour(r, popup.triangle_surface[i], mark_unsupported));
+    scene.colours.push_back(triangle_colour(popup, i, mark_unsupported));
     scene.subject.push_back(r.depth_mm != 0 ? 1 : 0);
     scene.part.push_back(static_cast<std::int32_t>(3 * region + static_cast<std::size_t>(popup.triangle_surface[i])));
   }

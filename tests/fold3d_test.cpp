@@ -316,11 +316,6 @@ std::string slurp(const std::filesystem::path& file) {
   return {std::istreambuf_iterator<char>(in), {}};
 }
 
-// The colour mesh files give triangle t of the popup (unsupported faces marked).
-Rgb8 triangle_colour(const FoldedPopup& popup, std::size_t t) {
-  return paper_colour(popup.regions[static_cast<std::size_t>(popup.triangle_region[t])], popup.triangle_surface[t], true);
-}
-
 // The box folded at an angle, as thin paper and as 0.4 mm card.
 std::vector<FoldedPopup> folded_boxes(double angle_deg) {
   std::vector<FoldedPopup> popups;
@@ -334,7 +329,7 @@ TEST(Fold3d, MeshFilesReadBackWithTheSameVerticesFacesAndColours) {
   for (const FoldedPopup& popup : folded_boxes(90)) {
     std::set<std::array<int, 3>> colours;
     for (std::size_t t = 0; t < popup.triangles.size(); ++t) {
-      const Rgb8 c = triangle_colour(popup, t);
+      const Rgb8 c = triangle_colour(popup, t, true);  // as the files colour it
       colours.insert({c.r, c.g, c.b});
     }
     const std::vector<OutputFile> obj = folded_mesh_files(popup, dir / "box.obj", MeshFormat::Obj);
@@ -399,7 +394,7 @@ TEST(Fold3d, GltfAndGlbReadBackWithTheSameVerticesTrianglesAndColoursInMetres) {
     // Every triangle with its colour; the file groups them by colour, so compare as multisets.
     std::multiset<std::array<int, 6>> expected;
     for (std::size_t t = 0; t < popup.triangles.size(); ++t) {
-      const Rgb8 c = triangle_colour(popup, t);
+      const Rgb8 c = triangle_colour(popup, t, true);  // as the files colour it
       const auto& v = popup.triangles[t];
       expected.insert({static_cast<int>(v[0]), static_cast<int>(v[1]), static_cast<int>(v[2]), c.r, c.g, c.b});
     }

@@ -113,10 +113,13 @@ struct Rgb8 {
   std::uint8_t r = 0, g = 0, b = 0;
 };
 
-/// The colour a folded region gets in mesh files and pictures. Paper colours: V faces white, H faces cream, the back plane and the floor (depth 0) a shade
-/// darker, edges of a slab grey-brown; faces that do not stand (floating, dangling, invalid) pink
-/// when `mark_unsupported`.
+/// The colour a folded region gets in mesh files and pictures. Paper colours: V faces white, H faces
+/// cream, the back plane and the floor (depth 0) a shade darker, edges of a slab grey-brown; faces
+/// that do not stand (floating, dangling, invalid) pink when `mark_unsupported`.
 Rgb8 paper_colour(const FoldedRegion& region, PaperSurface surface, bool mark_unsupported);
+
+/// The paper colour of the popup's triangle t: its region's, on its surface.
+Rgb8 triangle_colour(const FoldedPopup& popup, std::size_t t, bool mark_unsupported);
 
 /// The mesh files of a folded pop-up, written by OpenMesh's IO, each triangle in its paper colour
 /// (faces that do not stand marked): for Obj, `path` and the material library OpenMesh writes beside
