@@ -734,10 +734,10 @@ struct PlanBuild::State {
   Grid<std::int32_t> labels;
   Built built;
   Pieces pieces;
-  std::vector<double> area;  // per raster face
+  std::vector<double> area;                                                    // per raster face
   std::vector<std::pair<Arrangement::Halfedge_const_handle, LineKind>> edges;  // inner edges, upper face first
-  std::vector<std::uint8_t> cut_out;                                            // per piece: a crumb, cut out
-  Plan plan;                                                                    // the verdict
+  std::vector<std::uint8_t> cut_out;                                           // per piece: a crumb, cut out
+  Plan plan;                                                                   // the verdict
 };
 
 PlanBuild::PlanBuild(const RasterMaps& maps, const SliceResult& sliced, const Sheet& sheet, const PlanOptions& options)
@@ -912,7 +912,9 @@ Plan PlanBuild::full() const {
   const State& state = *state_;
   Plan plan = state.plan;
   auto edges = state.edges;
-  const auto cut_out = [&](Arrangement::Face_const_handle f) { return state.cut_out[static_cast<std::size_t>(state.pieces.of.at(f))]; };
+  const auto cut_out = [&](Arrangement::Face_const_handle f) {
+    return state.cut_out[static_cast<std::size_t>(state.pieces.of.at(f))];
+  };
   for (auto& [he, kind] : edges)
     if (cut_out(he->face()) || cut_out(he->twin()->face())) kind = LineKind::CutOut;
   draw_lines(edges, plan);

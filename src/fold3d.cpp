@@ -7,12 +7,19 @@
 // colour property grows (OpenMesh/Core/Utils/Property.hh, push_back of T()); the values are set.
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <stdlib.h>
 
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <fstream>
+#include <glm/geometric.hpp>
 #include <iterator>
 #include <limits>
 #include <map>
@@ -20,14 +27,6 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
-
-#include <CGAL/Constrained_Delaunay_triangulation_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_face_base_with_info_2.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
-#include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-#include <glm/geometric.hpp>
 
 #include "fold_gltf.hpp"
 #include "origamic/error.hpp"
@@ -147,8 +146,8 @@ void check_finite(const PlanRegion& region, std::size_t index) {
 // a cut, and the faces do not meet there in 3D).
 struct FoldEdge {
   double Y, X_low, X_high;
-  bool region_above;            // the region lies on the +Y side of its fold
-  Orientation other;            // the face across the fold
+  bool region_above;  // the region lies on the +Y side of its fold
+  Orientation other;  // the face across the fold
 };
 
 std::vector<std::vector<FoldEdge>> fold_edges(const std::vector<PlanRegion>& regions) {
@@ -192,8 +191,8 @@ glm::dvec3 printed_normal(const CardFrame& frame, Orientation orientation) {
 // it is held at twice the thickness, exact for folds opened 53 degrees or more.
 glm::dvec3 mitre(const CardFrame& frame, Orientation orientation, const FoldEdge& fold, double thickness_mm) {
   const double side = fold.region_above ? 1 : -1;
-  const glm::dvec3 into = side * plan_up(frame, orientation);     // from the fold into the region
-  const glm::dvec3 across = -side * plan_up(frame, fold.other);   // from the fold into the other face
+  const glm::dvec3 into = side * plan_up(frame, orientation);    // from the fold into the region
+  const glm::dvec3 across = -side * plan_up(frame, fold.other);  // from the fold into the other face
   // Solve a·into - c·across = t·(n - n_other) in the plane across the main fold (y, z).
   const glm::dvec3 rhs = thickness_mm * (printed_normal(frame, orientation) - printed_normal(frame, fold.other));
   const double det = into.y * -across.z - into.z * -across.y;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "fold_gltf.hpp"
 
+#include <tiny_gltf.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -8,8 +10,6 @@
 #include <map>
 #include <sstream>
 #include <tuple>
-
-#include <tiny_gltf.h>
 
 #include "origamic/error.hpp"
 #include "origamic/version.hpp"

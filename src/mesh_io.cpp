@@ -1,21 +1,20 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "origamic/mesh_io.hpp"
 
+#include <tbb/parallel_for.h>
 #include <zlib.h>
 
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <glm/geometric.hpp>
 #include <numbers>
 #include <numeric>
 #include <sstream>
-
-#include <glm/geometric.hpp>
-#include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-#include <tbb/parallel_for.h>
 
 #include "origamic/error.hpp"
 #include "quiet_openmesh.hpp"

@@ -109,7 +109,8 @@ void add_joined_folds(std::vector<FoldPiece> pieces, Input& in) {
       if (sp == sq && sp != CGAL::EQUAL) continue;
       if (sp == CGAL::EQUAL) crossings.push_back(p.x());
       if (sq == CGAL::EQUAL) crossings.push_back(q.x());
-      if (sp != CGAL::EQUAL && sq != CGAL::EQUAL) crossings.push_back(p.x() + (q.x() - p.x()) * (Y - p.y()) / (q.y() - p.y()));
+      if (sp != CGAL::EQUAL && sq != CGAL::EQUAL)
+        crossings.push_back(p.x() + (q.x() - p.x()) * (Y - p.y()) / (q.y() - p.y()));
     }
     std::ranges::sort(crossings);
     // Whether a cut reaches the line within [a, b].
@@ -122,7 +123,8 @@ void add_joined_folds(std::vector<FoldPiece> pieces, Input& in) {
     for (std::size_t k = i; k < j;) {
       FT lo = pieces[k].lo, hi = pieces[k].hi;
       bool perforated = pieces[k].perforation;
-      for (++k; k < j && !cut_between(hi, pieces[k].lo); ++k) hi = CGAL::max(hi, pieces[k].hi), perforated |= pieces[k].perforation;
+      for (++k; k < j && !cut_between(hi, pieces[k].lo); ++k)
+        hi = CGAL::max(hi, pieces[k].hi), perforated |= pieces[k].perforation;
       if (perforated) {
         const auto after = std::ranges::lower_bound(crossings, hi);
         const auto before = std::ranges::upper_bound(crossings, lo);

@@ -88,7 +88,8 @@ void merge_thin_subsegments(const Grid<std::int32_t>& segment, double min_side_p
   std::vector<std::vector<std::pair<int, int>>> members(subsegments.size());
   for (int row = 0; row < subsegment.rows; ++row)
     for (int col = 0; col < subsegment.cols; ++col)
-      if (const std::int32_t k = subsegment(col, row); k >= 0) members[static_cast<std::size_t>(k)].emplace_back(col, row);
+      if (const std::int32_t k = subsegment(col, row); k >= 0)
+        members[static_cast<std::size_t>(k)].emplace_back(col, row);
   auto is_thin = [&](const std::vector<std::pair<int, int>>& pixels_of) {
     return !pixels_of.empty() && oriented_box_min_side_px(pixels_of) < min_side_px;
   };
@@ -168,7 +169,9 @@ void merge_thin_subsegments(const Grid<std::int32_t>& segment, double min_side_p
         // Row-major again, as a scan of the grid would list them: the box's sums come out the same.
         const auto middle = static_cast<std::ptrdiff_t>(to.size());
         to.insert(to.end(), members[k].begin(), members[k].end());
-        std::ranges::inplace_merge(to, to.begin() + middle, {}, [](const std::pair<int, int>& p) { return std::pair{p.second, p.first}; });
+        std::ranges::inplace_merge(to, to.begin() + middle, {}, [](const std::pair<int, int>& p) {
+          return std::pair{p.second, p.first};
+        });
         grown[static_cast<std::size_t>(r)] = 1;
       }
     }

@@ -34,7 +34,8 @@ class CandidateFinder {
         block_(slices.block_px),
         slot_(slices.faces.size(), -1) {
     for (const std::int32_t f : wanted)
-      if (int& k = slot_[static_cast<std::size_t>(f)]; k < 0) k = static_cast<int>(columns_.size()), columns_.push_back({INT_MAX, -1});
+      if (int& k = slot_[static_cast<std::size_t>(f)]; k < 0)
+        k = static_cast<int>(columns_.size()), columns_.push_back({INT_MAX, -1});
     first_.assign(columns_.size() * static_cast<std::size_t>(face_.cols), -1);
     last_.assign(first_.size(), -1);
     // Bands of columns in parallel: each writes its own columns, and its own extents to merge.
@@ -140,7 +141,9 @@ class CandidateFinder {
     }
     return left && right;
   }
-  std::size_t at(std::int32_t f, int c) const { return static_cast<std::size_t>(slot_[static_cast<std::size_t>(f)]) * face_.cols + c; }
+  std::size_t at(std::int32_t f, int c) const {
+    return static_cast<std::size_t>(slot_[static_cast<std::size_t>(f)]) * face_.cols + c;
+  }
   int first_row(std::int32_t f, int c) const { return first_[at(f, c)]; }
   int last_row(std::int32_t f, int c) const { return last_[at(f, c)]; }
 
@@ -202,10 +205,12 @@ class CandidateFinder {
         const double Y = row.Y;
         const bool beyond = up ? target.depth_mm < d : target.depth_mm > d;  // behind / in front
         const bool higher = up ? target.depth_mm > h : target.depth_mm < h;  // above / below
-        const bool v_hit = target.orientation == Orientation::V && beyond && std::abs(h - target.depth_mm - Y) <= px_mm_ / 2;
-        const bool h_hit = target.orientation == Orientation::H && higher && std::abs(target.depth_mm - d - Y) <= px_mm_ / 2;
+        const bool v_hit =
+            target.orientation == Orientation::V && beyond && std::abs(h - target.depth_mm - Y) <= px_mm_ / 2;
+        const bool h_hit =
+            target.orientation == Orientation::H && higher && std::abs(target.depth_mm - d - Y) <= px_mm_ / 2;
         if (v_hit || h_hit) {
-          const int near = edge + step, far = r - step;  // rows the support covers, near to far
+          const int near = edge + step, far = r - step;      // rows the support covers, near to far
           if ((far - near) * step < 0) return std::nullopt;  // no room: the faces touch already
           Candidate s;
           s.face = f, s.target = g, s.c0 = c0, s.c1 = c1;
@@ -234,8 +239,8 @@ class CandidateFinder {
   bool below_tips_, corners_;
   double px_mm_;
   int block_;
-  std::vector<int> slot_;  // per face: its place in the tables below, -1 for faces not wanted
-  std::vector<int> first_, last_;  // per wanted face and column: its first and last row, -1 if none
+  std::vector<int> slot_;                     // per face: its place in the tables below, -1 for faces not wanted
+  std::vector<int> first_, last_;             // per wanted face and column: its first and last row, -1 if none
   std::vector<std::pair<int, int>> columns_;  // per wanted face: its first and last column
 };
 
@@ -317,14 +322,15 @@ std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult
 // Paints the chosen supports as faces of their own. A support crossing a face can leave a strip of
 // it beside the support, narrower than W and within the support's rows: a piece of paper too thin
 // to hold, which becomes part of the support (a wider support, the same folds).
-void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid, double tolerance, std::int64_t crumb_px,
-                    SliceResult& slices) {
+void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid, double tolerance,
+                    std::int64_t crumb_px, SliceResult& slices) {
   Grid<std::int32_t>& face = slices.face;
   const auto first_support = static_cast<std::int32_t>(slices.faces.size());
   std::set<std::int32_t> crossed;
   for (const Candidate& s : chosen) {
     const auto id = static_cast<std::int32_t>(slices.faces.size());
-    slices.faces.push_back({s.orientation, s.depth_mm, slices.faces[static_cast<std::size_t>(s.face)].segment, 0, true});
+    slices.faces.push_back(
+        {s.orientation, s.depth_mm, slices.faces[static_cast<std::size_t>(s.face)].segment, 0, true});
     for (int r = s.r0; r < s.r1; ++r)
       for (int c = s.c0; c < s.c1; ++c) crossed.insert(std::exchange(face(c, r), id));
     crossed.insert(s.face), crossed.insert(s.target);  // what is left of them may be a crumb
@@ -373,6 +379,5 @@ void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid,
   merge_coplanar_faces(slices);
   align_folds_to_lines(slices, grid, tolerance);
 }
-
 
 }  // namespace origamic

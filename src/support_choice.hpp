@@ -18,14 +18,14 @@ namespace origamic {
 // reaches, turned into a face of its own.
 struct Candidate {
   std::int32_t face = 0, target = 0;
-  int c0 = 0, c1 = 0;      // pixel columns [c0, c1)
-  int r0 = 0, r1 = 0;      // pixel rows [r0, r1) the support covers
-  int face_row = 0;        // the row of `face` just outside the support
-  int target_row = 0;      // the row of `target` just outside it, on the other side
+  int c0 = 0, c1 = 0;  // pixel columns [c0, c1)
+  int r0 = 0, r1 = 0;  // pixel rows [r0, r1) the support covers
+  int face_row = 0;    // the row of `face` just outside the support
+  int target_row = 0;  // the row of `target` just outside it, on the other side
   Orientation orientation = Orientation::V;
   double depth_mm = 0;
   double cost = 0;
-  int taken = 0;           // rows of `face` the support takes, on its edge
+  int taken = 0;  // rows of `face` the support takes, on its edge
 };
 
 // What the loop needs to know of a plan: each face's status and which of its sides are folded.
@@ -53,7 +53,7 @@ std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult
                                        Reach reach);
 
 /// Paints the chosen supports into the raster plan as faces of their own (RasterFace::support).
-void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid, double tolerance, std::int64_t crumb_px,
-                    SliceResult& slices);
+void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid, double tolerance,
+                    std::int64_t crumb_px, SliceResult& slices);
 
 }  // namespace origamic

@@ -258,7 +258,9 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
     };
     // Pieces of the back plane or the floor that strips around them parted from it are card, not
     // model: a hole there takes nothing from the likeness, so they go first and free of the quota.
-    const auto card_piece = [&](std::int32_t f) { return f > kFloorFace && slices.faces[static_cast<std::size_t>(f)].depth_mm == 0; };
+    const auto card_piece = [&](std::int32_t f) {
+      return f > kFloorFace && slices.faces[static_cast<std::size_t>(f)].depth_mm == 0;
+    };
     const auto model_faces = std::ranges::partition(invalid, card_piece);
     if (model_faces.begin() != invalid.begin()) {
       std::for_each(invalid.begin(), model_faces.begin(), cut_out);
@@ -271,7 +273,9 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
       continue;
     } else {
       const auto pixels = [&](std::int32_t f) { return slices.faces[static_cast<std::size_t>(f)].pixels; };
-      std::ranges::sort(invalid, [&](std::int32_t a, std::int32_t b) { return pixels(a) != pixels(b) ? pixels(a) < pixels(b) : a < b; });
+      std::ranges::sort(invalid, [&](std::int32_t a, std::int32_t b) {
+        return pixels(a) != pixels(b) ? pixels(a) < pixels(b) : a < b;
+      });
       const std::int64_t limit = pixels(invalid[invalid.size() / 2]);
       std::int64_t more = 0;
       for (const std::int32_t f : invalid)

@@ -8,18 +8,16 @@
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <glm/geometric.hpp>
 #include <limits>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <tuple>
-
-#include <glm/geometric.hpp>
-#include <nlohmann/json.hpp>
 
 #include "helpers.hpp"
 #include "origamic/error.hpp"
@@ -101,7 +99,9 @@ TEST(Fold3d, EveryEdgeKeepsItsPlanLengthAtEveryAngle) {
       const FoldedPopup popup = fold_popup(box_regions(), Sheet{}, {.angle_deg = angle, .thickness_mm = thickness});
       // The reverse side of thick paper is mitred at folds (shorter inside a bend, longer outside),
       // as real card's is; it keeps its plan lengths only where the card lies flat.
-      auto kept = [&](PaperSurface s) { return s == PaperSurface::Printed || (s == PaperSurface::Reverse && angle == 180); };
+      auto kept = [&](PaperSurface s) {
+        return s == PaperSurface::Printed || (s == PaperSurface::Reverse && angle == 180);
+      };
       int edges = 0;
       for (std::size_t t = 0; t < popup.triangles.size(); ++t) {
         if (!kept(popup.triangle_surface[t])) continue;
@@ -398,12 +398,13 @@ TEST(Fold3d, GltfAndGlbReadBackWithTheSameVerticesTrianglesAndColoursInMetres) {
       const auto& v = popup.triangles[t];
       expected.insert({static_cast<int>(v[0]), static_cast<int>(v[1]), static_cast<int>(v[2]), c.r, c.g, c.b});
     }
-    for (const auto& [name, format] : {std::pair{"box.gltf", MeshFormat::Gltf}, std::pair{"box.glb", MeshFormat::Glb}}) {
+    for (const auto& [name, format] :
+         {std::pair{"box.gltf", MeshFormat::Gltf}, std::pair{"box.glb", MeshFormat::Glb}}) {
       const std::vector<OutputFile> files = folded_mesh_files(popup, dir / name, format);
       ASSERT_EQ(files.size(), 1u) << name;
       write_files(files);
-      const test::CommandResult r =
-          test::shell("/usr/bin/python3 " + std::string(ORIGAMIC_TESTS_DIR) + "/read_gltf.py " + test::quoted(dir / name));
+      const test::CommandResult r = test::shell("/usr/bin/python3 " + std::string(ORIGAMIC_TESTS_DIR) +
+                                                "/read_gltf.py " + test::quoted(dir / name));
       ASSERT_EQ(r.status, 0) << name << ": " << r.output;
       const nlohmann::json read = nlohmann::json::parse(r.output);
       EXPECT_EQ(read["version"], "2.0");
@@ -464,10 +465,11 @@ TEST(Fold3d, AnEmptyPopupIsValidGltf) {
   for (PlanRegion& r : regions) r.placed = false;
   const FoldedPopup popup = fold_popup(regions, Sheet{}, {});
   ASSERT_TRUE(popup.positions.empty());
-  for (const auto& [name, format] : {std::pair{"empty.gltf", MeshFormat::Gltf}, std::pair{"empty.glb", MeshFormat::Glb}}) {
+  for (const auto& [name, format] :
+       {std::pair{"empty.gltf", MeshFormat::Gltf}, std::pair{"empty.glb", MeshFormat::Glb}}) {
     write_files(folded_mesh_files(popup, dir / name, format));
-    const test::CommandResult r =
-        test::shell("/usr/bin/python3 " + std::string(ORIGAMIC_TESTS_DIR) + "/read_gltf.py " + test::quoted(dir / name));
+    const test::CommandResult r = test::shell("/usr/bin/python3 " + std::string(ORIGAMIC_TESTS_DIR) + "/read_gltf.py " +
+                                              test::quoted(dir / name));
     ASSERT_EQ(r.status, 0) << name << ": " << r.output;
     EXPECT_TRUE(nlohmann::json::parse(r.output)["positions"].empty()) << name;
   }

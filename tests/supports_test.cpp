@@ -187,8 +187,10 @@ TEST(Supports, PiecesOfTheBackPlanePartedByStripsAreCutOutAndTheModelStands) {
     if (!card) model_px += face.pixels;
     if (!face.hole) continue;
     EXPECT_EQ(r.plan.faces[f].status, FaceStatus::Removed) << "face " << f;
-    if (card) ++card_pieces;
-    else model_cut_px += face.pixels;
+    if (card)
+      ++card_pieces;
+    else
+      model_cut_px += face.pixels;
   }
   EXPECT_GT(card_pieces, 0) << "the pieces of back plane between the sails";
   EXPECT_LT(4 * model_cut_px, model_px) << "under a quarter of the model cut out";

@@ -102,8 +102,8 @@ struct FoldedPopup {
 FoldedPopup fold_popup(const std::vector<PlanRegion>& regions, const Sheet& sheet, const FoldOptions& options);
 
 enum class MeshFormat : std::uint8_t {
-  Obj,  // Wavefront OBJ with a material library (one material per colour) beside it
-  Ply,  // binary little-endian PLY with a colour per face
+  Obj,   // Wavefront OBJ with a material library (one material per colour) beside it
+  Ply,   // binary little-endian PLY with a colour per face
   Gltf,  // glTF 2.0 JSON with its buffer embedded, a material per colour, in metres (glTF's unit)
   Glb,   // the same glTF 2.0 asset as one binary file
 };

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The origamic command: parses options, calls the library, reports. No algorithm lives here.
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -10,14 +11,12 @@
 #include <string>
 #include <string_view>
 
-#include <CLI/CLI.hpp>
-
 #include "origamic/design.hpp"
-#include "origamic/plan_dxf_reader.hpp"
-#include "origamic/fold3d.hpp"
 #include "origamic/error.hpp"
+#include "origamic/fold3d.hpp"
 #include "origamic/output.hpp"
 #include "origamic/plan_analysis.hpp"
+#include "origamic/plan_dxf_reader.hpp"
 #include "origamic/plan_export.hpp"
 #include "origamic/popup_files.hpp"
 #include "origamic/raster_images.hpp"
@@ -290,7 +289,8 @@ struct ValidateArgs {
 
 // Folds drawn as perforation cuts are read as the folds they stand for, run on to the cuts.
 void add_perforation_layers(CLI::App& command, origamic::LayerNames& layers) {
-  command.add_option("--perf-mountain-layer", layers.perforated_mountain, "layer of mountain folds drawn as perforations")
+  command
+      .add_option("--perf-mountain-layer", layers.perforated_mountain, "layer of mountain folds drawn as perforations")
       ->capture_default_str();
   command.add_option("--perf-valley-layer", layers.perforated_valley, "layer of valley folds drawn as perforations")
       ->capture_default_str();
@@ -356,7 +356,8 @@ void add_fold_options(CLI::App& fold, FoldArgs& args) {
       ->capture_default_str();
   fold.add_option("--thickness", args.thickness_mm, "paper thickness in mm (0: zero-thickness sheets)")
       ->capture_default_str();
-  fold.add_option("-o,--out", args.out, "the folded pop-up as a mesh: .obj (with its .mat), .ply, .gltf or .glb")->required();
+  fold.add_option("-o,--out", args.out, "the folded pop-up as a mesh: .obj (with its .mat), .ply, .gltf or .glb")
+      ->required();
   fold.add_option("--cut-layer", args.layers.cut, "layer of the cuts")->capture_default_str();
   fold.add_option("--mountain-layer", args.layers.mountain, "layer of the mountain folds")->capture_default_str();
   fold.add_option("--valley-layer", args.layers.valley, "layer of the valley folds")->capture_default_str();
