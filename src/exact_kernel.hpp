@@ -36,17 +36,21 @@ using Arrangement = CGAL::Arrangement_2<Traits, Dcel>;
 // The exact rational behind a lazy number (gmpxx: store expressions in a typed variable before use).
 using Rational = std::remove_cvref_t<decltype(std::declval<FT>().exact())>;
 
-/// The double nearest an exact number (ties to even), so a fold at Y = h - d reads back as the IEEE
-/// difference h - d. CGAL's to_double may return any double within its interval instead.
-inline double nearest_double(const FT& x) {
-  if (const auto [lo, hi] = CGAL::to_interval(x); lo == hi) return lo + 0.0;  // most often; no -0
-  const Rational& exact = x.exact();
+/// The double nearest an exact rational (ties to even).
+inline double nearest_double(const Rational& exact) {
   const auto [lo, hi] = CGAL::to_interval(exact);
   if (lo == hi) return lo + 0.0;
   const Rational mid = (Rational(lo) + Rational(hi)) / 2;  // typed: gmpxx expressions must not outlive their operands
   if (exact < mid) return lo;
   if (exact > mid) return hi;
   return (std::bit_cast<std::uint64_t>(lo) & 1) == 0 ? lo : hi;
+}
+
+/// The double nearest an exact number (ties to even), so a fold at Y = h - d reads back as the IEEE
+/// difference h - d. CGAL's to_double may return any double within its interval instead.
+inline double nearest_double(const FT& x) {
+  if (const auto [lo, hi] = CGAL::to_interval(x); lo == hi) return lo + 0.0;  // most often; no -0
+  return nearest_double(x.exact());
 }
 
 }  // namespace origamic::exact

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <mutex>
 #include <numeric>
 #include <utility>
 
@@ -738,7 +739,52 @@ struct PlanBuild::State {
   std::vector<std::pair<Arrangement::Halfedge_const_handle, LineKind>> edges;  // inner edges, upper face first
   std::vector<std::uint8_t> cut_out;                                           // per piece: a crumb, cut out
   Plan plan;                                                                   // the verdict
+
+  // Vertical ray shooting (faces_reached). The exact numbers are read under the lock only; the
+  // lines keep their crossings as plain rationals, which threads may read at once.
+  struct Crossing {
+    exact::Rational Y;
+    double Y_near;       // nearest double, to rule most comparisons out without exact arithmetic
+    std::int32_t above;  // the label between this crossing and the next one up
+  };
+  struct EdgeSpan {
+    double x_lo, x_hi;                      // the edge's x-extent, widened by its doubles' rounding
+    Arrangement::Halfedge_const_handle he;  // directed left to right: its face lies above it
+  };
+  std::mutex mutex;
+  std::vector<EdgeSpan> spans;
+  std::map<double, std::vector<Crossing>> lines;  // by x: a map's elements stay where they are
+  const std::vector<Crossing>& line_at(double x);
 };
+
+// The edges the vertical line X = x crosses, bottom to top. An edge is crossed where x lies in
+// [its left end's x, its right end's x): a line through a vertex takes the edges to its right, as a
+// line a hair to the right would, and no vertical edge.
+const std::vector<PlanBuild::State::Crossing>& PlanBuild::State::line_at(double x) {
+  const std::lock_guard lock(mutex);
+  if (const auto known = lines.find(x); known != lines.end()) return known->second;
+  const Arrangement& arr = built.arrangement;
+  if (spans.empty())
+    for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
+      Arrangement::Halfedge_const_handle he = e;
+      if (he->direction() != CGAL::ARR_LEFT_TO_RIGHT) he = he->twin();
+      const double lo = CGAL::to_interval(he->source()->point().x()).first;
+      const double hi = CGAL::to_interval(he->target()->point().x()).second;
+      spans.push_back({lo, hi, he});
+    }
+  const FT X(x);
+  std::vector<Crossing> line;
+  for (const EdgeSpan& span : spans) {
+    if (x < span.x_lo || x > span.x_hi) continue;
+    const Point &p = span.he->source()->point(), &q = span.he->target()->point();
+    if (!(p.x() <= X && X < q.x())) continue;
+    const FT Y = p.y() + (X - p.x()) * (q.y() - p.y()) / (q.x() - p.x());
+    const std::int32_t above = span.he->face()->is_unbounded() ? kNoLabel : span.he->face()->data();
+    line.push_back({Y.exact(), nearest_double(Y), above});
+  }
+  std::ranges::sort(line, [](const Crossing& a, const Crossing& b) { return a.Y < b.Y; });
+  return lines.emplace(x, std::move(line)).first->second;
+}
 
 PlanBuild::PlanBuild(const RasterMaps& maps, const SliceResult& sliced, const Sheet& sheet, const PlanOptions& options)
     : state_(std::make_unique<State>()) {
@@ -922,6 +968,44 @@ Plan PlanBuild::full() const {
   count_vanished_faces(state.labels, state.faces, state.area, plan);
   plan.regions = regions_of(state.built.arrangement, plan.faces);
   return plan;
+}
+
+std::vector<PlanBuild::Reached> PlanBuild::faces_reached(double x, double from_Y, bool up, std::int32_t face, double h,
+                                                         double d) const {
+  using Rational = exact::Rational;
+  const std::vector<State::Crossing>& line = state_->line_at(x);
+  const std::vector<RasterFace>& faces = state_->faces;
+  const Rational from(from_Y), H(h), D(d);
+  // A fold at Y on a face met between crossings i and i + 1, strictly beyond the ray's start.
+  auto on = [&](const Rational& Y, double Y_near, std::size_t i) {
+    constexpr double kSlack = 1e-9;  // far above the doubles' rounding: closer calls go exact
+    const State::Crossing &lo = line[i], &hi = line[i + 1];
+    if (Y_near < lo.Y_near - kSlack || Y_near > hi.Y_near + kSlack) return false;
+    return lo.Y <= Y && Y <= hi.Y && (up ? from < Y : Y < from);
+  };
+  std::vector<Reached> reached;
+  const auto n = static_cast<std::ptrdiff_t>(line.size());
+  // The pieces of the line from the start's on, nearest first: piece i lies between crossings i and
+  // i + 1, and the start in piece first - 1.
+  std::ptrdiff_t first = 0;
+  while (first < n && line[static_cast<std::size_t>(first)].Y <= from) ++first;
+  for (std::ptrdiff_t i = first - 1; i >= 0 && i + 1 < n; i += up ? 1 : -1) {
+    const auto k = static_cast<std::size_t>(i);
+    const std::int32_t g = line[k].above;
+    if (g < 0 || g == face) continue;
+    const RasterFace& target = faces[static_cast<std::size_t>(g)];
+    if (target.hole) continue;
+    const bool beyond = up ? target.depth_mm < d : target.depth_mm > d;  // behind / in front
+    const bool higher = up ? target.depth_mm > h : target.depth_mm < h;  // above / below
+    if (target.orientation == Orientation::V && beyond) {
+      const Rational Y = H - Rational(target.depth_mm);
+      if (on(Y, h - target.depth_mm, k)) reached.push_back({g, nearest_double(Y)});
+    } else if (target.orientation == Orientation::H && higher) {
+      const Rational Y = Rational(target.depth_mm) - D;
+      if (on(Y, target.depth_mm - d, k)) reached.push_back({g, nearest_double(Y)});
+    }
+  }
+  return reached;
 }
 
 Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& sheet, const PlanOptions& options) {

@@ -22,9 +22,10 @@ namespace {
 class CandidateFinder {
  public:
   // Candidates will be asked of the faces in `wanted` only.
-  CandidateFinder(const RasterMaps& maps, const SliceResult& slices, const std::vector<std::int32_t>& wanted,
-                  double split_cost, Reach reach)
-      : grid_(maps.grid),
+  CandidateFinder(const RasterMaps& maps, const SliceResult& slices, const PlanBuild* exact,
+                  const std::vector<std::int32_t>& wanted, double split_cost, Reach reach)
+      : exact_(exact),
+        grid_(maps.grid),
         face_(slices.face),
         faces_(slices.faces),
         split_cost_(split_cost),
@@ -191,11 +192,43 @@ class CandidateFinder {
     int c0_ = 0, c1_ = 0;
   };
 
-  // Walks the block column away from the edge to the first face the support can fold onto: a V
-  // face at depth d' on the row where Y = h - d', or an H face at height h' where Y = h' - d.
+  // The first face the support can fold onto, away from the edge: a V face at depth d' where
+  // Y = h - d', or an H face at height h' where Y = h' - d. On the exact plan when it is the plan's
+  // current one, else down the block column's rows.
   std::optional<Candidate> walk(std::int32_t f, BlockColumn& column, int edge, bool up, double h, double d) const {
+    return exact_ ? exact_walk(f, column, edge, up, h, d) : raster_walk(f, column, edge, up, h, d);
+  }
+
+  // The ray is shot on the exact plan, a quarter pixel right of the block column's centre (off the
+  // lattice its vertices lie on); the raster tells only whether the face it meets fills half the
+  // block there, as a support's far side needs.
+  std::optional<Candidate> exact_walk(std::int32_t f, BlockColumn& column, int edge, bool up, double h,
+                                      double d) const {
     const int step = up ? -1 : 1;
-    const int c0 = column.c0(), c1 = column.c1();
+    const int centre = (column.c0() + column.c1()) / 2;
+    const double from_Y = grid_.Y(edge) + (up ? px_mm_ / 2 : -px_mm_ / 2);
+    for (const auto& [g, Y] : exact_->faces_reached((centre + 0.75) * px_mm_, from_Y, up, f, h, d)) {
+      // The row the fold falls in; on a row's edge, the row beyond, so the support ends on the fold.
+      const double rows_down = grid_.rows_above_fold - Y * grid_.px_per_mm;
+      const int r = up ? static_cast<int>(std::ceil(rows_down)) - 1 : static_cast<int>(std::floor(rows_down));
+      if (r < 0 || r >= face_.rows) break;
+      const BlockColumn::Row& row = column.row(*this, r);
+      if (row.centre != g || !row.mostly) continue;
+      if ((r - step - (edge + step)) * step < 0) return std::nullopt;  // no room: the faces touch already
+      std::vector<std::int32_t> crossed;
+      for (int between = edge + step; between != r; between += step)
+        for (const std::int32_t x : column.faces(column.row(*this, between)))
+          if (x != f) crossed.push_back(x);
+      return candidate(f, g, column, edge, r, up, h, d, std::move(crossed));
+    }
+    return std::nullopt;
+  }
+
+  // Walks the block column row by row; a row hits a face when its centre lies within half a pixel
+  // of where the support would fold onto it.
+  std::optional<Candidate> raster_walk(std::int32_t f, BlockColumn& column, int edge, bool up, double h,
+                                       double d) const {
+    const int step = up ? -1 : 1;
     std::vector<std::int32_t> crossed;  // the faces other than f on the rows walked over
     for (int r = edge + step; r >= 0 && r < face_.rows; r += step) {
       const BlockColumn::Row& row = column.row(*this, r);
@@ -210,20 +243,8 @@ class CandidateFinder {
         const bool h_hit =
             target.orientation == Orientation::H && higher && std::abs(target.depth_mm - d - Y) <= px_mm_ / 2;
         if (v_hit || h_hit) {
-          const int near = edge + step, far = r - step;      // rows the support covers, near to far
-          if ((far - near) * step < 0) return std::nullopt;  // no room: the faces touch already
-          Candidate s;
-          s.face = f, s.target = g, s.c0 = c0, s.c1 = c1;
-          s.r0 = std::min(near, far), s.r1 = std::max(near, far) + 1;
-          s.face_row = edge, s.target_row = r;
-          s.orientation = v_hit ? Orientation::H : Orientation::V;
-          s.depth_mm = v_hit ? h : d;
-          s.cost = (s.r1 - s.r0) * px_mm_;
-          std::ranges::sort(crossed);
-          crossed.erase(std::unique(crossed.begin(), crossed.end()), crossed.end());
-          for (const std::int32_t x : crossed)
-            if (x != g && splits(x, s)) s.cost += split_cost_;
-          return s;
+          if ((r - step - (edge + step)) * step < 0) return std::nullopt;  // no room: the faces touch already
+          return candidate(f, g, column, edge, r, up, h, d, std::move(crossed));
         }
       }
       for (const std::int32_t x : column.faces(row))
@@ -232,6 +253,28 @@ class CandidateFinder {
     return std::nullopt;
   }
 
+  // The support from f's row `edge` to g's row `r` (both outside it), with its cost: its length, and
+  // the split cost for each face it cuts in two among those it crosses.
+  Candidate candidate(std::int32_t f, std::int32_t g, const BlockColumn& column, int edge, int r, bool up, double h,
+                      double d, std::vector<std::int32_t> crossed) const {
+    const int step = up ? -1 : 1;
+    const int near = edge + step, far = r - step;  // rows the support covers, near to far
+    Candidate s;
+    s.face = f, s.target = g, s.c0 = column.c0(), s.c1 = column.c1();
+    s.r0 = std::min(near, far), s.r1 = std::max(near, far) + 1;
+    s.face_row = edge, s.target_row = r;
+    const bool onto_v = faces_[static_cast<std::size_t>(g)].orientation == Orientation::V;
+    s.orientation = onto_v ? Orientation::H : Orientation::V;
+    s.depth_mm = onto_v ? h : d;
+    s.cost = (s.r1 - s.r0) * px_mm_;
+    std::ranges::sort(crossed);
+    crossed.erase(std::unique(crossed.begin(), crossed.end()), crossed.end());
+    for (const std::int32_t x : crossed)
+      if (x != g && splits(x, s)) s.cost += split_cost_;
+    return s;
+  }
+
+  const PlanBuild* exact_;
   const PixelGrid& grid_;
   const Grid<std::int32_t>& face_;
   const std::vector<RasterFace>& faces_;
@@ -266,10 +309,10 @@ void widen(const Grid<std::int32_t>& face, const Grid<std::uint8_t>& claimed, Ca
 
 }  // namespace
 
-std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const Standing& standing,
-                                       const std::vector<std::int32_t>& invalid, const SupportOptions& options,
-                                       Reach reach) {
-  const CandidateFinder finder(maps, slices, invalid, options.split_cost_mm, reach);
+std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const PlanBuild* exact,
+                                       const Standing& standing, const std::vector<std::int32_t>& invalid,
+                                       const SupportOptions& options, Reach reach) {
+  const CandidateFinder finder(maps, slices, exact, invalid, options.split_cost_mm, reach);
   Grid<std::uint8_t> claimed(slices.face.cols, slices.face.rows, 0);
   std::vector<Candidate> chosen;
   // Seed: an edge already folded to a face is not supported again; a floating face gets both. A

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "origamic/plan.hpp"
 #include "origamic/raster.hpp"
 #include "origamic/slice.hpp"
 #include "origamic/supports.hpp"
@@ -47,10 +48,11 @@ struct Reach {
 };
 
 /// Supports for the invalid faces, chosen greedily in their order, widened, never overlapping; not
-/// yet painted.
-std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const Standing& standing,
-                                       const std::vector<std::int32_t>& invalid, const SupportOptions& options,
-                                       Reach reach);
+/// yet painted. `exact`, when given, is the exact plan of `slices` as they are: the face each support
+/// reaches is then found on it (PlanBuild::faces_reached), else on the raster plan.
+std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const PlanBuild* exact,
+                                       const Standing& standing, const std::vector<std::int32_t>& invalid,
+                                       const SupportOptions& options, Reach reach);
 
 /// Paints the chosen supports into the raster plan as faces of their own (RasterFace::support).
 void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid, double tolerance,

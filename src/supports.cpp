@@ -187,10 +187,12 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
         return std::to_string(invalid.size()) + " faces still invalid after " + std::to_string(report.round_bound) +
                " rounds (the loop's bound)";
       ++report.rounds;
+      report.exact_rounds += exact;
       std::shuffle(invalid.begin(), invalid.end(), random);
       const bool splits = allow_splits || split_rounds_left-- > 0;
       const std::vector<Candidate> chosen =
-          choose_supports(maps, slices, standing, invalid, options, {splits, reach.below_tips, reach.corners});
+          choose_supports(maps, slices, exact ? &*last_build : nullptr, standing, invalid, options,
+                          {splits, reach.below_tips, reach.corners});
       if (chosen.empty()) return std::to_string(invalid.size()) + " faces invalid and no support reaches them";
       report.supports += static_cast<int>(chosen.size());
       paint_supports(chosen, maps.grid, tolerance, crumb_px, slices);

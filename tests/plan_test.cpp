@@ -145,6 +145,49 @@ TEST(Plan, BoxFloatingInMidAirIsFloating) {
   EXPECT_EQ(count_folds(folds_of(plan), LineKind::Mountain, 80.0 - 50.0), 1);  // its own front-top fold
 }
 
+// Seed §4.4's "first face behind or above", shot on the exact plan of a box floating in mid-air
+// (sides off the pixel lattice): front V(47.1) from h 41.3 to 77.9, top H(77.9) from d 18.6 to 47.1.
+TEST(Plan, RaysShotOnTheExactPlanReachTheFacesWhereTheirFoldLinesMeetThem) {
+  const RayScene scene(test::box({60.2, 41.3, 18.6}, {150.7, 77.9, 47.1}));
+  const Sheet sheet;
+  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
+  const SliceResult slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const PlanBuild build(maps, slices, sheet, PlanOptions{});
+  ASSERT_EQ(slices.faces.size(), 4u);
+  std::int32_t front = 2, top = 3;
+  if (slices.faces[2].orientation == Orientation::H) std::swap(front, top);
+  ASSERT_EQ(slices.faces[static_cast<std::size_t>(front)].orientation, Orientation::V);
+  ASSERT_EQ(slices.faces[static_cast<std::size_t>(top)].depth_mm, 77.9);
+  const double x = 100.3;
+  using Reached = std::vector<PlanBuild::Reached>;
+  auto faces_of = [](const Reached& reached) {
+    std::vector<std::int32_t> faces;
+    for (const auto& r : reached) faces.push_back(r.face);
+    return faces;
+  };
+  // From the top's back edge (Y = 77.9 - 18.6) up, as H(77.9): the back plane, at Y = 77.9 exactly.
+  const Reached from_top = build.faces_reached(x, 59.0, true, top, 77.9, 77.9 - 59.0);
+  ASSERT_EQ(faces_of(from_top), std::vector<std::int32_t>{kBackFace});
+  EXPECT_EQ(from_top[0].Y, 77.9);
+  // From the front's top edge up, as H(77.9): the top is no higher, so the ray passes over it to
+  // the back plane.
+  const Reached from_front_top = build.faces_reached(x, 77.9 - 47.1, true, front, 77.9, 47.1);
+  ASSERT_EQ(faces_of(from_front_top), std::vector<std::int32_t>{kBackFace});
+  EXPECT_EQ(from_front_top[0].Y, 77.9);
+  // From the front's bottom edge down, as V(47.1): the floor, at Y = 0 - 47.1 exactly.
+  const Reached from_front = build.faces_reached(x, 41.3 - 47.1, false, front, 41.3, 47.1);
+  ASSERT_EQ(faces_of(from_front), std::vector<std::int32_t>{kFloorFace});
+  EXPECT_EQ(from_front[0].Y, -47.1);
+  // A fold line beyond the sheet meets nothing; one behind the start is not reached either.
+  EXPECT_TRUE(build.faces_reached(x, 59.0, true, top, 400, 400 - 59.0).empty());
+  EXPECT_TRUE(build.faces_reached(x, 59.0, true, top, 58.0, 0.5).empty());
+  // Beside the box, from the floor up as H(0) at depth 30: the back plane, on the main fold Y = 0,
+  // where its piece of the line begins (the ends count).
+  const Reached beside = build.faces_reached(20.1, -30.0, true, kFloorFace, 0, 30);
+  ASSERT_EQ(faces_of(beside), std::vector<std::int32_t>{kBackFace});
+  EXPECT_EQ(beside[0].Y, 0.0);
+}
+
 TEST(Plan, ShelfOnTheBackPlaneOnlyIsDangling) {
   // 1 mm thick: its front is thinner than W and is removed; its top folds to the back plane.
   const Plan plan = plan_of_oa_mesh(test::box({60, 99, 0}, {150, 100, 40}));

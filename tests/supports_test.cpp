@@ -7,10 +7,12 @@
 #include <climits>
 #include <cmath>
 #include <map>
+#include <tuple>
 
 #include "helpers.hpp"
 #include "origamic/design.hpp"
 #include "origamic/plan_analysis.hpp"
+#include "support_choice.hpp"
 
 namespace origamic {
 namespace {
@@ -63,6 +65,51 @@ TEST(Supports, FloatingBoxIsSupportedAtTopAndBottom) {
     ++found;
   }
   EXPECT_EQ(found, 2);
+}
+
+// A round that starts from an exact verdict finds what each support reaches on the exact plan
+// (PlanBuild::faces_reached); the rows it paints hold the fold the next exact plan draws there.
+TEST(Supports, ARoundFromAnExactVerdictReachesTheFacesOnTheExactPlan) {
+  const RayScene scene(test::box({60.2, 41.3, 18.6}, {150.7, 77.9, 47.1}));  // off the lattice
+  const Sheet sheet;
+  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
+  const SliceResult slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const PlanBuild build(maps, slices, sheet, PlanOptions{});
+  const Plan& verdict = build.verdict();
+  Standing standing{verdict.validity, {}, {}};
+  for (const PlanFace& face : verdict.faces) {
+    standing.fold_on_top.push_back(face.fold_on_top);
+    standing.fold_on_bottom.push_back(face.fold_on_bottom);
+  }
+  const std::vector<std::int32_t> invalid{2, 3};
+  ASSERT_EQ(verdict.validity.floating, 2);
+  const std::vector<Candidate> exact =
+      choose_supports(maps, slices, &build, standing, invalid, SupportOptions{}, Reach{});
+  ASSERT_EQ(exact.size(), 2u);
+  const double px_mm = 1 / maps.grid.px_per_mm;
+  for (const Candidate& s : exact) {
+    const RasterFace& face = slices.faces[static_cast<std::size_t>(s.face)];
+    SCOPED_TRACE(s.face);
+    // The top H(77.9) reaches back to the back plane, along its own plane: the fold at Y = 77.9.
+    // The front V(47.1) reaches down to the floor, along its own plane: the fold at Y = -47.1.
+    const bool top = face.orientation == Orientation::H;
+    EXPECT_EQ(s.target, top ? kBackFace : kFloorFace);
+    EXPECT_EQ(s.orientation, face.orientation);
+    EXPECT_EQ(s.depth_mm, top ? 77.9 : 47.1);
+    const double fold_Y = top ? 77.9 : -47.1;
+    // The target's row just beyond the support holds the fold line, a row's edge at most away.
+    EXPECT_LE(std::abs(maps.grid.Y(s.target_row) - fold_Y), px_mm / 2);
+    EXPECT_EQ(s.target_row, top ? s.r0 - 1 : s.r1);
+    EXPECT_EQ(s.c1 - s.c0 >= slices.block_px, true);
+  }
+  // Here the raster walk, half a pixel from the fold line, finds the same supports.
+  const std::vector<Candidate> raster =
+      choose_supports(maps, slices, nullptr, standing, invalid, SupportOptions{}, Reach{});
+  ASSERT_EQ(raster.size(), exact.size());
+  for (std::size_t i = 0; i < exact.size(); ++i) {
+    EXPECT_EQ(std::tie(raster[i].face, raster[i].target, raster[i].c0, raster[i].c1, raster[i].r0, raster[i].r1),
+              std::tie(exact[i].face, exact[i].target, exact[i].c0, exact[i].c1, exact[i].r0, exact[i].r1));
+  }
 }
 
 TEST(Supports, SlopesBecomeStaircasesAsWideAsTheSlope) {
@@ -244,6 +291,8 @@ TEST(Supports, ThePlanKeptIsTheExactPlanOfTheSlicesKept) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   const DesignResult r = standing_design("seedlike/sphere.stl");
   ASSERT_GT(r.supports.passes_undone, 0) << "a design with undone passes";
+  EXPECT_GT(r.supports.exact_rounds, 0) << "rounds from exact verdicts, reaching faces on the exact plan";
+  EXPECT_LT(r.supports.exact_rounds, r.supports.rounds);
   const Plan fresh = build_plan(r.maps, r.slices, DesignOptions{}.sheet, PlanOptions{});
   EXPECT_EQ(fresh.validity.status, r.plan.validity.status);
   EXPECT_EQ(fresh.lines.size(), r.plan.lines.size());

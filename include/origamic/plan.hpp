@@ -114,6 +114,19 @@ class PlanBuild {
   const Plan& verdict() const;
   Plan full() const;
 
+  /// Where a support may fold onto another face (seed §4.4, "the first face behind or above"):
+  /// the faces the vertical ray from (x, from_Y) meets going up (or down) the plan, nearest first,
+  /// each where a support leaving face `face` at OA height h and depth d would fold onto it. That is
+  /// a V face at depth d' behind d (in front going down) where the ray meets it at Y = h - d', or an
+  /// H face at height h' above h (below) where it meets it at Y = h' - d. Decided exactly on the
+  /// arrangement, with h and d the doubles the support will carry, so the fold the next plan draws
+  /// there lies on the face. Cut-out faces hold nothing and are passed over. Thread-safe.
+  struct Reached {
+    std::int32_t face;
+    double Y;  // the fold's Y (nearest double)
+  };
+  std::vector<Reached> faces_reached(double x, double from_Y, bool up, std::int32_t face, double h, double d) const;
+
  private:
   struct State;
   std::unique_ptr<State> state_;
