@@ -277,21 +277,18 @@ PageSize pdf_page(const Sheet& sheet, Paper paper) {
 void check_export_options(const ExportOptions& options, const Sheet& sheet) {
   check_fold_style(options.folds);
   pdf_page(sheet, options.paper);
+  if (options.pdf_date_s && (*options.pdf_date_s < 0 || *options.pdf_date_s > kLatestPdfDate_s))
+    throw InputError("PDF date: " + std::to_string(*options.pdf_date_s) + " s since 1970 is not between 0 and " +
+                     std::to_string(kLatestPdfDate_s) + " (the year 9999)");
 }
 
 namespace {
 
-// The reproducible-builds convention: with SOURCE_DATE_EPOCH set (seconds since 1970), the PDF's
-// creation date is that moment, so the same plan gives the same bytes; without it, cairo's clock.
-std::optional<std::string> source_date() {
-  const char* text = std::getenv("SOURCE_DATE_EPOCH");
-  if (!text || !*text) return std::nullopt;
-  char* end = nullptr;
-  const long long seconds = std::strtoll(text, &end, 10);
-  if (*end || seconds < 0) return std::nullopt;
-  const std::time_t time = static_cast<std::time_t>(seconds);
+// The PDF date of a moment, ISO 8601 in UTC as cairo takes it.
+std::string iso_date(std::int64_t seconds) {
+  const auto time = static_cast<std::time_t>(seconds);
   std::tm utc{};
-  if (!gmtime_r(&time, &utc)) return std::nullopt;
+  if (!gmtime_r(&time, &utc)) throw InputError("PDF date: " + std::to_string(seconds) + " s is no date");
   char iso[32];
   std::strftime(iso, sizeof iso, "%Y-%m-%dT%H:%M:%SZ", &utc);
   return iso;
@@ -313,9 +310,10 @@ std::string plan_pdf(const Plan& plan, const ExportOptions& options) {
   cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_SUBJECT, plan_description(plan, options).c_str());
   cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_KEYWORDS, keywords.c_str());
   cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, creator.c_str());
-  if (const auto date = source_date()) {
-    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATE_DATE, date->c_str());
-    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_MOD_DATE, date->c_str());
+  if (options.pdf_date_s) {
+    const std::string date = iso_date(*options.pdf_date_s);
+    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATE_DATE, date.c_str());
+    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_MOD_DATE, date.c_str());
   }
   cairo_t* cr = cairo_create(surface);
   cairo_scale(cr, kPointsPerMm, kPointsPerMm);  // from here on, 1 user unit = 1 mm

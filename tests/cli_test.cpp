@@ -263,6 +263,30 @@ TEST(Cli, BadFabricationOptionsExitWithStatusTwo) {
   expect_rejected(house + " --paper a3", "--paper", "a3");
   expect_rejected(house + " --paper letter", "--paper", "does not fit");
   expect_rejected(house + " --card 300x200 --paper a4", "--paper", "does not fit");
+  for (const char* date : {"yesterday", "-1", "1.5", "1e9", "99999999999999999999", "253402300800"}) {
+    ASSERT_EQ(setenv("SOURCE_DATE_EPOCH", date, 1), 0);
+    expect_rejected(house, "SOURCE_DATE_EPOCH", date);
+  }
+  unsetenv("SOURCE_DATE_EPOCH");
+}
+
+// SOURCE_DATE_EPOCH dates the PDF (the reproducible-builds convention): two runs, the same bytes.
+TEST(Cli, SourceDateEpochDatesThePdfAndTwoRunsGiveTheSameBytes) {
+  const test::TempDir dir;
+  const std::string house = quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj");
+  ASSERT_EQ(setenv("SOURCE_DATE_EPOCH", "1700000000", 1), 0);
+  const CommandRun first = run("design " + house + " --out " + quoted(dir / "first"));
+  const CommandRun second = run("design " + house + " --out " + quoted(dir / "second"));
+  unsetenv("SOURCE_DATE_EPOCH");
+  ASSERT_EQ(first.status, 0) << first.output;
+  ASSERT_EQ(second.status, 0) << second.output;
+  auto bytes = [](const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::string{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  };
+  EXPECT_EQ(bytes(dir / "first" / "house.pdf"), bytes(dir / "second" / "house.pdf"));
+  const CommandRun info = run_shell("TZ=UTC pdfinfo -isodates " + quoted(dir / "first" / "house.pdf"));
+  EXPECT_NE(info.output.find("2023-11-14T22:13:20"), std::string::npos) << info.output;
 }
 
 TEST(Cli, FabricationOptionsReachTheFiles) {

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,7 +39,13 @@ struct ExportOptions {
   double preview_px_per_mm = 4;  // the PNG preview's resolution
   FoldStyleOptions folds;     // score, perforated or dashed folds, in every file
   Paper paper = Paper::Sheet; // the PDF's page; the sheet is centred on it
+  // The PDF's creation date in seconds since 1970 (UTC), so that the same plan gives the same bytes
+  // (the CLI takes SOURCE_DATE_EPOCH); none: the moment it is written.
+  std::optional<std::int64_t> pdf_date_s;
 };
+
+/// The latest date a PDF can carry (9999-12-31T23:59:59Z), in seconds since 1970.
+inline constexpr std::int64_t kLatestPdfDate_s = 253402300799;
 
 struct LayerStyle {
   const char* name;       // CUT, MOUNTAIN, VALLEY, PERF_MOUNTAIN, PERF_VALLEY, OUTLINE

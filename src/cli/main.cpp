@@ -4,12 +4,15 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <map>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <system_error>
 
 #include "origamic/design.hpp"
 #include "origamic/error.hpp"
@@ -149,6 +152,18 @@ origamic::ExportOptions export_options(const DesignArgs& args, const Fabrication
   exports.paper = fabrication.paper == "a4"       ? origamic::Paper::A4
                   : fabrication.paper == "letter" ? origamic::Paper::Letter
                                                   : origamic::Paper::Sheet;
+  // The reproducible-builds convention: SOURCE_DATE_EPOCH dates the PDF, so a plan gives the same bytes.
+  if (const char* date = std::getenv("SOURCE_DATE_EPOCH"); date && *date) {
+    const std::string text = date;
+    std::int64_t seconds = 0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), seconds);
+    if (error != std::errc{} || end != text.data() + text.size() || seconds < 0 || seconds > origamic::kLatestPdfDate_s)
+      throw InputError(
+          "SOURCE_DATE_EPOCH: expected whole seconds since 1970 up to the year 9999, such as 1700000000, "
+          "not '" +
+          text + "'");
+    exports.pdf_date_s = seconds;
+  }
   origamic::check_export_options(exports, sheet);
   return exports;
 }
