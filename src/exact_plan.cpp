@@ -741,7 +741,8 @@ struct PlanBuild::State {
   Plan plan;                                                                   // the verdict
 
   // Vertical ray shooting (faces_reached). The exact numbers are read under the lock only; the
-  // lines keep their crossings as plain rationals, which threads may read at once.
+  // lines keep their crossings as plain rationals, which threads may read at once (MPFR, which
+  // to_interval calls on them, is built thread-safe in Debian).
   struct Crossing {
     exact::Rational Y;
     double Y_near;       // nearest double, to rule most comparisons out without exact arithmetic
@@ -773,16 +774,27 @@ const std::vector<PlanBuild::State::Crossing>& PlanBuild::State::line_at(double 
       spans.push_back({lo, hi, he});
     }
   const FT X(x);
-  std::vector<Crossing> line;
+  struct Met {
+    FT Y, slope;  // edges through one vertex on the line: the lower one right of it first
+    std::int32_t above;
+  };
+  std::vector<Met> met;
   for (const EdgeSpan& span : spans) {
     if (x < span.x_lo || x > span.x_hi) continue;
     const Point &p = span.he->source()->point(), &q = span.he->target()->point();
     if (!(p.x() <= X && X < q.x())) continue;
-    const FT Y = p.y() + (X - p.x()) * (q.y() - p.y()) / (q.x() - p.x());
-    const std::int32_t above = span.he->face()->is_unbounded() ? kNoLabel : span.he->face()->data();
-    line.push_back({Y.exact(), nearest_double(Y), above});
+    const FT slope = (q.y() - p.y()) / (q.x() - p.x());
+    const Arrangement::Face_const_handle f = span.he->face();
+    // A crumb cut out of the sheet holds nothing either: it is passed over like a hole.
+    const bool paper = !f->is_unbounded() && f->data() >= 0 && !cut_out[static_cast<std::size_t>(pieces.of.at(f))];
+    met.push_back({p.y() + (X - p.x()) * slope, slope, paper ? f->data() : kNoLabel});
   }
-  std::ranges::sort(line, [](const Crossing& a, const Crossing& b) { return a.Y < b.Y; });
+  std::ranges::sort(met, [](const Met& a, const Met& b) {
+    const CGAL::Comparison_result order = CGAL::compare(a.Y, b.Y);
+    return order == CGAL::SMALLER || (order == CGAL::EQUAL && a.slope < b.slope);
+  });
+  std::vector<Crossing> line;
+  for (const Met& m : met) line.push_back({m.Y.exact(), nearest_double(m.Y), m.above});
   return lines.emplace(x, std::move(line)).first->second;
 }
 
@@ -975,21 +987,24 @@ std::vector<PlanBuild::Reached> PlanBuild::faces_reached(double x, double from_Y
   using Rational = exact::Rational;
   const std::vector<State::Crossing>& line = state_->line_at(x);
   const std::vector<RasterFace>& faces = state_->faces;
-  const Rational from(from_Y), H(h), D(d);
-  // A fold at Y on a face met between crossings i and i + 1, strictly beyond the ray's start.
+  const Rational from(from_Y), h_exact(h), d_exact(d);
+  // A fold at Y on the piece of the line between crossings i and i + 1, from the ray's start on.
+  // The piece holds its near end, not its far one: a fold there lands on the next piece.
   auto on = [&](const Rational& Y, double Y_near, std::size_t i) {
     constexpr double kSlack = 1e-9;  // far above the doubles' rounding: closer calls go exact
     const State::Crossing &lo = line[i], &hi = line[i + 1];
     if (Y_near < lo.Y_near - kSlack || Y_near > hi.Y_near + kSlack) return false;
-    return lo.Y <= Y && Y <= hi.Y && (up ? from < Y : Y < from);
+    return up ? from <= Y && lo.Y <= Y && Y < hi.Y : Y <= from && lo.Y < Y && Y <= hi.Y;
   };
   std::vector<Reached> reached;
   const auto n = static_cast<std::ptrdiff_t>(line.size());
-  // The pieces of the line from the start's on, nearest first: piece i lies between crossings i and
-  // i + 1, and the start in piece first - 1.
-  std::ptrdiff_t first = 0;
-  while (first < n && line[static_cast<std::size_t>(first)].Y <= from) ++first;
-  for (std::ptrdiff_t i = first - 1; i >= 0 && i + 1 < n; i += up ? 1 : -1) {
+  // Piece i lies between crossings i and i + 1. The first piece walked holds the start: going up,
+  // the one beginning at or below it; going down, the one ending at or above it.
+  std::ptrdiff_t below = 0;  // crossings under the start (going up: at or under it)
+  while (below < n &&
+         (up ? line[static_cast<std::size_t>(below)].Y <= from : line[static_cast<std::size_t>(below)].Y < from))
+    ++below;
+  for (std::ptrdiff_t i = below - 1; i >= 0 && i + 1 < n; i += up ? 1 : -1) {
     const auto k = static_cast<std::size_t>(i);
     const std::int32_t g = line[k].above;
     if (g < 0 || g == face) continue;
@@ -998,10 +1013,10 @@ std::vector<PlanBuild::Reached> PlanBuild::faces_reached(double x, double from_Y
     const bool beyond = up ? target.depth_mm < d : target.depth_mm > d;  // behind / in front
     const bool higher = up ? target.depth_mm > h : target.depth_mm < h;  // above / below
     if (target.orientation == Orientation::V && beyond) {
-      const Rational Y = H - Rational(target.depth_mm);
+      const Rational Y = h_exact - Rational(target.depth_mm);
       if (on(Y, h - target.depth_mm, k)) reached.push_back({g, nearest_double(Y)});
     } else if (target.orientation == Orientation::H && higher) {
-      const Rational Y = Rational(target.depth_mm) - D;
+      const Rational Y = Rational(target.depth_mm) - d_exact;
       if (on(Y, target.depth_mm - d, k)) reached.push_back({g, nearest_double(Y)});
     }
   }

@@ -6,9 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <ctime>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -274,27 +272,27 @@ PageSize pdf_page(const Sheet& sheet, Paper paper) {
                    number(size.width_mm) + "x" + number(size.height_mm) + " mm) either way up");
 }
 
-void check_export_options(const ExportOptions& options, const Sheet& sheet) {
-  check_fold_style(options.folds);
-  pdf_page(sheet, options.paper);
-  if (options.pdf_date_s && (*options.pdf_date_s < 0 || *options.pdf_date_s > kLatestPdfDate_s))
-    throw InputError("PDF date: " + std::to_string(*options.pdf_date_s) + " s since 1970 is not between 0 and " +
-                     std::to_string(kLatestPdfDate_s) + " (the year 9999)");
-}
-
 namespace {
 
 // The PDF date of a moment, ISO 8601 in UTC as cairo takes it.
 std::string iso_date(std::int64_t seconds) {
   const auto time = static_cast<std::time_t>(seconds);
   std::tm utc{};
-  if (!gmtime_r(&time, &utc)) throw InputError("PDF date: " + std::to_string(seconds) + " s is no date");
+  if (seconds < 0 || seconds > kLatestPdfDate_s || !gmtime_r(&time, &utc))
+    throw InputError("PDF date: " + std::to_string(seconds) + " s since 1970 is not between 0 and " +
+                     std::to_string(kLatestPdfDate_s) + " (the year 9999)");
   char iso[32];
   std::strftime(iso, sizeof iso, "%Y-%m-%dT%H:%M:%SZ", &utc);
   return iso;
 }
 
 }  // namespace
+
+void check_export_options(const ExportOptions& options, const Sheet& sheet) {
+  check_fold_style(options.folds);
+  pdf_page(sheet, options.paper);
+  if (options.pdf_date_s) iso_date(*options.pdf_date_s);
+}
 
 std::string plan_pdf(const Plan& plan, const ExportOptions& options) {
   const PageSize page = pdf_page(plan.sheet, options.paper);

@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "bands.hpp"
+#include "origamic/plan.hpp"
 
 namespace origamic {
 namespace {

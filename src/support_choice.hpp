@@ -7,13 +7,14 @@
 #include <cstdint>
 #include <vector>
 
-#include "origamic/plan.hpp"
 #include "origamic/raster.hpp"
 #include "origamic/slice.hpp"
 #include "origamic/supports.hpp"
 #include "origamic/validity.hpp"
 
 namespace origamic {
+
+class PlanBuild;
 
 // A support: a W-wide (or wider) block of the raster plan between the face it holds and the face it
 // reaches, turned into a face of its own.

@@ -157,9 +157,13 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
   std::pair<Grid<std::int32_t>, std::vector<RasterFace>> confirmed;
   // Rounds run on the raster graph; the exact plan, built when they end, has the last word and
   // the next rounds start from its verdict.
+  // Whether the exact plan of the last verdict is that of the slices as they are: rounds then find
+  // what their supports reach on it.
+  bool build_current = false;
   auto settle = [&] {
     standing = raster_standing(maps.grid, slices, aligned_fold_tolerance_mm(maps.grid));
     exact = false;
+    build_current = false;
   };
   // The exact plan of the last verdict, kept: the plan kept is drawn in full from it.
   std::optional<PlanBuild> last_build;
@@ -169,7 +173,7 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
     confirmed = {slices.face, slices.faces};
     ++report.exact_builds;
     standing = standing_of(result.plan);
-    exact = true;
+    exact = build_current = true;
   };
   // Rounds of supports until every face stands or they stop helping; returns why they stopped.
   auto support_rounds = [&]() -> std::string {
@@ -187,11 +191,11 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
         return std::to_string(invalid.size()) + " faces still invalid after " + std::to_string(report.round_bound) +
                " rounds (the loop's bound)";
       ++report.rounds;
-      report.exact_rounds += exact;
+      report.exact_rounds += build_current;
       std::shuffle(invalid.begin(), invalid.end(), random);
       const bool splits = allow_splits || split_rounds_left-- > 0;
       const std::vector<Candidate> chosen =
-          choose_supports(maps, slices, exact ? &*last_build : nullptr, standing, invalid, options,
+          choose_supports(maps, slices, build_current ? &*last_build : nullptr, standing, invalid, options,
                           {splits, reach.below_tips, reach.corners});
       if (chosen.empty()) return std::to_string(invalid.size()) + " faces invalid and no support reaches them";
       report.supports += static_cast<int>(chosen.size());
@@ -222,7 +226,7 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
       slices.faces = confirmed.second;
       report.supports = supports_before;  // the rounds still count against the bound
       standing = standing_of(result.plan);
-      exact = true;
+      exact = build_current = true;
       ++report.passes_undone;
     } else {
       confirm();
@@ -244,6 +248,7 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
       settle();
       continue;
     }
+    build_current = build_current && slices.face.values == confirmed.first.values;  // a crumb may have joined a face
     // The exact plan found fewer invalid faces than last time: another pass of rounds from its word.
     const bool progress = invalid.size() < fewest_exact;
     fewest_exact = std::min(fewest_exact, invalid.size());

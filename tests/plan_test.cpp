@@ -186,6 +186,16 @@ TEST(Plan, RaysShotOnTheExactPlanReachTheFacesWhereTheirFoldLinesMeetThem) {
   const Reached beside = build.faces_reached(20.1, -30.0, true, kFloorFace, 0, 30);
   ASSERT_EQ(faces_of(beside), std::vector<std::int32_t>{kBackFace});
   EXPECT_EQ(beside[0].Y, 0.0);
+  // From the main fold itself: the back plane is reached where the ray starts (the faces touch).
+  const Reached at_start = build.faces_reached(20.1, 0.0, true, kFloorFace, 0, 30);
+  ASSERT_EQ(faces_of(at_start), std::vector<std::int32_t>{kBackFace});
+  EXPECT_EQ(at_start[0].Y, 0.0);
+  // Nearest first: up through the box from below it, as H(62) at depth 25, the top (H(77.9) at
+  // Y = 77.9 - 25) and then the back plane (at Y = 62); the front, not behind, is passed over.
+  const Reached through = build.faces_reached(x, -30.0, true, kFloorFace, 62, 25);
+  ASSERT_EQ(faces_of(through), (std::vector<std::int32_t>{top, kBackFace}));
+  EXPECT_EQ(through[0].Y, 77.9 - 25);
+  EXPECT_EQ(through[1].Y, 62.0);
 }
 
 TEST(Plan, ShelfOnTheBackPlaneOnlyIsDangling) {

@@ -100,7 +100,7 @@ TEST(Supports, ARoundFromAnExactVerdictReachesTheFacesOnTheExactPlan) {
     // The target's row just beyond the support holds the fold line, a row's edge at most away.
     EXPECT_LE(std::abs(maps.grid.Y(s.target_row) - fold_Y), px_mm / 2);
     EXPECT_EQ(s.target_row, top ? s.r0 - 1 : s.r1);
-    EXPECT_EQ(s.c1 - s.c0 >= slices.block_px, true);
+    EXPECT_GE(s.c1 - s.c0, slices.block_px);
   }
   // Here the raster walk, half a pixel from the fold line, finds the same supports.
   const std::vector<Candidate> raster =

@@ -75,8 +75,9 @@ PageSize pdf_page(const Sheet& sheet, Paper paper);
 /// and the fold style, such as "origamic plan of house.obj; units mm (X along the main fold, ...); ...".
 std::string plan_description(const Plan& plan, const ExportOptions& options);
 
-/// Checks every export option before any work: the fold style (check_fold_style) and that the sheet
-/// fits the paper. \throws InputError naming the option.
+/// Checks every export option before any work: the fold style (check_fold_style), that the sheet
+/// fits the paper and that the PDF date is one (0 to kLatestPdfDate_s). \throws InputError naming the
+/// option.
 void check_export_options(const ExportOptions& options, const Sheet& sheet);
 
 /// The plan as ASCII DXF, written by dxflib: 999 comment lines naming the model, units, settings
