@@ -1009,16 +1009,11 @@ std::vector<PlanBuild::Reached> PlanBuild::faces_reached(double x, double from_Y
     const std::int32_t g = line[k].above;
     if (g < 0 || g == face) continue;
     const RasterFace& target = faces[static_cast<std::size_t>(g)];
-    if (target.hole) continue;
-    const bool beyond = up ? target.depth_mm < d : target.depth_mm > d;  // behind / in front
-    const bool higher = up ? target.depth_mm > h : target.depth_mm < h;  // above / below
-    if (target.orientation == Orientation::V && beyond) {
-      const Rational Y = h_exact - Rational(target.depth_mm);
-      if (on(Y, h - target.depth_mm, k)) reached.push_back({g, nearest_double(Y)});
-    } else if (target.orientation == Orientation::H && higher) {
-      const Rational Y = Rational(target.depth_mm) - d_exact;
-      if (on(Y, target.depth_mm - d, k)) reached.push_back({g, nearest_double(Y)});
-    }
+    if (target.hole || !support_folds_onto(target, up, h, d)) continue;
+    const bool onto_v = target.orientation == Orientation::V;
+    const Rational Y =
+        onto_v ? Rational(h_exact - Rational(target.depth_mm)) : Rational(Rational(target.depth_mm) - d_exact);
+    if (on(Y, onto_v ? h - target.depth_mm : target.depth_mm - d, k)) reached.push_back({g, nearest_double(Y)});
   }
   return reached;
 }

@@ -236,14 +236,8 @@ class CandidateFinder {
       const std::int32_t g = row.centre;
       if (g >= 0 && g != f && row.mostly) {
         const RasterFace& target = faces_[static_cast<std::size_t>(g)];
-        const double Y = row.Y;
-        const bool beyond = up ? target.depth_mm < d : target.depth_mm > d;  // behind / in front
-        const bool higher = up ? target.depth_mm > h : target.depth_mm < h;  // above / below
-        const bool v_hit =
-            target.orientation == Orientation::V && beyond && std::abs(h - target.depth_mm - Y) <= px_mm_ / 2;
-        const bool h_hit =
-            target.orientation == Orientation::H && higher && std::abs(target.depth_mm - d - Y) <= px_mm_ / 2;
-        if (v_hit || h_hit) {
+        const double fold_Y = target.orientation == Orientation::V ? h - target.depth_mm : target.depth_mm - d;
+        if (support_folds_onto(target, up, h, d) && std::abs(fold_Y - row.Y) <= px_mm_ / 2) {
           if ((r - step - (edge + step)) * step < 0) return std::nullopt;  // no room: the faces touch already
           return candidate(f, g, column, edge, r, up, h, d, std::move(crossed));
         }
@@ -309,6 +303,15 @@ void widen(const Grid<std::int32_t>& face, const Grid<std::uint8_t>& claimed, Ca
 }
 
 }  // namespace
+
+Standing standing_of(const Plan& plan) {
+  Standing s{plan.validity, {}, {}};
+  for (const PlanFace& face : plan.faces) {
+    s.fold_on_top.push_back(face.fold_on_top);
+    s.fold_on_bottom.push_back(face.fold_on_bottom);
+  }
+  return s;
+}
 
 std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const PlanBuild* exact,
                                        const Standing& standing, const std::vector<std::int32_t>& invalid,

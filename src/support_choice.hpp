@@ -15,6 +15,7 @@
 namespace origamic {
 
 class PlanBuild;
+struct Plan;
 
 // A support: a W-wide (or wider) block of the raster plan between the face it holds and the face it
 // reaches, turned into a face of its own.
@@ -35,6 +36,9 @@ struct Standing {
   Validity validity;
   std::vector<std::uint8_t> fold_on_top, fold_on_bottom;
 };
+
+/// The exact plan's word on each face, as the rounds read it.
+Standing standing_of(const Plan& plan);
 
 // What a round's supports may do; the loop (supports.cpp) allows more as the plain rules run out.
 struct Reach {

@@ -59,15 +59,6 @@ bool plan_stands(const Validity& validity, bool allow_dangling) {
 
 namespace {
 
-Standing standing_of(const Plan& plan) {
-  Standing s{plan.validity, {}, {}};
-  for (const PlanFace& face : plan.faces) {
-    s.fold_on_top.push_back(face.fold_on_top);
-    s.fold_on_bottom.push_back(face.fold_on_bottom);
-  }
-  return s;
-}
-
 // The face graph read from the raster plan: a fold wherever a V(d) pixel and an H(h) pixel meet one
 // above the other within `tolerance` of Y = h - d, as the exact plan snaps them (plan.hpp). Rebuilding
 // the exact plan costs 50-700 ms; this costs a few, so rounds run on it and the exact plan only

@@ -76,11 +76,7 @@ TEST(Supports, ARoundFromAnExactVerdictReachesTheFacesOnTheExactPlan) {
   const SliceResult slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
   const PlanBuild build(maps, slices, sheet, PlanOptions{});
   const Plan& verdict = build.verdict();
-  Standing standing{verdict.validity, {}, {}};
-  for (const PlanFace& face : verdict.faces) {
-    standing.fold_on_top.push_back(face.fold_on_top);
-    standing.fold_on_bottom.push_back(face.fold_on_bottom);
-  }
+  const Standing standing = standing_of(verdict);
   const std::vector<std::int32_t> invalid{2, 3};
   ASSERT_EQ(verdict.validity.floating, 2);
   const std::vector<Candidate> exact =

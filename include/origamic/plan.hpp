@@ -100,6 +100,14 @@ inline double aligned_fold_tolerance_mm(const PixelGrid& grid) { return 1 / grid
 /// numbers are built without thread safety (see exact_plan.cpp), so one call at a time per process.
 Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& sheet, const PlanOptions& options);
 
+/// Seed §4.4: a support leaving a face at OA height h and depth d, going up the plan (down), can
+/// fold onto a V face behind it (in front of it) or an H face above it (below it): on a V face at
+/// depth d' where Y = h - d', on an H face at height h' where Y = h' - d.
+inline bool support_folds_onto(const RasterFace& target, bool up, double h, double d) {
+  if (target.orientation == Orientation::V) return up ? target.depth_mm < d : target.depth_mm > d;
+  return up ? target.depth_mm > h : target.depth_mm < h;
+}
+
 /// build_plan in two steps, for a loop that decides on many verdicts and keeps one: the verdict
 /// (the faces' statuses, orientations, depths, areas and folds on top and bottom, the validity, the
 /// arrangement's checks; no lines nor their lengths, no regions, inside points, lost or collapsed
