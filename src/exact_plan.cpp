@@ -965,6 +965,8 @@ PlanBuild::PlanBuild(PlanBuild&&) noexcept = default;
 PlanBuild& PlanBuild::operator=(PlanBuild&&) noexcept = default;
 
 const Plan& PlanBuild::verdict() const { return state_->plan; }
+const Grid<std::int32_t>& PlanBuild::face_map() const { return state_->labels; }
+const std::vector<RasterFace>& PlanBuild::faces() const { return state_->faces; }
 
 Plan PlanBuild::full() const {
   const State& state = *state_;
@@ -982,19 +984,51 @@ Plan PlanBuild::full() const {
   return plan;
 }
 
-std::vector<PlanBuild::Reached> PlanBuild::faces_reached(double x, double from_Y, bool up, std::int32_t face, double h,
-                                                         double d) const {
+namespace {
+
+// Painted band k crossing a ray is labelled kPainted - k on the line, below every face label.
+constexpr std::int32_t kPainted = -2;
+
+exact::Rational exact_Y(const FoldLine& line) { return exact::Rational(line.h) - exact::Rational(line.d); }
+
+}  // namespace
+
+std::vector<PlanBuild::Reached> PlanBuild::faces_reached(double x, double from_Y, bool up, double h, double d,
+                                                         std::span<const PaintedBand> painted) const {
   using Rational = exact::Rational;
-  const std::vector<State::Crossing>& line = state_->line_at(x);
+  const std::vector<State::Crossing>* cached = &state_->line_at(x);
+  std::vector<State::Crossing> repainted;
+  if (!painted.empty()) {
+    // A band covers the line from its lower to its upper fold line: the crossings between go, and
+    // the label above its top is what the line held there.
+    repainted = *cached;
+    for (std::size_t k = 0; k < painted.size(); ++k) {
+      Rational lo = exact_Y(painted[k].a), hi = exact_Y(painted[k].b);
+      if (hi < lo) std::swap(lo, hi);
+      const auto first = std::ranges::lower_bound(repainted, lo, {}, &State::Crossing::Y);
+      const auto last = std::ranges::upper_bound(repainted, hi, {}, &State::Crossing::Y);
+      const std::int32_t above = last == repainted.begin() ? kNoLabel : std::prev(last)->above;
+      const double lo_near = nearest_double(lo), hi_near = nearest_double(hi);
+      const auto at = repainted.erase(first, last);
+      repainted.insert(at, {State::Crossing{std::move(lo), lo_near, kPainted - static_cast<std::int32_t>(k)},
+                            State::Crossing{std::move(hi), hi_near, above}});
+    }
+    cached = &repainted;
+  }
+  const std::vector<State::Crossing>& line = *cached;
   const std::vector<RasterFace>& faces = state_->faces;
   const Rational from(from_Y), h_exact(h), d_exact(d);
   // A fold at Y on the piece of the line between crossings i and i + 1, from the ray's start on.
-  // The piece holds its near end, not its far one: a fold there lands on the next piece.
+  // The piece holds its near end, not its far one: a fold there lands on the next piece. Ends are
+  // taken as the plan takes fold lines, to kFoldLineTolerance_mm: a support's height is the double
+  // nearest edge Y + d, so its fold line h - d lies a rounding off the pixel edge it was drawn from.
+  const Rational tolerance(kFoldLineTolerance_mm);
   auto on = [&](const Rational& Y, double Y_near, std::size_t i) {
-    constexpr double kSlack = 1e-9;  // far above the doubles' rounding: closer calls go exact
+    constexpr double kSlack = kFoldLineTolerance_mm + 1e-9;  // closer calls go exact
     const State::Crossing &lo = line[i], &hi = line[i + 1];
     if (Y_near < lo.Y_near - kSlack || Y_near > hi.Y_near + kSlack) return false;
-    return up ? from <= Y && lo.Y <= Y && Y < hi.Y : Y <= from && lo.Y < Y && Y <= hi.Y;
+    return up ? from <= Y && lo.Y - tolerance <= Y && Y < hi.Y - tolerance
+              : Y <= from && lo.Y + tolerance < Y && Y <= hi.Y + tolerance;
   };
   std::vector<Reached> reached;
   const auto n = static_cast<std::ptrdiff_t>(line.size());
@@ -1007,13 +1041,23 @@ std::vector<PlanBuild::Reached> PlanBuild::faces_reached(double x, double from_Y
   for (std::ptrdiff_t i = below - 1; i >= 0 && i + 1 < n; i += up ? 1 : -1) {
     const auto k = static_cast<std::size_t>(i);
     const std::int32_t g = line[k].above;
-    if (g < 0 || g == face) continue;
-    const RasterFace& target = faces[static_cast<std::size_t>(g)];
-    if (target.hole || !support_folds_onto(target, up, h, d)) continue;
-    const bool onto_v = target.orientation == Orientation::V;
-    const Rational Y =
-        onto_v ? Rational(h_exact - Rational(target.depth_mm)) : Rational(Rational(target.depth_mm) - d_exact);
-    if (on(Y, onto_v ? h - target.depth_mm : target.depth_mm - d, k)) reached.push_back({g, nearest_double(Y)});
+    Orientation orientation;
+    double depth_mm;
+    if (g >= 0) {
+      const RasterFace& target = faces[static_cast<std::size_t>(g)];
+      if (target.hole) continue;
+      orientation = target.orientation, depth_mm = target.depth_mm;
+    } else if (g <= kPainted) {
+      const PaintedBand& band = painted[static_cast<std::size_t>(kPainted - g)];
+      orientation = band.orientation, depth_mm = band.depth_mm;
+    } else {
+      continue;
+    }
+    if (!support_folds_onto(orientation, depth_mm, up, h, d)) continue;
+    const bool onto_v = orientation == Orientation::V;
+    const Rational Y = onto_v ? Rational(h_exact - Rational(depth_mm)) : Rational(Rational(depth_mm) - d_exact);
+    if (on(Y, onto_v ? h - depth_mm : depth_mm - d, k))
+      reached.push_back({std::max(g, kNoLabel), orientation, depth_mm, nearest_double(Y)});
   }
   return reached;
 }

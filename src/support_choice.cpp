@@ -7,6 +7,7 @@
 #include <array>
 #include <climits>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <optional>
 #include <set>
@@ -24,8 +25,10 @@ class CandidateFinder {
  public:
   // Candidates will be asked of the faces in `wanted` only.
   CandidateFinder(const RasterMaps& maps, const SliceResult& slices, const PlanBuild* exact,
-                  const std::vector<std::int32_t>& wanted, double split_cost, Reach reach)
+                  std::span<const Candidate> painted, const std::vector<std::int32_t>& wanted, double split_cost,
+                  Reach reach)
       : exact_(exact),
+        painted_(painted),
         grid_(maps.grid),
         face_(slices.face),
         faces_(slices.faces),
@@ -38,6 +41,17 @@ class CandidateFinder {
     for (const std::int32_t f : wanted)
       if (int& k = slot_[static_cast<std::size_t>(f)]; k < 0)
         k = static_cast<int>(columns_.size()), columns_.push_back({INT_MAX, -1});
+    if (exact_) {
+      // Planes numbered, so that a pixel's is compared as one integer; holes have none.
+      std::map<std::pair<Orientation, double>, int> planes;
+      auto plane = [&](const RasterFace& f) {
+        return f.hole ? -1
+                      : planes.try_emplace({f.orientation, f.depth_mm}, static_cast<int>(planes.size())).first->second;
+      };
+      for (const RasterFace& f : faces_) plane_now_.push_back(plane(f));
+      for (const RasterFace& f : exact_->faces()) plane_then_.push_back(plane(f));
+      changed_.resize(static_cast<std::size_t>(face_.cols));
+    }
     first_.assign(columns_.size() * static_cast<std::size_t>(face_.cols), -1);
     last_.assign(first_.size(), -1);
     // Bands of columns in parallel: each writes its own columns, and its own extents to merge.
@@ -45,9 +59,11 @@ class CandidateFinder {
     for_bands(face_.cols, [&](int band, int c_begin, int c_end) {
       std::vector<std::pair<int, int>>& columns = band_columns[static_cast<std::size_t>(band)];
       columns.assign(columns_.size(), {INT_MAX, -1});
-      for (int r = 0; r < face_.rows; ++r)
+      for (int r = 0; r < face_.rows; ++r) {
+        const std::int32_t* row = &face_.values[face_.index(0, r)];
+        if (exact_) note_changes(r, row, c_begin, c_end);
         for (int c = c_begin; c < c_end; ++c) {
-          const std::int32_t f = face_(c, r);
+          const std::int32_t f = row[c];
           if (f < 0 || slot_[static_cast<std::size_t>(f)] < 0) continue;
           const auto slot = static_cast<std::size_t>(slot_[static_cast<std::size_t>(f)]);
           const std::size_t k = slot * face_.cols + c;
@@ -56,6 +72,7 @@ class CandidateFinder {
           auto& [lo, hi] = columns[slot];
           lo = std::min(lo, c), hi = std::max(hi, c);
         }
+      }
     });
     for (const auto& band : band_columns)
       for (std::size_t slot = 0; slot < columns_.size(); ++slot)
@@ -90,6 +107,7 @@ class CandidateFinder {
     BlockColumn column(face_.rows);
     for (const auto [c0, c1, extra_cost] : starts) {
       column.reset(c0, c1);
+      if (exact_) column.paint(*this, painted_);
       // The edge row: f's top (bottom) at the block column's centre. A support needs f along at
       // least half of its near side and its target along half of its far side: slices of curved
       // surfaces cross a W-wide column at a slant, and the rest of either side is a cut.
@@ -128,6 +146,30 @@ class CandidateFinder {
   }
 
  private:
+  // Where the raster plan has changed since the exact plan was built (supports painted, narrow parts
+  // joined to a neighbour, boundaries aligned): the runs of each column's rows whose face lies in
+  // another plane than the exact plan's there. Rays meet these, not what the plan held.
+  struct Changed {
+    int r0, r1;  // rows [r0, r1)
+    std::int32_t face;
+  };
+  void note_changes(int r, const std::int32_t* row, int c_begin, int c_end) {
+    const Grid<std::int32_t>& then = exact_->face_map();
+    const std::int32_t* was_row = &then.values[then.index(0, r)];
+    const int* plane_now = plane_now_.data();
+    const int* plane_then = plane_then_.data();
+    for (int c = c_begin; c < c_end; ++c) {
+      const std::int32_t f = row[c], was = was_row[c];
+      const int now = f < 0 ? -1 : plane_now[f];
+      if (now < 0 || (was >= 0 && plane_then[was] == now)) continue;
+      std::vector<Changed>& runs = changed_[static_cast<std::size_t>(c)];
+      if (!runs.empty() && runs.back().r1 == r && runs.back().face == f)
+        ++runs.back().r1;
+      else
+        runs.push_back({r, r + 1, f});
+    }
+  }
+
   bool mostly(std::int32_t f, int c0, int c1, int r) const {
     int n = 0;
     for (int c = c0; c < c1; ++c) n += face_(c, r) == f;
@@ -158,8 +200,24 @@ class CandidateFinder {
       for (const int r : touched_) known_[static_cast<std::size_t>(r)] = 0;
       touched_.clear();
       faces_.clear();
+      painted_.clear();
       c0_ = c0, c1_ = c1;
     }
+    // What has changed since the exact plan along its ray, down the centre column: the runs of
+    // rows in another plane, between their pixel edges, and over them the supports painted since,
+    // between their exact fold lines.
+    void paint(const CandidateFinder& finder, std::span<const Candidate> painted) {
+      const int centre = (c0_ + c1_) / 2;
+      const PixelGrid& grid = finder.grid_;
+      const auto edge_Y = [&](int r) { return FoldLine{(grid.rows_above_fold - r) / grid.px_per_mm, 0}; };
+      for (const Changed& run : finder.changed_[static_cast<std::size_t>(centre)]) {
+        const RasterFace& face = finder.faces_[static_cast<std::size_t>(run.face)];
+        painted_.push_back({face.orientation, face.depth_mm, edge_Y(run.r0), edge_Y(run.r1)});
+      }
+      for (const Candidate& s : painted)
+        if (s.c0 <= centre && centre < s.c1) painted_.push_back({s.orientation, s.depth_mm, s.near, s.far});
+    }
+    std::span<const PaintedBand> painted() const { return painted_; }
     int c0() const { return c0_; }
     int c1() const { return c1_; }
     struct Row {
@@ -190,37 +248,42 @@ class CandidateFinder {
     std::vector<Row> row_;
     std::vector<int> touched_;
     std::vector<std::int32_t> faces_;
+    std::vector<PaintedBand> painted_;
     int c0_ = 0, c1_ = 0;
   };
 
   // The first face the support can fold onto, away from the edge: a V face at depth d' where
-  // Y = h - d', or an H face at height h' where Y = h' - d. On the exact plan when it is the plan's
-  // current one, else down the block column's rows.
+  // Y = h - d', or an H face at height h' where Y = h' - d. On the exact plan and the supports painted
+  // since when there is one, else down the block column's rows.
   std::optional<Candidate> walk(std::int32_t f, BlockColumn& column, int edge, bool up, double h, double d) const {
     return exact_ ? exact_walk(f, column, edge, up, h, d) : raster_walk(f, column, edge, up, h, d);
   }
 
   // The ray is shot on the exact plan, a quarter pixel right of the block column's centre (off the
-  // lattice its vertices lie on); the raster tells only whether the face it meets fills half the
-  // block there, as a support's far side needs.
+  // lattice its vertices lie on). The raster, which may have split, merged or renumbered faces since,
+  // names the face there: one in the plane the ray met, filling half the block, as a support's far
+  // side needs.
   std::optional<Candidate> exact_walk(std::int32_t f, BlockColumn& column, int edge, bool up, double h,
                                       double d) const {
     const int step = up ? -1 : 1;
     const int centre = (column.c0() + column.c1()) / 2;
     const double from_Y = grid_.Y(edge) + (up ? px_mm_ / 2 : -px_mm_ / 2);
-    for (const auto& [g, Y] : exact_->faces_reached((centre + 0.75) * px_mm_, from_Y, up, f, h, d)) {
+    for (const PlanBuild::Reached& reached :
+         exact_->faces_reached((centre + 0.75) * px_mm_, from_Y, up, h, d, column.painted())) {
       // The row the fold falls in; on a row's edge, the row beyond, so the support ends on the fold.
-      const double rows_down = grid_.rows_above_fold - Y * grid_.px_per_mm;
+      const double rows_down = grid_.rows_above_fold - reached.Y * grid_.px_per_mm;
       const int r = up ? static_cast<int>(std::ceil(rows_down)) - 1 : static_cast<int>(std::floor(rows_down));
       if (r < 0 || r >= face_.rows) break;
       const BlockColumn::Row& row = column.row(*this, r);
-      if (row.centre != g || !row.mostly) continue;
+      if (row.centre < 0 || !row.mostly) continue;
+      const RasterFace& target = faces_[static_cast<std::size_t>(row.centre)];
+      if (target.hole || target.orientation != reached.orientation || target.depth_mm != reached.depth_mm) continue;
       if ((r - step - (edge + step)) * step < 0) return std::nullopt;  // no room: the faces touch already
       std::vector<std::int32_t> crossed;
       for (int between = edge + step; between != r; between += step)
         for (const std::int32_t x : column.faces(column.row(*this, between)))
           if (x != f) crossed.push_back(x);
-      return candidate(f, g, column, edge, r, up, h, d, std::move(crossed));
+      return candidate(f, row.centre, column, edge, r, up, h, d, std::move(crossed));
     }
     return std::nullopt;
   }
@@ -261,6 +324,9 @@ class CandidateFinder {
     const bool onto_v = faces_[static_cast<std::size_t>(g)].orientation == Orientation::V;
     s.orientation = onto_v ? Orientation::H : Orientation::V;
     s.depth_mm = onto_v ? h : d;
+    const double target_depth = faces_[static_cast<std::size_t>(g)].depth_mm;
+    s.near = {h, d};
+    s.far = onto_v ? FoldLine{h, target_depth} : FoldLine{target_depth, d};
     s.cost = (s.r1 - s.r0) * px_mm_;
     std::ranges::sort(crossed);
     crossed.erase(std::unique(crossed.begin(), crossed.end()), crossed.end());
@@ -270,6 +336,7 @@ class CandidateFinder {
   }
 
   const PlanBuild* exact_;
+  std::span<const Candidate> painted_;
   const PixelGrid& grid_;
   const Grid<std::int32_t>& face_;
   const std::vector<RasterFace>& faces_;
@@ -280,6 +347,8 @@ class CandidateFinder {
   std::vector<int> slot_;                     // per face: its place in the tables below, -1 for faces not wanted
   std::vector<int> first_, last_;             // per wanted face and column: its first and last row, -1 if none
   std::vector<std::pair<int, int>> columns_;  // per wanted face: its first and last column
+  std::vector<std::vector<Changed>> changed_;  // per column, with an exact plan
+  std::vector<int> plane_now_, plane_then_;    // per face of the raster plan and of the exact plan
 };
 
 bool claimed_anywhere(const Grid<std::uint8_t>& claimed, int c0, int c1, int r0, int r1) {
@@ -314,9 +383,10 @@ Standing standing_of(const Plan& plan) {
 }
 
 std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const PlanBuild* exact,
-                                       const Standing& standing, const std::vector<std::int32_t>& invalid,
-                                       const SupportOptions& options, Reach reach) {
-  const CandidateFinder finder(maps, slices, exact, invalid, options.split_cost_mm, reach);
+                                       std::span<const Candidate> painted, const Standing& standing,
+                                       const std::vector<std::int32_t>& invalid, const SupportOptions& options,
+                                       Reach reach) {
+  const CandidateFinder finder(maps, slices, exact, painted, invalid, options.split_cost_mm, reach);
   Grid<std::uint8_t> claimed(slices.face.cols, slices.face.rows, 0);
   std::vector<Candidate> chosen;
   // Seed: an edge already folded to a face is not supported again; a floating face gets both. A

@@ -5,17 +5,16 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
+#include "origamic/plan.hpp"
 #include "origamic/raster.hpp"
 #include "origamic/slice.hpp"
 #include "origamic/supports.hpp"
 #include "origamic/validity.hpp"
 
 namespace origamic {
-
-class PlanBuild;
-struct Plan;
 
 // A support: a W-wide (or wider) block of the raster plan between the face it holds and the face it
 // reaches, turned into a face of its own.
@@ -27,6 +26,7 @@ struct Candidate {
   int target_row = 0;  // the row of `target` just outside it, on the other side
   Orientation orientation = Orientation::V;
   double depth_mm = 0;
+  FoldLine near, far;  // where it folds onto `face` (or ends, in its plane) and onto `target`
   double cost = 0;
   int taken = 0;  // rows of `face` the support takes, on its edge
 };
@@ -53,11 +53,13 @@ struct Reach {
 };
 
 /// Supports for the invalid faces, chosen greedily in their order, widened, never overlapping; not
-/// yet painted. `exact`, when given, is the exact plan of `slices` as they are: the face each support
-/// reaches is then found on it (PlanBuild::faces_reached), else on the raster plan.
+/// yet painted. `exact`, when given, is the exact plan of `slices` before the supports `painted`
+/// since: the face each support reaches is then found on it and them (PlanBuild::faces_reached),
+/// else on the raster plan.
 std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const PlanBuild* exact,
-                                       const Standing& standing, const std::vector<std::int32_t>& invalid,
-                                       const SupportOptions& options, Reach reach);
+                                       std::span<const Candidate> painted, const Standing& standing,
+                                       const std::vector<std::int32_t>& invalid, const SupportOptions& options,
+                                       Reach reach);
 
 /// Paints the chosen supports into the raster plan as faces of their own (RasterFace::support).
 void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid, double tolerance,

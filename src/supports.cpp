@@ -148,13 +148,12 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
   std::pair<Grid<std::int32_t>, std::vector<RasterFace>> confirmed;
   // Rounds run on the raster graph; the exact plan, built when they end, has the last word and
   // the next rounds start from its verdict.
-  // Whether the exact plan of the last verdict is that of the slices as they are: rounds then find
-  // what their supports reach on it.
-  bool build_current = false;
+  // The supports painted since the last verdict: rounds find what their supports reach on its exact
+  // plan and on these.
+  std::vector<Candidate> painted_since;
   auto settle = [&] {
     standing = raster_standing(maps.grid, slices, aligned_fold_tolerance_mm(maps.grid));
     exact = false;
-    build_current = false;
   };
   // The exact plan of the last verdict, kept: the plan kept is drawn in full from it.
   std::optional<PlanBuild> last_build;
@@ -164,7 +163,8 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
     confirmed = {slices.face, slices.faces};
     ++report.exact_builds;
     standing = standing_of(result.plan);
-    exact = build_current = true;
+    exact = true;
+    painted_since.clear();
   };
   // Rounds of supports until every face stands or they stop helping; returns why they stopped.
   auto support_rounds = [&]() -> std::string {
@@ -182,15 +182,16 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
         return std::to_string(invalid.size()) + " faces still invalid after " + std::to_string(report.round_bound) +
                " rounds (the loop's bound)";
       ++report.rounds;
-      report.exact_rounds += build_current;
+      report.exact_rounds += last_build.has_value();
       std::shuffle(invalid.begin(), invalid.end(), random);
       const bool splits = allow_splits || split_rounds_left-- > 0;
       const std::vector<Candidate> chosen =
-          choose_supports(maps, slices, build_current ? &*last_build : nullptr, standing, invalid, options,
+          choose_supports(maps, slices, last_build ? &*last_build : nullptr, painted_since, standing, invalid, options,
                           {splits, reach.below_tips, reach.corners});
       if (chosen.empty()) return std::to_string(invalid.size()) + " faces invalid and no support reaches them";
       report.supports += static_cast<int>(chosen.size());
       paint_supports(chosen, maps.grid, tolerance, crumb_px, slices);
+      painted_since.insert(painted_since.end(), chosen.begin(), chosen.end());
       settle();
     }
   };
@@ -217,7 +218,8 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
       slices.faces = confirmed.second;
       report.supports = supports_before;  // the rounds still count against the bound
       standing = standing_of(result.plan);
-      exact = build_current = true;
+      exact = true;
+      painted_since.clear();
       ++report.passes_undone;
     } else {
       confirm();
@@ -239,7 +241,6 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
       settle();
       continue;
     }
-    build_current = build_current && slices.face.values == confirmed.first.values;  // a crumb may have joined a face
     // The exact plan found fewer invalid faces than last time: another pass of rounds from its word.
     const bool progress = invalid.size() < fewest_exact;
     fewest_exact = std::min(fewest_exact, invalid.size());
@@ -305,11 +306,16 @@ bool stands(const Supported& s, bool allow_dangling) {
   return plan_stands(s.plan.validity, allow_dangling) && s.plan.loose_card_pieces == 0;
 }
 
-// How far a plan is from standing: its faces no support holds, then the faces cut out.
-std::pair<int, int> shortfall(const Supported& s, bool allow_dangling) {
+// How far a plan is from standing: its faces no support holds, then the share of the model cut out.
+std::pair<int, double> shortfall(const Supported& s, bool allow_dangling) {
   const Validity& v = s.plan.validity;
-  return {v.floating + v.invalid + (allow_dangling ? 0 : v.dangling) + s.plan.loose_card_pieces, s.report.cut_out};
+  return {v.floating + v.invalid + (allow_dangling ? 0 : v.dangling) + s.plan.loose_card_pieces,
+          s.report.cut_out_share};
 }
+
+// A plan that stands only by cutting out this share of the model or more is a poor likeness: the
+// next face orders get their turn, and the best plan is kept.
+constexpr double kPoorLikenessShare = 0.15;
 
 }  // namespace
 
@@ -326,11 +332,10 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
                       order >= std::min(options.orders, kCornersFromOrder)};
     Supported run = supports_in_order(maps, last ? std::move(slices) : slices, sheet, plan_options, options, random,
                                       retry_splits, reach);
-    const bool done = stands(run, options.allow_dangling);
-    const bool better = !best || shortfall(run, options.allow_dangling) < shortfall(*best, options.allow_dangling);
-    if (done || better) best = std::move(run);
+    if (!best || shortfall(run, options.allow_dangling) < shortfall(*best, options.allow_dangling))
+      best = std::move(run);
     best->report.orders = order;
-    if (done) break;
+    if (stands(*best, options.allow_dangling) && best->report.cut_out_share < kPoorLikenessShare) break;
   }
   return std::move(*best);
 }

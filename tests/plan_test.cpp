@@ -166,36 +166,88 @@ TEST(Plan, RaysShotOnTheExactPlanReachTheFacesWhereTheirFoldLinesMeetThem) {
     return faces;
   };
   // From the top's back edge (Y = 77.9 - 18.6) up, as H(77.9): the back plane, at Y = 77.9 exactly.
-  const Reached from_top = build.faces_reached(x, 59.0, true, top, 77.9, 77.9 - 59.0);
+  const Reached from_top = build.faces_reached(x, 59.0, true, 77.9, 77.9 - 59.0);
   ASSERT_EQ(faces_of(from_top), std::vector<std::int32_t>{kBackFace});
   EXPECT_EQ(from_top[0].Y, 77.9);
   // From the front's top edge up, as H(77.9): the top is no higher, so the ray passes over it to
   // the back plane.
-  const Reached from_front_top = build.faces_reached(x, 77.9 - 47.1, true, front, 77.9, 47.1);
+  const Reached from_front_top = build.faces_reached(x, 77.9 - 47.1, true, 77.9, 47.1);
   ASSERT_EQ(faces_of(from_front_top), std::vector<std::int32_t>{kBackFace});
   EXPECT_EQ(from_front_top[0].Y, 77.9);
   // From the front's bottom edge down, as V(47.1): the floor, at Y = 0 - 47.1 exactly.
-  const Reached from_front = build.faces_reached(x, 41.3 - 47.1, false, front, 41.3, 47.1);
+  const Reached from_front = build.faces_reached(x, 41.3 - 47.1, false, 41.3, 47.1);
   ASSERT_EQ(faces_of(from_front), std::vector<std::int32_t>{kFloorFace});
   EXPECT_EQ(from_front[0].Y, -47.1);
   // A fold line beyond the sheet meets nothing; one behind the start is not reached either.
-  EXPECT_TRUE(build.faces_reached(x, 59.0, true, top, 400, 400 - 59.0).empty());
-  EXPECT_TRUE(build.faces_reached(x, 59.0, true, top, 58.0, 0.5).empty());
+  EXPECT_TRUE(build.faces_reached(x, 59.0, true, 400, 400 - 59.0).empty());
+  EXPECT_TRUE(build.faces_reached(x, 59.0, true, 58.0, 0.5).empty());
   // Beside the box, from the floor up as H(0) at depth 30: the back plane, on the main fold Y = 0,
   // where its piece of the line begins (the ends count).
-  const Reached beside = build.faces_reached(20.1, -30.0, true, kFloorFace, 0, 30);
+  const Reached beside = build.faces_reached(20.1, -30.0, true, 0, 30);
   ASSERT_EQ(faces_of(beside), std::vector<std::int32_t>{kBackFace});
   EXPECT_EQ(beside[0].Y, 0.0);
   // From the main fold itself: the back plane is reached where the ray starts (the faces touch).
-  const Reached at_start = build.faces_reached(20.1, 0.0, true, kFloorFace, 0, 30);
+  const Reached at_start = build.faces_reached(20.1, 0.0, true, 0, 30);
   ASSERT_EQ(faces_of(at_start), std::vector<std::int32_t>{kBackFace});
   EXPECT_EQ(at_start[0].Y, 0.0);
   // Nearest first: up through the box from below it, as H(62) at depth 25, the top (H(77.9) at
   // Y = 77.9 - 25) and then the back plane (at Y = 62); the front, not behind, is passed over.
-  const Reached through = build.faces_reached(x, -30.0, true, kFloorFace, 62, 25);
+  const Reached through = build.faces_reached(x, -30.0, true, 62, 25);
   ASSERT_EQ(faces_of(through), (std::vector<std::int32_t>{top, kBackFace}));
   EXPECT_EQ(through[0].Y, 77.9 - 25);
   EXPECT_EQ(through[1].Y, 62.0);
+}
+
+// Supports painted since the exact plan was built cover what it holds where they cross the ray.
+TEST(Plan, RaysMeetTheFacesPaintedSinceThePlanWasBuiltAndNotWhatTheyCover) {
+  const RayScene scene(test::box({60.2, 41.3, 18.6}, {150.7, 77.9, 47.1}));
+  const Sheet sheet;
+  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
+  const SliceResult slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const PlanBuild build(maps, slices, sheet, PlanOptions{});
+  ASSERT_EQ(slices.faces.size(), 4u);
+  const std::int32_t top = slices.faces[2].orientation == Orientation::H ? 2 : 3;
+  const double x = 100.3;
+  // The top H(77.9) spans Y 77.9 - 47.1 to 77.9 - 18.6 on the line. A V(20) band from Y 30 to 50
+  // (its ends given high first) covers the top's lower part.
+  const PaintedBand v20{Orientation::V, 20, {50, 0}, {30, 0}};
+  // Up as H(62) at depth 25: onto V(20) at Y = 62 - 20 inside the band, then onto what is left of
+  // the top above the band, then the back plane.
+  const auto through = build.faces_reached(x, -30.0, true, 62, 25, std::span(&v20, 1));
+  ASSERT_EQ(through.size(), 3u);
+  EXPECT_EQ(through[0].face, -1);
+  EXPECT_EQ(through[0].orientation, Orientation::V);
+  EXPECT_EQ(through[0].depth_mm, 20.0);
+  EXPECT_EQ(through[0].Y, 62.0 - 20.0);
+  EXPECT_EQ(through[1].face, top);
+  EXPECT_EQ(through[1].Y, 77.9 - 25);
+  EXPECT_EQ(through[2].face, kBackFace);
+  // An H(10) band over the top's fold point hides it: H(10) is below H(62), no support's target.
+  // The line above the band is the top's again, up to the back plane.
+  const PaintedBand h10{Orientation::H, 10, {52, 0}, {55, 0}};
+  const auto hidden = build.faces_reached(x, -30.0, true, 62, 25, std::span(&h10, 1));
+  ASSERT_EQ(hidden.size(), 1u);
+  EXPECT_EQ(hidden[0].face, kBackFace);
+  EXPECT_EQ(hidden[0].Y, 62.0);
+  // A band ending exactly on the fold line: the piece above it, the top's, holds the fold.
+  const PaintedBand to_fold{Orientation::H, 10, {40, 0}, {77.9, 25}};
+  const auto above = build.faces_reached(x, -30.0, true, 62, 25, std::span(&to_fold, 1));
+  ASSERT_EQ(above.size(), 2u);
+  EXPECT_EQ(above[0].face, top);
+  // Off the band's columns (the caller passes only the bands the ray crosses) nothing changes.
+  EXPECT_EQ(build.faces_reached(x, -30.0, true, 62, 25).size(), 2u);
+  // A support's height is the double nearest edge Y + d: its fold line lies a rounding off the edge.
+  // 70.7 - 20.7 is 50 + 3.6e-15 exactly, 70.1 - 20.1 is 50 - 7.1e-15: both lie on a band ending at 50.
+  const PaintedBand below_50{Orientation::V, 20.7, {50, 0}, {30, 0}};
+  const auto down = build.faces_reached(x, 55.0, false, 50 + 20.7, 10, std::span(&below_50, 1));
+  ASSERT_FALSE(down.empty());
+  EXPECT_EQ(down[0].face, -1);
+  EXPECT_EQ(down[0].Y, 50.0);
+  const PaintedBand above_50{Orientation::V, 20.1, {50, 0}, {55, 0}};
+  const auto up = build.faces_reached(x, 40.0, true, 50 + 20.1, 25, std::span(&above_50, 1));
+  ASSERT_FALSE(up.empty());
+  EXPECT_EQ(up[0].face, -1);
+  EXPECT_EQ(up[0].depth_mm, 20.1);
 }
 
 TEST(Plan, ShelfOnTheBackPlaneOnlyIsDangling) {

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "origamic/oa.hpp"
@@ -103,10 +104,27 @@ Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& 
 /// Seed §4.4: a support leaving a face at OA height h and depth d, going up the plan (down), can
 /// fold onto a V face behind it (in front of it) or an H face above it (below it): on a V face at
 /// depth d' where Y = h - d', on an H face at height h' where Y = h' - d.
-inline bool support_folds_onto(const RasterFace& target, bool up, double h, double d) {
-  if (target.orientation == Orientation::V) return up ? target.depth_mm < d : target.depth_mm > d;
-  return up ? target.depth_mm > h : target.depth_mm < h;
+inline bool support_folds_onto(Orientation orientation, double depth_mm, bool up, double h, double d) {
+  if (orientation == Orientation::V) return up ? depth_mm < d : depth_mm > d;
+  return up ? depth_mm > h : depth_mm < h;
 }
+inline bool support_folds_onto(const RasterFace& target, bool up, double h, double d) {
+  return support_folds_onto(target.orientation, target.depth_mm, up, h, d);
+}
+
+/// The plan line Y = h - d, taken exactly (the difference of the two doubles, unrounded): where a
+/// fold between H(h) and V(d) lies.
+struct FoldLine {
+  double h = 0, d = 0;
+};
+
+/// A face painted into the raster plan after its exact plan was built (a support), as a vertical
+/// ray crossing it meets it: the stretch of the ray between two fold lines (in either order).
+struct PaintedBand {
+  Orientation orientation = Orientation::V;
+  double depth_mm = 0;
+  FoldLine a, b;
+};
 
 /// build_plan in two steps, for a loop that decides on many verdicts and keeps one: the verdict
 /// (the faces' statuses, orientations, depths, areas and folds on top and bottom, the validity, the
@@ -121,19 +139,27 @@ class PlanBuild {
 
   const Plan& verdict() const;
   Plan full() const;
+  /// The raster plan the arrangement was built of (its boundaries aligned to their fold lines), and
+  /// its faces: what the arrangement's labels name.
+  const Grid<std::int32_t>& face_map() const;
+  const std::vector<RasterFace>& faces() const;
 
   /// Where a support may fold onto another face (seed §4.4, "the first face behind or above"):
   /// the faces the vertical ray from (x, from_Y) meets going up (or down) the plan, nearest first,
-  /// each where a support leaving face `face` at OA height h and depth d would fold onto it. That is
-  /// a V face at depth d' behind d (in front going down) where the ray meets it at Y = h - d', or an
-  /// H face at height h' above h (below) where it meets it at Y = h' - d. Decided exactly on the
+  /// each where a support leaving a face at OA height h and depth d would fold onto it. That is a V
+  /// face at depth d' behind d (in front going down) where the ray meets it at Y = h - d', or an H
+  /// face at height h' above h (below) where it meets it at Y = h' - d. Decided exactly on the
   /// arrangement, with h and d the doubles the support will carry, so the fold the next plan draws
-  /// there lies on the face. Cut-out faces hold nothing and are passed over. Thread-safe.
+  /// there lies on the face. `painted` are the faces painted since, across the ray: they cover what
+  /// the arrangement holds there. Cut-out faces hold nothing and are passed over. Thread-safe.
   struct Reached {
-    std::int32_t face;
+    std::int32_t face;  // the arrangement's label, or -1 for a painted band
+    Orientation orientation;
+    double depth_mm;
     double Y;  // the fold's Y (nearest double)
   };
-  std::vector<Reached> faces_reached(double x, double from_Y, bool up, std::int32_t face, double h, double d) const;
+  std::vector<Reached> faces_reached(double x, double from_Y, bool up, double h, double d,
+                                     std::span<const PaintedBand> painted = {}) const;
 
  private:
   struct State;

@@ -27,7 +27,8 @@ struct SupportOptions {
   // "removed") so that what is left stands; off, such faces stay in the plan, reported invalid.
   bool cut_out_unsupported = true;
   // Face orders tried, one after another from the seed's random sequence, until one makes the
-  // plan stand; the best of them is kept.
+  // plan stand with under 15% of the model cut out; the best of them is kept (fewest faces left
+  // unheld, then least cut out).
   int orders = 8;
 };
 
@@ -43,8 +44,9 @@ struct SupportReport {
   int supports = 0;      // support strips added, before widening merged any
   int rounds = 0;        // rounds of supports chosen
   int exact_builds = 0;  // exact plans built to confirm the raster graph's verdict
-  // Rounds that found the face each support reaches on the exact plan (PlanBuild::faces_reached):
-  // those starting from an exact verdict. The others walk the raster plan, painted since.
+  // Rounds that found the face each support reaches on the exact plan of the last verdict and the
+  // supports painted since (PlanBuild::faces_reached): all after the first verdict. The first
+  // rounds walk the raster plan.
   int exact_rounds = 0;
   int passes_undone = 0;  // passes of rounds undone because they left no fewer faces invalid
   // The share of the model's pixels in the faces cut out (pieces of the back plane or the floor

@@ -232,8 +232,10 @@ void add_design_options(CLI::App& design, DesignArgs& args) {
                   "keep dangling faces (windows, balconies) instead of supporting them; the report lists them");
   design.add_option("--seed", args.seed, "the order in which invalid faces choose their supports")
       ->capture_default_str();
-  design.add_option("--orders", args.orders,
-                    "face orders tried, one after another from the seed, until the plan stands; the best is kept")
+  design
+      .add_option("--orders", args.orders,
+                  "face orders tried, one after another from the seed, until the plan stands with under 15% of the "
+                  "model cut out; the best is kept")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   design.add_option("--colours", args.colours,
