@@ -5,18 +5,19 @@
 #include <zlib.h>
 
 #include <array>
-#include <cstdio>
-
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <glm/geometric.hpp>
 #include <numbers>
 #include <random>
 #include <sstream>
 #include <stdexcept>
 
-#include <glm/geometric.hpp>
+#include "origamic/raster.hpp"
+#include "origamic/segment.hpp"
+#include "origamic/slice.hpp"
 
 namespace origamic::test {
 
@@ -311,6 +312,19 @@ std::string dxf_text(const std::vector<PlanPolyline>& lines, int insunits, const
   }
   pair(0, "ENDSEC"), pair(0, "EOF");
   return out.str();
+}
+
+namespace {
+
+SliceResult sliced(const RasterMaps& maps) { return slice(maps, segment(maps, SegmentOptions{}), SliceOptions{}); }
+
+}  // namespace
+
+FloatingBoxPlan::FloatingBoxPlan()
+    : maps(raster(RayScene(box({60.2, 41.3, 18.6}, {150.7, 77.9, 47.1})), sheet, RasterOptions{})),
+      slices(sliced(maps)),
+      build(maps, slices, sheet, PlanOptions{}) {
+  if (slices.faces.size() > 2 && slices.faces[2].orientation == Orientation::H) std::swap(front, top);
 }
 
 }  // namespace origamic::test

@@ -27,6 +27,17 @@ TriangleMesh sphere(const glm::dvec3& centre, double radius, int segments, int r
 /// (cut out: -d..0), the front V(d) on -d..h-d and the top H(h) on h-d..h. Rings counter-clockwise.
 std::vector<PlanRegion> box_popup_regions(const Sheet& sheet, double x0, double x1, double h, double d);
 
+/// A box floating in mid-air, its sides off the pixel lattice: front V(47.1) from h 41.3 to 77.9,
+/// top H(77.9) from d 18.6 to 47.1. Rastered and sliced at the default options, with its exact plan.
+struct FloatingBoxPlan {
+  FloatingBoxPlan();
+  Sheet sheet;
+  RasterMaps maps;
+  SliceResult slices;
+  PlanBuild build;
+  std::int32_t front = 2, top = 3;  // the faces' ids
+};
+
 /// Twice the signed area of a ring (positive counter-clockwise), by the shoelace formula.
 double twice_signed_area(const std::vector<PlanPoint>& ring);
 

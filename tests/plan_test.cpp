@@ -148,14 +148,11 @@ TEST(Plan, BoxFloatingInMidAirIsFloating) {
 // Seed §4.4's "first face behind or above", shot on the exact plan of a box floating in mid-air
 // (sides off the pixel lattice): front V(47.1) from h 41.3 to 77.9, top H(77.9) from d 18.6 to 47.1.
 TEST(Plan, RaysShotOnTheExactPlanReachTheFacesWhereTheirFoldLinesMeetThem) {
-  const RayScene scene(test::box({60.2, 41.3, 18.6}, {150.7, 77.9, 47.1}));
-  const Sheet sheet;
-  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
-  const SliceResult slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
-  const PlanBuild build(maps, slices, sheet, PlanOptions{});
+  const test::FloatingBoxPlan box;
+  const SliceResult& slices = box.slices;
+  const PlanBuild& build = box.build;
   ASSERT_EQ(slices.faces.size(), 4u);
-  std::int32_t front = 2, top = 3;
-  if (slices.faces[2].orientation == Orientation::H) std::swap(front, top);
+  const std::int32_t front = box.front, top = box.top;
   ASSERT_EQ(slices.faces[static_cast<std::size_t>(front)].orientation, Orientation::V);
   ASSERT_EQ(slices.faces[static_cast<std::size_t>(top)].depth_mm, 77.9);
   const double x = 100.3;
@@ -200,13 +197,10 @@ TEST(Plan, RaysShotOnTheExactPlanReachTheFacesWhereTheirFoldLinesMeetThem) {
 
 // Supports painted since the exact plan was built cover what it holds where they cross the ray.
 TEST(Plan, RaysMeetTheFacesPaintedSinceThePlanWasBuiltAndNotWhatTheyCover) {
-  const RayScene scene(test::box({60.2, 41.3, 18.6}, {150.7, 77.9, 47.1}));
-  const Sheet sheet;
-  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
-  const SliceResult slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
-  const PlanBuild build(maps, slices, sheet, PlanOptions{});
-  ASSERT_EQ(slices.faces.size(), 4u);
-  const std::int32_t top = slices.faces[2].orientation == Orientation::H ? 2 : 3;
+  const test::FloatingBoxPlan box;
+  const PlanBuild& build = box.build;
+  ASSERT_EQ(box.slices.faces.size(), 4u);
+  const std::int32_t top = box.top;
   const double x = 100.3;
   // The top H(77.9) spans Y 77.9 - 47.1 to 77.9 - 18.6 on the line. A V(20) band from Y 30 to 50
   // (its ends given high first) covers the top's lower part.

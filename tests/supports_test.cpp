@@ -70,11 +70,10 @@ TEST(Supports, FloatingBoxIsSupportedAtTopAndBottom) {
 // A round that starts from an exact verdict finds what each support reaches on the exact plan
 // (PlanBuild::faces_reached); the rows it paints hold the fold the next exact plan draws there.
 TEST(Supports, ARoundFromAnExactVerdictReachesTheFacesOnTheExactPlan) {
-  const RayScene scene(test::box({60.2, 41.3, 18.6}, {150.7, 77.9, 47.1}));  // off the lattice
-  const Sheet sheet;
-  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
-  const SliceResult slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
-  const PlanBuild build(maps, slices, sheet, PlanOptions{});
+  const test::FloatingBoxPlan box;
+  const RasterMaps& maps = box.maps;
+  const SliceResult& slices = box.slices;
+  const PlanBuild& build = box.build;
   const Plan& verdict = build.verdict();
   const Standing standing = standing_of(verdict);
   const std::vector<std::int32_t> invalid{2, 3};
@@ -112,13 +111,12 @@ TEST(Supports, ARoundFromAnExactVerdictReachesTheFacesOnTheExactPlan) {
 // a neighbour, boundaries aligned): rays meet what it holds now where its plane differs from the
 // exact plan's.
 TEST(Supports, RaysMeetFacesTheRasterPlanGainedSinceTheExactPlan) {
-  const RayScene scene(test::box({60.2, 41.3, 18.6}, {150.7, 77.9, 47.1}));
-  const Sheet sheet;
-  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
-  const SliceResult slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
-  const PlanBuild build(maps, slices, sheet, PlanOptions{});
+  const test::FloatingBoxPlan box;
+  const RasterMaps& maps = box.maps;
+  const SliceResult& slices = box.slices;
+  const PlanBuild& build = box.build;
   const Standing standing = standing_of(build.verdict());
-  const std::int32_t front = slices.faces[2].orientation == Orientation::V ? 2 : 3;
+  const std::int32_t front = box.front;
   // Below the front V(47.1) (Y from 41.3 - 47.1 up), the floor gains an H(20) band from Y -30 to
   // -20 across the box: the front, reaching down along its plane, folds onto it at 20 - 47.1.
   SliceResult changed = slices;
