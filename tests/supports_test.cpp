@@ -141,6 +141,43 @@ TEST(Supports, RaysMeetFacesTheRasterPlanGainedSinceTheExactPlan) {
   EXPECT_EQ(before[0].target, kFloorFace);
 }
 
+// A fold exactly at the far end of a face's piece of the ray does not land on that face: the support
+// would cover the whole piece there. A box G on the floor (front V(30) from h 0 to 50, top H(50)) and
+// a box S floating in front of it (top H(50), d 60 to 80). From S's top, as H(50), the fold onto G's
+// front lies at Y = 50 - 30, its top end, on a pixel edge; the exact plan passes it over and reaches
+// the back plane at Y = 50. The raster walk, within half a pixel of the fold, took the front.
+TEST(Supports, AFoldAtTheFarEndOfAFacesPieceLandsBeyondIt) {
+  const Sheet sheet;
+  const RayScene scene(
+      test::merged(test::box({60, 0, 0}, {150, 50, 30}), test::box({80, 40, 60}, {130, 50, 80})));
+  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
+  const SliceResult slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const PlanBuild build(maps, slices, sheet, PlanOptions{});
+  const Plan& verdict = build.verdict();
+  std::int32_t s_top = -1, g_front = -1;
+  for (std::size_t f = 2; f < slices.faces.size(); ++f) {
+    const RasterFace& face = slices.faces[f];
+    if (face.orientation == Orientation::H && face.depth_mm == 50 && verdict.validity.status[f] == FaceStatus::Floating)
+      s_top = static_cast<std::int32_t>(f);
+    if (face.orientation == Orientation::V && face.depth_mm == 30) g_front = static_cast<std::int32_t>(f);
+  }
+  ASSERT_GE(s_top, 0);
+  ASSERT_GE(g_front, 0);
+  const Standing standing = standing_of(verdict);
+  const std::vector<std::int32_t> invalid{s_top};
+  const std::vector<Candidate> exact =
+      choose_supports(maps, slices, &build, {}, standing, invalid, SupportOptions{}, Reach{});
+  ASSERT_EQ(exact.size(), 1u);
+  EXPECT_EQ(exact[0].target, kBackFace);
+  EXPECT_EQ(exact[0].orientation, Orientation::H);
+  EXPECT_EQ(exact[0].depth_mm, 50.0);
+  EXPECT_EQ(maps.grid.Y(exact[0].target_row), 50 + 0.5 / maps.grid.px_per_mm) << "the row just above the fold";
+  const std::vector<Candidate> raster_walk =
+      choose_supports(maps, slices, nullptr, {}, standing, invalid, SupportOptions{}, Reach{});
+  ASSERT_EQ(raster_walk.size(), 1u);
+  EXPECT_EQ(raster_walk[0].target, g_front) << "the raster walk differs here";
+}
+
 TEST(Supports, SlopesBecomeStaircasesAsWideAsTheSlope) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   // The wedge is one slope across the model's whole width; the Mayan pyramid's tiers are boxes,
@@ -303,8 +340,8 @@ TEST(Supports, LaterOrdersReachFartherSoAFlatRingStands) {
 TEST(Supports, ATaperingTowerStandsOnItsFacetsHeldBelowTheirTips) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   const DesignResult r = standing_design("arch_one_wtc.obj");
-  EXPECT_GE(r.supports.orders, 2) << "the first order, by the plain rules, does not stand";
-  EXPECT_LE(r.supports.cut_out_share, 0.25) << "the cut-outs' cap";
+  EXPECT_GE(r.supports.orders, 2) << "the first order, by the plain rules, is no likeness";
+  EXPECT_LT(r.supports.cut_out_share, 0.15) << "an order that cuts out more lets the next ones try";
 }
 
 // A pavilion: a drum under a conical roof on columns. Its roof's slices are held only by supports
@@ -313,7 +350,7 @@ TEST(Supports, ATaperingTowerStandsOnItsFacetsHeldBelowTheirTips) {
 TEST(Supports, FromTheThirdOrderOnCornerSupportsHoldAConicalRoof) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   const DesignResult r = standing_design("arch_pavilion_csg.stl");
-  EXPECT_GE(r.supports.orders, 3) << "the first two orders, without corner supports, do not stand";
+  EXPECT_GE(r.supports.orders, 3) << "the first two orders, without corner supports, are no likeness";
   EXPECT_LE(r.supports.cut_out_share, 0.1);
 }
 
@@ -324,7 +361,7 @@ TEST(Supports, ThePlanKeptIsTheExactPlanOfTheSlicesKept) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   const DesignResult r = standing_design("seedlike/sphere.stl");
   ASSERT_GT(r.supports.passes_undone, 0) << "a design with undone passes";
-  EXPECT_GT(r.supports.exact_rounds, 0) << "rounds from exact verdicts, reaching faces on the exact plan";
+  EXPECT_GT(r.supports.exact_rounds, 0) << "rounds after a verdict, reaching faces on the exact plan";
   EXPECT_LT(r.supports.exact_rounds, r.supports.rounds);
   const Plan fresh = build_plan(r.maps, r.slices, DesignOptions{}.sheet, PlanOptions{});
   EXPECT_EQ(fresh.validity.status, r.plan.validity.status);
@@ -336,3 +373,4 @@ TEST(Supports, ThePlanKeptIsTheExactPlanOfTheSlicesKept) {
 
 }  // namespace
 }  // namespace origamic
+
