@@ -1021,7 +1021,7 @@ std::vector<PlanBuild::Reached> PlanBuild::faces_reached(double x, double from_Y
   }
   const std::vector<State::Crossing>& line = *cached;
   const std::vector<RasterFace>& faces = state_->faces;
-  const Rational from(from_Y), h_exact(h), d_exact(d);
+  const Rational from(from_Y);
   // A fold at Y on the piece of the line between crossings i and i + 1, from the ray's start on.
   // The piece holds its near end, not its far one: a fold there lands on the next piece. Ends are
   // taken as the plan takes fold lines, to kFoldLineTolerance_mm: a support's height is the double
@@ -1058,10 +1058,9 @@ std::vector<PlanBuild::Reached> PlanBuild::faces_reached(double x, double from_Y
       continue;
     }
     if (!support_folds_onto(orientation, depth_mm, up, h, d)) continue;
-    const bool onto_v = orientation == Orientation::V;
-    const Rational Y = onto_v ? Rational(h_exact - Rational(depth_mm)) : Rational(Rational(depth_mm) - d_exact);
-    if (on(Y, onto_v ? h - depth_mm : depth_mm - d, k))
-      reached.push_back({std::max(g, kNoLabel), orientation, depth_mm, nearest_double(Y)});
+    const FoldLine fold = support_fold(orientation, depth_mm, h, d);
+    const Rational Y = exact_Y(fold);
+    if (on(Y, fold.h - fold.d, k)) reached.push_back({std::max(g, kNoLabel), orientation, depth_mm, nearest_double(Y)});
   }
   return reached;
 }

@@ -301,7 +301,8 @@ class CandidateFinder {
       const std::int32_t g = row.centre;
       if (g >= 0 && g != f && row.mostly) {
         const RasterFace& target = faces_[static_cast<std::size_t>(g)];
-        const double fold_Y = target.orientation == Orientation::V ? h - target.depth_mm : target.depth_mm - d;
+        const FoldLine fold = support_fold(target.orientation, target.depth_mm, h, d);
+        const double fold_Y = fold.h - fold.d;
         if (support_folds_onto(target, up, h, d) && std::abs(fold_Y - row.Y) <= px_mm_ / 2) {
           if ((r - step - (edge + step)) * step < 0) return std::nullopt;  // no room: the faces touch already
           return candidate(f, g, column, edge, r, up, h, d, std::move(crossed));
@@ -323,12 +324,12 @@ class CandidateFinder {
     s.face = f, s.target = g, s.c0 = column.c0(), s.c1 = column.c1();
     s.r0 = std::min(near, far), s.r1 = std::max(near, far) + 1;
     s.face_row = edge, s.target_row = r;
-    const bool onto_v = faces_[static_cast<std::size_t>(g)].orientation == Orientation::V;
+    const RasterFace& target = faces_[static_cast<std::size_t>(g)];
+    const bool onto_v = target.orientation == Orientation::V;
     s.orientation = onto_v ? Orientation::H : Orientation::V;
     s.depth_mm = onto_v ? h : d;
-    const double target_depth = faces_[static_cast<std::size_t>(g)].depth_mm;
     s.near = {h, d};
-    s.far = onto_v ? FoldLine{h, target_depth} : FoldLine{target_depth, d};
+    s.far = support_fold(target.orientation, target.depth_mm, h, d);
     s.cost = (s.r1 - s.r0) * px_mm_;
     std::ranges::sort(crossed);
     crossed.erase(std::unique(crossed.begin(), crossed.end()), crossed.end());

@@ -146,10 +146,8 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
   // so does the end (the plan kept is drawn in full from that verdict; a crumb joined to a
   // neighbour after it would make them disagree).
   std::pair<Grid<std::int32_t>, std::vector<RasterFace>> confirmed;
-  // Rounds run on the raster graph; the exact plan, built when they end, has the last word and
-  // the next rounds start from its verdict.
   // The supports painted since the last verdict: rounds find what their supports reach on its exact
-  // plan and on these.
+  // plan and on these (and on what else changed since, which the raster shows).
   std::vector<Candidate> painted_since;
   auto settle = [&] {
     standing = raster_standing(maps.grid, slices, aligned_fold_tolerance_mm(maps.grid));
@@ -184,10 +182,10 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
       ++report.rounds;
       report.exact_rounds += last_build.has_value();
       std::shuffle(invalid.begin(), invalid.end(), random);
-      const bool splits = allow_splits || split_rounds_left-- > 0;
-      const std::vector<Candidate> chosen =
-          choose_supports(maps, slices, last_build ? &*last_build : nullptr, painted_since, standing, invalid, options,
-                          {splits, reach.below_tips, reach.corners});
+      Reach round_reach = reach;
+      round_reach.split_faces = allow_splits || split_rounds_left-- > 0;
+      const std::vector<Candidate> chosen = choose_supports(maps, slices, last_build ? &*last_build : nullptr,
+                                                            painted_since, standing, invalid, options, round_reach);
       if (chosen.empty()) return std::to_string(invalid.size()) + " faces invalid and no support reaches them";
       report.supports += static_cast<int>(chosen.size());
       paint_supports(chosen, maps.grid, tolerance, crumb_px, slices);

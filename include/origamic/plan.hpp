@@ -101,6 +101,12 @@ inline double aligned_fold_tolerance_mm(const PixelGrid& grid) { return 1 / grid
 /// numbers are built without thread safety (see exact_plan.cpp), so one call at a time per process.
 Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& sheet, const PlanOptions& options);
 
+/// The plan line Y = h - d, taken exactly (the difference of the two doubles, unrounded): where a
+/// fold between H(h) and V(d) lies.
+struct FoldLine {
+  double h = 0, d = 0;
+};
+
 /// Seed §4.4: a support leaving a face at OA height h and depth d, going up the plan (down), can
 /// fold onto a V face behind it (in front of it) or an H face above it (below it): on a V face at
 /// depth d' where Y = h - d', on an H face at height h' where Y = h' - d.
@@ -111,15 +117,14 @@ inline bool support_folds_onto(Orientation orientation, double depth_mm, bool up
 inline bool support_folds_onto(const RasterFace& target, bool up, double h, double d) {
   return support_folds_onto(target.orientation, target.depth_mm, up, h, d);
 }
+/// Where that support folds onto a face of the given plane: Y = h - d' on V(d'), Y = h' - d on H(h').
+inline FoldLine support_fold(Orientation orientation, double depth_mm, double h, double d) {
+  return orientation == Orientation::V ? FoldLine{h, depth_mm} : FoldLine{depth_mm, d};
+}
 
-/// The plan line Y = h - d, taken exactly (the difference of the two doubles, unrounded): where a
-/// fold between H(h) and V(d) lies.
-struct FoldLine {
-  double h = 0, d = 0;
-};
-
-/// A face painted into the raster plan after its exact plan was built (a support), as a vertical
-/// ray crossing it meets it: the stretch of the ray between two fold lines (in either order).
+/// A face painted into the raster plan after its exact plan was built, as a vertical ray crossing
+/// it meets it: the stretch of the ray between two lines (in either order). A support's ends are
+/// its fold lines; other changes end on pixel edges (FoldLine{Y, 0}).
 struct PaintedBand {
   Orientation orientation = Orientation::V;
   double depth_mm = 0;
