@@ -89,6 +89,7 @@ class CandidateFinder {
     // The block columns, and the two flush with the face's ends: a support there trims the faces it
     // crosses where they end with the face, instead of cutting them in two.
     const auto [lo, hi] = columns_[static_cast<std::size_t>(slot_[static_cast<std::size_t>(f)])];
+    if (lo > hi) return candidates;  // no pixels left: no edge to hold
     // With Reach::corners, one more at each end, extended a strip width beyond the face.
     struct Start {
       int c0, c1;

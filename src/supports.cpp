@@ -233,11 +233,18 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
     // graph took for one. Those become faces of their own, and the rounds go on.
     // From then on no support may cut a face in two: the pieces it made would need supports of
     // their own, whose supports cut more faces, without end.
-    if (report.rounds < report.round_bound && !split_disconnected_faces(slices, apart, crumb_px, slices.block_px).empty()) {
-      allow_splits = false;
-      merge_coplanar_faces(slices);
-      settle();
-      continue;
+    // A whole face under the crumb size joins a neighbour instead: once merged away it is gone, not
+    // a face without pixels that the rounds would have to hold.
+    if (report.rounds < report.round_bound) {
+      const bool parted = !split_disconnected_faces(slices, apart, crumb_px, slices.block_px).empty();
+      const bool joined = std::ranges::any_of(
+          invalid, [&](std::int32_t f) { return slices.faces[static_cast<std::size_t>(f)].pixels == 0; });
+      if (parted || joined) {
+        allow_splits = allow_splits && !parted;
+        merge_coplanar_faces(slices);
+        settle();
+        continue;
+      }
     }
     // The exact plan found fewer invalid faces than last time: another pass of rounds from its word.
     const bool progress = invalid.size() < fewest_exact;
