@@ -783,11 +783,16 @@ const std::vector<PlanBuild::State::Crossing>& PlanBuild::State::line_at(double 
     if (x < span.x_lo || x > span.x_hi) continue;
     const Point &p = span.he->source()->point(), &q = span.he->target()->point();
     if (!(p.x() <= X && X < q.x())) continue;
-    const FT slope = (q.y() - p.y()) / (q.x() - p.x());
     const Arrangement::Face_const_handle f = span.he->face();
     // A crumb cut out of the sheet holds nothing either: it is passed over like a hole.
     const bool paper = !f->is_unbounded() && f->data() >= 0 && !cut_out[static_cast<std::size_t>(pieces.of.at(f))];
-    met.push_back({p.y() + (X - p.x()) * slope, slope, paper ? f->data() : kNoLabel});
+    const std::int32_t above = paper ? f->data() : kNoLabel;
+    if (p.y() == q.y()) {  // most edges (folds, and cuts along rows): no arithmetic
+      met.push_back({p.y(), FT(0), above});
+      continue;
+    }
+    const FT slope = (q.y() - p.y()) / (q.x() - p.x());
+    met.push_back({p.y() + (X - p.x()) * slope, slope, above});
   }
   std::ranges::sort(met, [](const Met& a, const Met& b) {
     const CGAL::Comparison_result order = CGAL::compare(a.Y, b.Y);
@@ -1027,10 +1032,12 @@ std::vector<PlanBuild::Reached> PlanBuild::faces_reached(double x, double from_Y
   // taken as the plan takes fold lines, to kFoldLineTolerance_mm: a support's height is the double
   // nearest edge Y + d, so its fold line h - d lies a rounding off the pixel edge it was drawn from.
   const Rational tolerance(kFoldLineTolerance_mm);
-  auto on = [&](const Rational& Y, double Y_near, std::size_t i) {
+  auto on = [&](const FoldLine& fold, std::size_t i) {
     constexpr double kSlack = kFoldLineTolerance_mm + 1e-9;  // closer calls go exact
     const State::Crossing &lo = line[i], &hi = line[i + 1];
+    const double Y_near = fold.h - fold.d;
     if (Y_near < lo.Y_near - kSlack || Y_near > hi.Y_near + kSlack) return false;
+    const Rational Y = exact_Y(fold);
     return up ? from <= Y && lo.Y - tolerance <= Y && Y < hi.Y - tolerance
               : Y <= from && lo.Y + tolerance < Y && Y <= hi.Y + tolerance;
   };
@@ -1059,8 +1066,7 @@ std::vector<PlanBuild::Reached> PlanBuild::faces_reached(double x, double from_Y
     }
     if (!support_folds_onto(orientation, depth_mm, up, h, d)) continue;
     const FoldLine fold = support_fold(orientation, depth_mm, h, d);
-    const Rational Y = exact_Y(fold);
-    if (on(Y, fold.h - fold.d, k)) reached.push_back({std::max(g, kNoLabel), orientation, depth_mm, nearest_double(Y)});
+    if (on(fold, k)) reached.push_back({std::max(g, kNoLabel), orientation, depth_mm, nearest_double(exact_Y(fold))});
   }
   return reached;
 }
