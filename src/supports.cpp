@@ -234,7 +234,8 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
     // From then on no support may cut a face in two: the pieces it made would need supports of
     // their own, whose supports cut more faces, without end.
     // A whole face under the crumb size joins a neighbour instead: once merged away it is gone, not
-    // a face without pixels that the rounds would have to hold.
+    // a face without pixels that the rounds would have to hold. A join adds no piece, so supports
+    // may still cut faces in two.
     if (report.rounds < report.round_bound) {
       const bool parted = !split_disconnected_faces(slices, apart, crumb_px, slices.block_px).empty();
       const bool joined = std::ranges::any_of(
