@@ -4,8 +4,7 @@
 #include <tbb/parallel_for.h>
 #include <zlib.h>
 
-#include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/IO/IOManager.hh>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -18,15 +17,10 @@
 
 #include "origamic/error.hpp"
 #include "quiet_openmesh.hpp"
+#include "soup_importer.hpp"
 
 namespace origamic {
 namespace {
-
-struct MeshTraits : OpenMesh::DefaultTraits {
-  using Point = OpenMesh::Vec3d;
-  using Normal = OpenMesh::Vec3d;
-};
-using OmMesh = OpenMesh::TriMesh_ArrayKernelT<MeshTraits>;
 
 [[noreturn]] void fail(const std::filesystem::path& file, const std::string& problem) {
   throw InputError(file.string() + ": " + problem);
@@ -154,27 +148,27 @@ Promised promised_counts(const std::string& format, const std::string& bytes) {
   return promised;
 }
 
-// The faces of the OpenMesh mesh as triangles over the vertices they use (unused vertices would
-// otherwise count in the model's extent).
-TriangleMesh triangle_soup(const OmMesh& om, bool with_file_normals) {
+// The triangles read, over the vertices they use (unused vertices would otherwise count in the
+// model's extent).
+TriangleMesh triangle_soup(const SoupImporter& read, bool with_file_normals) {
   constexpr std::uint32_t unused = ~std::uint32_t{0};
-  std::vector<std::uint32_t> new_index(om.n_vertices(), unused);
+  std::vector<std::uint32_t> new_index(read.points.size(), unused);
   TriangleMesh mesh;
-  mesh.triangles.reserve(om.n_faces());
-  if (with_file_normals) mesh.corner_normals.reserve(3 * om.n_faces());
-  for (const auto f : om.faces()) {
+  mesh.triangles.reserve(read.triangles.size());
+  if (with_file_normals) mesh.corner_normals.reserve(3 * read.triangles.size());
+  for (const auto& corners : read.triangles) {
     std::array<std::uint32_t, 3> triangle{};
-    std::size_t corner = 0;
-    for (const auto v : om.fv_range(f)) {
-      std::uint32_t& index = new_index[static_cast<std::size_t>(v.idx())];
+    for (std::size_t corner = 0; corner < 3; ++corner) {
+      const std::uint32_t v = corners[corner];
+      std::uint32_t& index = new_index[v];
       if (index == unused) {
         index = static_cast<std::uint32_t>(mesh.positions.size());
-        const auto& p = om.point(v);
+        const auto& p = read.points[v];
         mesh.positions.emplace_back(p[0], p[1], p[2]);
       }
-      triangle[corner++] = index;
+      triangle[corner] = index;
       if (with_file_normals) {
-        const auto& n = om.normal(v);
+        const auto& n = read.normals[v];
         mesh.corner_normals.emplace_back(n[0], n[1], n[2]);
       }
     }
@@ -301,23 +295,22 @@ LoadedMesh load_mesh_unguarded(const std::filesystem::path& file, const LoadOpti
       bytes.find("endsolid", bytes.size() > 512 ? bytes.size() - 512 : 0) == std::string::npos)
     fail(file, "truncated ASCII STL (no 'endsolid' at the end)");
 
-  OmMesh om;
-  om.request_vertex_normals();
+  SoupImporter read;
   bool read_ok = false;
   {
     const QuietOpenMesh quiet;
     std::istringstream in(std::move(bytes));
-    read_ok = OpenMesh::IO::read_mesh(om, in, "." + loaded.format, read_options);
+    read_ok = OpenMesh::IO::IOManager().read(in, "." + loaded.format, read, read_options);
   }
   if (!read_ok) fail(file, "cannot parse as " + lower(loaded.format) + " (unreadable or corrupt data)");
-  if (promised.vertices >= 0 && static_cast<long>(om.n_vertices()) < promised.vertices)
+  if (promised.vertices >= 0 && static_cast<long>(read.points.size()) < promised.vertices)
     fail(file, "truncated or malformed: " + std::to_string(promised.vertices) + " vertices promised, " +
-                   std::to_string(om.n_vertices()) + " readable (a coordinate may be missing or not a finite number)");
-  if (om.n_faces() == 0) fail(file, "no faces");
+                   std::to_string(read.points.size()) +
+                   " readable (a coordinate may be missing or not a finite number)");
+  if (read.triangles.empty()) fail(file, "no faces");
 
   loaded.file_normals = read_options.check(OpenMesh::IO::Options::VertexNormal);
-  loaded.mesh = triangle_soup(om, loaded.file_normals);
-  om.clear();
+  loaded.mesh = triangle_soup(read, loaded.file_normals);
 
   glm::dvec3 lo(INFINITY), hi(-INFINITY);
   for (const auto& p : loaded.mesh.positions) {

@@ -88,6 +88,19 @@ TEST(MeshIo, ComputedNormalsAreSmoothOnASphereAndSharpOnABox) {
     }
 }
 
+// Three triangles on one edge, like the pages of an open book, are not a manifold. They load as the
+// file has them: five vertices, the spine's two shared by every page, none copied apart.
+TEST(MeshIo, NonManifoldFacesKeepTheirSharedVertices) {
+  const TempDir dir;
+  test::write_text(dir / "book.off", "OFF\n5 3 0\n0 0 0\n0 0 1\n1 0 0\n0 1 0\n-1 -1 0\n3 0 1 2\n3 1 0 3\n3 0 1 4\n");
+  const LoadedMesh book = load_mesh(dir / "book.off");
+  ASSERT_EQ(book.mesh.triangles.size(), 3u);
+  EXPECT_EQ(book.mesh.positions.size(), 5u);
+  EXPECT_EQ(book.mesh.positions[0], glm::dvec3(0, 0, 0));
+  EXPECT_EQ(book.mesh.positions[1], glm::dvec3(0, 0, 1));
+  for (const auto& page : book.mesh.triangles) EXPECT_EQ(page[0] + page[1], 1u);  // each page on the spine
+}
+
 TEST(MeshIo, FileNormalsAreUsedWhenPresent) {
   const TempDir dir;
   test::write_text(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 2\nvn 0 0 2\nvn 0 0 2\nf 1//1 2//2 3//3\n");
