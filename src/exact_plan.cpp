@@ -999,7 +999,7 @@ exact::Rational exact_Y(const FoldLine& line) { return exact::Rational(line.h) -
 }  // namespace
 
 std::vector<PlanBuild::Reached> PlanBuild::faces_reached(double x, double from_Y, bool up, double h, double d,
-                                                         std::span<const PaintedBand> painted) const {
+                                                         std::span<const PaintedBand> painted, double short_mm) const {
   using Rational = exact::Rational;
   const std::vector<State::Crossing>* cached = &state_->line_at(x);
   std::vector<State::Crossing> repainted;
@@ -1031,15 +1031,17 @@ std::vector<PlanBuild::Reached> PlanBuild::faces_reached(double x, double from_Y
   // The piece holds its near end, not its far one: a fold there lands on the next piece. Ends are
   // taken as the plan takes fold lines, to kFoldLineTolerance_mm: a support's height is the double
   // nearest edge Y + d, so its fold line h - d lies a rounding off the pixel edge it was drawn from.
+  // The near end reaches short_mm farther: a fold that short of it lands on the piece.
   const Rational tolerance(kFoldLineTolerance_mm);
+  const Rational near_reach = tolerance + Rational(short_mm);
   auto on = [&](const FoldLine& fold, std::size_t i) {
-    constexpr double kSlack = kFoldLineTolerance_mm + 1e-9;  // closer calls go exact
+    const double slack = kFoldLineTolerance_mm + short_mm + 1e-9;  // closer calls go exact
     const State::Crossing &lo = line[i], &hi = line[i + 1];
     const double Y_near = fold.h - fold.d;
-    if (Y_near < lo.Y_near - kSlack || Y_near > hi.Y_near + kSlack) return false;
+    if (Y_near < lo.Y_near - slack || Y_near > hi.Y_near + slack) return false;
     const Rational Y = exact_Y(fold);
-    return up ? from <= Y && lo.Y - tolerance <= Y && Y < hi.Y - tolerance
-              : Y <= from && lo.Y + tolerance < Y && Y <= hi.Y + tolerance;
+    return up ? from <= Y && lo.Y - near_reach <= Y && Y < hi.Y - tolerance
+              : Y <= from && lo.Y + tolerance < Y && Y <= hi.Y + near_reach;
   };
   std::vector<Reached> reached;
   const auto n = static_cast<std::ptrdiff_t>(line.size());

@@ -133,7 +133,6 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
        {{"added", result.supports.supports},
         {"rounds", result.supports.rounds},
         {"exact_builds", result.supports.exact_builds},
-        {"exact_rounds", result.supports.exact_rounds},
         {"passes_undone", result.supports.passes_undone},
         {"cut_out", result.supports.cut_out},
         {"cut_out_share", result.supports.cut_out_share},

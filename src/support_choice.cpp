@@ -24,7 +24,7 @@ namespace {
 class CandidateFinder {
  public:
   // Candidates will be asked of the faces in `wanted` only.
-  CandidateFinder(const RasterMaps& maps, const SliceResult& slices, const PlanBuild* exact,
+  CandidateFinder(const RasterMaps& maps, const SliceResult& slices, const PlanBuild& exact,
                   std::span<const Candidate> painted, const std::vector<std::int32_t>& wanted, double split_cost,
                   Reach reach)
       : exact_(exact),
@@ -41,7 +41,7 @@ class CandidateFinder {
     for (const std::int32_t f : wanted)
       if (int& k = slot_[static_cast<std::size_t>(f)]; k < 0)
         k = static_cast<int>(columns_.size()), columns_.push_back({INT_MAX, -1});
-    if (exact_) {
+    {
       // Planes numbered, so that a pixel's is compared as one integer; holes have none.
       std::map<std::pair<Orientation, double>, int> planes;
       auto plane = [&](const RasterFace& f) {
@@ -49,7 +49,7 @@ class CandidateFinder {
                       : planes.try_emplace({f.orientation, f.depth_mm}, static_cast<int>(planes.size())).first->second;
       };
       for (const RasterFace& f : faces_) plane_now_.push_back(plane(f));
-      for (const RasterFace& f : exact_->faces()) plane_then_.push_back(plane(f));
+      for (const RasterFace& f : exact_.faces()) plane_then_.push_back(plane(f));
       changed_.resize(static_cast<std::size_t>(face_.cols));
     }
     first_.assign(columns_.size() * static_cast<std::size_t>(face_.cols), -1);
@@ -61,7 +61,7 @@ class CandidateFinder {
       columns.assign(columns_.size(), {INT_MAX, -1});
       for (int r = 0; r < face_.rows; ++r) {
         const std::int32_t* row = &face_.values[face_.index(0, r)];
-        if (exact_) note_changes(r, row, c_begin, c_end);
+        note_changes(r, row, c_begin, c_end);
         for (int c = c_begin; c < c_end; ++c) {
           const std::int32_t f = row[c];
           if (f < 0 || slot_[static_cast<std::size_t>(f)] < 0) continue;
@@ -108,7 +108,7 @@ class CandidateFinder {
     BlockColumn column(face_.rows);
     for (const auto [c0, c1, extra_cost] : starts) {
       column.reset(c0, c1);
-      if (exact_) column.paint(*this, painted_);
+      column.paint(*this, painted_);
       // The edge row: f's top (bottom) at the block column's centre. A support needs f along at
       // least half of its near side and its target along half of its far side: slices of curved
       // surfaces cross a W-wide column at a slant, and the rest of either side is a cut.
@@ -155,7 +155,7 @@ class CandidateFinder {
     std::int32_t face;
   };
   void note_changes(int r, const std::int32_t* row, int c_begin, int c_end) {
-    const Grid<std::int32_t>& then = exact_->face_map();
+    const Grid<std::int32_t>& then = exact_.face_map();
     const std::int32_t* was_row = &then.values[then.index(0, r)];
     const int* plane_now = plane_now_.data();
     const int* plane_then = plane_then_.data();
@@ -254,63 +254,42 @@ class CandidateFinder {
   };
 
   // The first face the support can fold onto, away from the edge: a V face at depth d' where
-  // Y = h - d', or an H face at height h' where Y = h' - d. On the exact plan and the supports painted
-  // since when there is one, else down the block column's rows.
+  // Y = h - d', or an H face at height h' where Y = h' - d, found on the exact plan and the supports
+  // painted since. The ray is shot a quarter pixel right of the block column's centre (off the
+  // lattice the plan's vertices lie on). The raster, which may have split, merged or renumbered
+  // faces since, names the face there: one in the plane the ray met, filling half the block, as a
+  // support's far side needs.
   std::optional<Candidate> walk(std::int32_t f, BlockColumn& column, int edge, bool up, double h, double d) const {
-    return exact_ ? exact_walk(f, column, edge, up, h, d) : raster_walk(f, column, edge, up, h, d);
-  }
-
-  // The ray is shot on the exact plan, a quarter pixel right of the block column's centre (off the
-  // lattice its vertices lie on). The raster, which may have split, merged or renumbered faces since,
-  // names the face there: one in the plane the ray met, filling half the block, as a support's far
-  // side needs.
-  std::optional<Candidate> exact_walk(std::int32_t f, BlockColumn& column, int edge, bool up, double h,
-                                      double d) const {
     const int step = up ? -1 : 1;
     const int centre = (column.c0() + column.c1()) / 2;
     const double from_Y = grid_.Y(edge) + (up ? px_mm_ / 2 : -px_mm_ / 2);
+    // A fold up to half a pixel short of a face counts as on it: the pixel row the fold falls in may
+    // hold the face where its exact boundary, simplified, passes, and the support painted there has
+    // its end within half a pixel of the fold, which the next plan snaps onto it.
     for (const PlanBuild::Reached& reached :
-         exact_->faces_reached((centre + 0.75) * px_mm_, from_Y, up, h, d, column.painted())) {
-      // The row the fold falls in; on a row's edge, the row beyond, so the support ends on the fold.
+         exact_.faces_reached((centre + 0.75) * px_mm_, from_Y, up, h, d, column.painted(), px_mm_ / 2)) {
+      // The row the fold falls in; on a row's edge, the row beyond, so that the support ends on the
+      // fold, or else the row before, where the target may fill the block when it does not beyond.
       // A fold a rounding short of the edge counts as on it, as faces_reached took it.
       const double Y = reached.Y + (up ? kFoldLineTolerance_mm : -kFoldLineTolerance_mm);
       const double rows_down = grid_.rows_above_fold - Y * grid_.px_per_mm;
-      const int r = up ? static_cast<int>(std::ceil(rows_down)) - 1 : static_cast<int>(std::floor(rows_down));
-      if (r < 0 || r >= face_.rows) break;
-      const BlockColumn::Row& row = column.row(*this, r);
-      if (row.centre < 0 || !row.mostly) continue;
-      const RasterFace& target = faces_[static_cast<std::size_t>(row.centre)];
-      if (target.hole || target.orientation != reached.orientation || target.depth_mm != reached.depth_mm) continue;
-      if ((r - step - (edge + step)) * step < 0) return std::nullopt;  // no room: the faces touch already
-      std::vector<std::int32_t> crossed;
-      for (int between = edge + step; between != r; between += step)
-        for (const std::int32_t x : column.faces(column.row(*this, between)))
-          if (x != f) crossed.push_back(x);
-      return candidate(f, row.centre, column, edge, r, up, h, d, std::move(crossed));
-    }
-    return std::nullopt;
-  }
-
-  // Walks the block column row by row; a row hits a face when its centre lies within half a pixel
-  // of where the support would fold onto it.
-  std::optional<Candidate> raster_walk(std::int32_t f, BlockColumn& column, int edge, bool up, double h,
-                                       double d) const {
-    const int step = up ? -1 : 1;
-    std::vector<std::int32_t> crossed;  // the faces other than f on the rows walked over
-    for (int r = edge + step; r >= 0 && r < face_.rows; r += step) {
-      const BlockColumn::Row& row = column.row(*this, r);
-      const std::int32_t g = row.centre;
-      if (g >= 0 && g != f && row.mostly) {
-        const RasterFace& target = faces_[static_cast<std::size_t>(g)];
-        const FoldLine fold = support_fold(target.orientation, target.depth_mm, h, d);
-        const double fold_Y = fold.h - fold.d;
-        if (support_folds_onto(target, up, h, d) && std::abs(fold_Y - row.Y) <= px_mm_ / 2) {
-          if ((r - step - (edge + step)) * step < 0) return std::nullopt;  // no room: the faces touch already
-          return candidate(f, g, column, edge, r, up, h, d, std::move(crossed));
-        }
+      const int beyond = up ? static_cast<int>(std::ceil(rows_down)) - 1 : static_cast<int>(std::floor(rows_down));
+      const double into_row = up ? beyond + 1 - rows_down : rows_down - beyond;  // rows from its near edge
+      const bool on_edge = into_row * px_mm_ <= 2 * kFoldLineTolerance_mm;
+      for (const int r : {beyond, on_edge ? beyond - step : -1}) {
+        if (r < 0 || r >= face_.rows) continue;
+        const BlockColumn::Row& row = column.row(*this, r);
+        if (row.centre < 0 || !row.mostly) continue;
+        const RasterFace& target = faces_[static_cast<std::size_t>(row.centre)];
+        if (target.hole || target.orientation != reached.orientation || target.depth_mm != reached.depth_mm) continue;
+        if ((r - step - (edge + step)) * step < 0) return std::nullopt;  // no room: the faces touch already
+        std::vector<std::int32_t> crossed;
+        for (int between = edge + step; between != r; between += step)
+          for (const std::int32_t x : column.faces(column.row(*this, between)))
+            if (x != f) crossed.push_back(x);
+        return candidate(f, row.centre, column, edge, r, up, h, d, std::move(crossed));
       }
-      for (const std::int32_t x : column.faces(row))
-        if (x != f && (crossed.empty() || crossed.back() != x)) crossed.push_back(x);
+      if (beyond < 0 || beyond >= face_.rows) break;
     }
     return std::nullopt;
   }
@@ -339,7 +318,7 @@ class CandidateFinder {
     return s;
   }
 
-  const PlanBuild* exact_;
+  const PlanBuild& exact_;
   std::span<const Candidate> painted_;
   const PixelGrid& grid_;
   const Grid<std::int32_t>& face_;
@@ -351,7 +330,7 @@ class CandidateFinder {
   std::vector<int> slot_;                     // per face: its place in the tables below, -1 for faces not wanted
   std::vector<int> first_, last_;             // per wanted face and column: its first and last row, -1 if none
   std::vector<std::pair<int, int>> columns_;  // per wanted face: its first and last column
-  std::vector<std::vector<Changed>> changed_;  // per column, with an exact plan
+  std::vector<std::vector<Changed>> changed_;  // per column
   std::vector<int> plane_now_, plane_then_;    // per face of the raster plan and of the exact plan
 };
 
@@ -386,7 +365,7 @@ Standing standing_of(const Plan& plan) {
   return s;
 }
 
-std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const PlanBuild* exact,
+std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const PlanBuild& exact,
                                        std::span<const Candidate> painted, const Standing& standing,
                                        const std::vector<std::int32_t>& invalid, const SupportOptions& options,
                                        Reach reach) {

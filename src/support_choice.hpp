@@ -53,10 +53,9 @@ struct Reach {
 };
 
 /// Supports for the invalid faces, chosen greedily in their order, widened, never overlapping; not
-/// yet painted. `exact`, when given, is the exact plan of `slices` before the supports `painted`
-/// since: the face each support reaches is then found on it and them (PlanBuild::faces_reached),
-/// else on the raster plan.
-std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const PlanBuild* exact,
+/// yet painted. `exact` is the exact plan of `slices` before the supports `painted` since: the face
+/// each support reaches is found on it and them (PlanBuild::faces_reached).
+std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const PlanBuild& exact,
                                        std::span<const Candidate> painted, const Standing& standing,
                                        const std::vector<std::int32_t>& invalid, const SupportOptions& options,
                                        Reach reach);

@@ -180,12 +180,11 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
         return std::to_string(invalid.size()) + " faces still invalid after " + std::to_string(report.round_bound) +
                " rounds (the loop's bound)";
       ++report.rounds;
-      report.exact_rounds += last_build.has_value();
       std::shuffle(invalid.begin(), invalid.end(), random);
       Reach round_reach = reach;
       round_reach.split_faces = allow_splits || split_rounds_left-- > 0;
-      const std::vector<Candidate> chosen = choose_supports(maps, slices, last_build ? &*last_build : nullptr,
-                                                            painted_since, standing, invalid, options, round_reach);
+      const std::vector<Candidate> chosen =
+          choose_supports(maps, slices, *last_build, painted_since, standing, invalid, options, round_reach);
       if (chosen.empty()) return std::to_string(invalid.size()) + " faces invalid and no support reaches them";
       report.supports += static_cast<int>(chosen.size());
       paint_supports(chosen, maps.grid, tolerance, crumb_px, slices);
@@ -197,7 +196,7 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
   for (std::size_t f = 2; f < slices.faces.size(); ++f) model_pixels += slices.faces[f].pixels;
   std::int64_t cut_out_pixels = 0;
   std::size_t fewest_exact = SIZE_MAX;
-  settle();
+  confirm();  // every pass, the first too, walks the exact plan
   for (;;) {
     // A pass of rounds from an exact verdict that leaves at least as many faces invalid as it found
     // is undone: its supports held nothing, and the exact plan of the slices before it is at hand.

@@ -195,6 +195,34 @@ TEST(Plan, RaysShotOnTheExactPlanReachTheFacesWhereTheirFoldLinesMeetThem) {
   EXPECT_EQ(through[1].Y, 62.0);
 }
 
+// A fold up to short_mm before a face's near end reaches it; one farther short does not. Up from
+// the floor in front of the floating box, as H(h) at depth 50: the front V(47.1) is met at
+// Y = h - 47.1, and its bottom is a cut on a pixel edge, under Y = 41.3 - 47.1.
+TEST(Plan, AFoldJustShortOfAFaceReachesItWithinTheGivenDistance) {
+  const test::FloatingBoxPlan box;
+  const PlanBuild& build = box.build;
+  const double x = 100.3;
+  double bottom = NAN;  // the front's bottom cut, where the ray crosses it
+  for (const PlanPolyline& line : build.full().lines)
+    for (std::size_t i = 1; i < line.points.size(); ++i) {
+      const PlanPoint &a = line.points[i - 1], &b = line.points[i];
+      if (line.kind == LineKind::Cut && a.Y == b.Y && a.Y < 0 && a.Y > -10 && std::min(a.X, b.X) < x &&
+          x < std::max(a.X, b.X))
+        bottom = a.Y;
+    }
+  ASSERT_FALSE(std::isnan(bottom));
+  const double px_mm = 1 / box.maps.grid.px_per_mm;
+  ASSERT_LE(std::abs(bottom - (41.3 - 47.1)), px_mm);
+  auto reaches_front = [&](double fold_Y, double short_mm) {
+    const auto reached = build.faces_reached(x, -30.0, true, fold_Y + 47.1, 50, {}, short_mm);
+    return !reached.empty() && reached[0].face == box.front && reached[0].Y == fold_Y + 47.1 - 47.1;
+  };
+  EXPECT_TRUE(reaches_front(bottom + 0.05, 0));
+  EXPECT_FALSE(reaches_front(bottom - 0.1, 0));
+  EXPECT_TRUE(reaches_front(bottom - 0.1, px_mm / 2));
+  EXPECT_FALSE(reaches_front(bottom - 0.2, px_mm / 2));
+}
+
 // Supports painted since the exact plan was built cover what it holds where they cross the ray.
 TEST(Plan, RaysMeetTheFacesPaintedSinceThePlanWasBuiltAndNotWhatTheyCover) {
   const test::FloatingBoxPlan box;

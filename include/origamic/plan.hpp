@@ -156,7 +156,9 @@ class PlanBuild {
   /// face at height h' above h (below) where it meets it at Y = h' - d. Decided exactly on the
   /// arrangement, with h and d the doubles the support will carry, so the fold the next plan draws
   /// there lies on the face. `painted` are the faces painted since, across the ray: they cover what
-  /// the arrangement holds there. Cut-out faces hold nothing and are passed over. Thread-safe.
+  /// the arrangement holds there. Cut-out faces hold nothing and are passed over. A face is also
+  /// met where the fold falls up to `short_mm` before it: a support painted to it there has its end
+  /// within that of the fold line, and the next plan snaps it on. Thread-safe.
   struct Reached {
     std::int32_t face;  // the arrangement's label, or -1 for a painted band
     Orientation orientation;
@@ -164,7 +166,7 @@ class PlanBuild {
     double Y;  // the fold's Y (nearest double)
   };
   std::vector<Reached> faces_reached(double x, double from_Y, bool up, double h, double d,
-                                     std::span<const PaintedBand> painted = {}) const;
+                                     std::span<const PaintedBand> painted = {}, double short_mm = 0) const;
 
  private:
   struct State;

@@ -44,10 +44,6 @@ struct SupportReport {
   int supports = 0;      // support strips added, before widening merged any
   int rounds = 0;        // rounds of supports chosen
   int exact_builds = 0;  // exact plans built to confirm the raster graph's verdict
-  // Rounds that found the face each support reaches on the exact plan of the last verdict and the
-  // supports painted since (PlanBuild::faces_reached): all after the first verdict. The first
-  // rounds walk the raster plan.
-  int exact_rounds = 0;
   int passes_undone = 0;  // passes of rounds undone because they left no fewer faces invalid
   // The share of the model's pixels in the faces cut out (pieces of the back plane or the floor
   // aside), counted as they are cut; never over a quarter.
