@@ -5,7 +5,9 @@
 #include <array>
 #include <climits>
 #include <cmath>
+#include <future>
 #include <map>
+#include <memory>
 #include <optional>
 #include <random>
 #include <set>
@@ -125,9 +127,10 @@ constexpr int kBelowTipsFromOrder = 2;
 constexpr int kCornersFromOrder = 3;
 
 // One greedy run of the support loop in the face order that `random` draws.
-Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sheet& sheet,
-                            const PlanOptions& plan_options, const SupportOptions& options, std::mt19937& random,
-                            bool retry_splits, Reach reach) {
+// `initial` is the exact plan of `slices`, which every order starts from.
+Supported supports_in_order(const RasterMaps& maps, SliceResult slices, std::shared_ptr<const PlanBuild> initial,
+                            const Sheet& sheet, const PlanOptions& plan_options, const SupportOptions& options,
+                            std::mt19937& random, bool retry_splits, Reach reach) {
   Supported result;
   SupportReport& report = result.report;
   report.round_bound = slices.face.cols / std::max(1, slices.block_px) + 1;
@@ -153,16 +156,27 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
     standing = raster_standing(maps.grid, slices, aligned_fold_tolerance_mm(maps.grid));
     exact = false;
   };
-  // The exact plan of the last verdict, kept: the plan kept is drawn in full from it.
-  std::optional<PlanBuild> last_build;
-  auto confirm = [&] {
-    last_build.emplace(maps, slices, sheet, plan_options);
+  // The exact plan of the last verdict, kept: the plan kept is drawn in full from it. The one it
+  // replaces is freed on another thread while the next is built (an arrangement takes as long to
+  // free as a tenth of its build).
+  std::shared_ptr<const PlanBuild> last_build;
+  std::future<void> retired;
+  auto retire = [&] {
+    if (last_build) retired = std::async(std::launch::async, [old = std::move(last_build)]() mutable { old.reset(); });
+  };
+  auto adopt = [&](std::shared_ptr<const PlanBuild> build) {
+    retire();
+    last_build = std::move(build);
     result.plan = last_build->verdict();
     confirmed = {slices.face, slices.faces};
     ++report.exact_builds;
     standing = standing_of(result.plan);
     exact = true;
     painted_since.clear();
+  };
+  auto confirm = [&] {
+    retire();
+    adopt(std::make_shared<const PlanBuild>(maps, slices, sheet, plan_options));
   };
   // Rounds of supports until every face stands or they stop helping; returns why they stopped.
   auto support_rounds = [&]() -> std::string {
@@ -196,7 +210,7 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, const Sh
   for (std::size_t f = 2; f < slices.faces.size(); ++f) model_pixels += slices.faces[f].pixels;
   std::int64_t cut_out_pixels = 0;
   std::size_t fewest_exact = SIZE_MAX;
-  confirm();  // every pass, the first too, walks the exact plan
+  adopt(std::move(initial));  // every pass, the first too, walks an exact plan
   for (;;) {
     // A pass of rounds from an exact verdict that leaves at least as many faces invalid as it found
     // is undone: its supports held nothing, and the exact plan of the slices before it is at hand.
@@ -330,14 +344,15 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
   // The greedy choice depends on the order the faces choose in, and one order can paint itself into
   // a corner that another avoids: the next orders of the same random sequence get their turn.
   std::mt19937 random(options.seed);
+  const auto initial = std::make_shared<const PlanBuild>(maps, slices, sheet, plan_options);
   std::optional<Supported> best;
   for (int order = 1; order <= std::max(1, options.orders); ++order) {
     const bool last = order >= options.orders;
     const bool retry_splits = order >= std::min(options.orders, kSplitRetryFromOrder);
     const Reach reach{true, order >= std::min(options.orders, kBelowTipsFromOrder),
                       order >= std::min(options.orders, kCornersFromOrder)};
-    Supported run = supports_in_order(maps, last ? std::move(slices) : slices, sheet, plan_options, options, random,
-                                      retry_splits, reach);
+    Supported run = supports_in_order(maps, last ? std::move(slices) : slices, initial, sheet, plan_options, options,
+                                      random, retry_splits, reach);
     if (!best || shortfall(run, options.allow_dangling) < shortfall(*best, options.allow_dangling))
       best = std::move(run);
     best->report.orders = order;
