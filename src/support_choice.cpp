@@ -59,18 +59,28 @@ class CandidateFinder {
     for_bands(face_.cols, [&](int band, int c_begin, int c_end) {
       std::vector<std::pair<int, int>>& columns = band_columns[static_cast<std::size_t>(band)];
       columns.assign(columns_.size(), {INT_MAX, -1});
+      const Grid<std::int32_t>& then = exact_.face_map();
       for (int r = 0; r < face_.rows; ++r) {
         const std::int32_t* row = &face_.values[face_.index(0, r)];
-        note_changes(r, row, c_begin, c_end);
-        for (int c = c_begin; c < c_end; ++c) {
-          const std::int32_t f = row[c];
-          if (f < 0 || slot_[static_cast<std::size_t>(f)] < 0) continue;
-          const auto slot = static_cast<std::size_t>(slot_[static_cast<std::size_t>(f)]);
-          const std::size_t k = slot * face_.cols + c;
-          if (first_[k] < 0) first_[k] = r;
-          last_[k] = r;
-          auto& [lo, hi] = columns[slot];
-          lo = std::min(lo, c), hi = std::max(hi, c);
+        const std::int32_t* was_row = &then.values[then.index(0, r)];
+        // Run by run of one face now and one then: most runs are neither wanted nor changed.
+        for (int c = c_begin; c < c_end;) {
+          const std::int32_t f = row[c], was = was_row[c];
+          int end = c + 1;
+          while (end < c_end && row[end] == f && was_row[end] == was) ++end;
+          if (changed(f, was))
+            for (int k = c; k < end; ++k) note_change(r, k, f);
+          if (f >= 0 && slot_[static_cast<std::size_t>(f)] >= 0) {
+            const auto slot = static_cast<std::size_t>(slot_[static_cast<std::size_t>(f)]);
+            for (int k = c; k < end; ++k) {
+              const std::size_t i = slot * face_.cols + k;
+              if (first_[i] < 0) first_[i] = r;
+              last_[i] = r;
+            }
+            auto& [lo, hi] = columns[slot];
+            lo = std::min(lo, c), hi = std::max(hi, end - 1);
+          }
+          c = end;
         }
       }
     });
@@ -154,21 +164,17 @@ class CandidateFinder {
     int r0, r1;  // rows [r0, r1)
     std::int32_t face;
   };
-  void note_changes(int r, const std::int32_t* row, int c_begin, int c_end) {
-    const Grid<std::int32_t>& then = exact_.face_map();
-    const std::int32_t* was_row = &then.values[then.index(0, r)];
-    const int* plane_now = plane_now_.data();
-    const int* plane_then = plane_then_.data();
-    for (int c = c_begin; c < c_end; ++c) {
-      const std::int32_t f = row[c], was = was_row[c];
-      const int now = f < 0 ? -1 : plane_now[f];
-      if (now < 0 || (was >= 0 && plane_then[was] == now)) continue;
-      std::vector<Changed>& runs = changed_[static_cast<std::size_t>(c)];
-      if (!runs.empty() && runs.back().r1 == r && runs.back().face == f)
-        ++runs.back().r1;
-      else
-        runs.push_back({r, r + 1, f});
-    }
+  // Whether the plane at a pixel now (face f) differs from the exact plan's there (face was).
+  bool changed(std::int32_t f, std::int32_t was) const {
+    const int now = f < 0 ? -1 : plane_now_[static_cast<std::size_t>(f)];
+    return now >= 0 && (was < 0 || plane_then_[static_cast<std::size_t>(was)] != now);
+  }
+  void note_change(int r, int c, std::int32_t f) {
+    std::vector<Changed>& runs = changed_[static_cast<std::size_t>(c)];
+    if (!runs.empty() && runs.back().r1 == r && runs.back().face == f)
+      ++runs.back().r1;
+    else
+      runs.push_back({r, r + 1, f});
   }
 
   bool mostly(std::int32_t f, int c0, int c1, int r) const {
@@ -286,7 +292,7 @@ class CandidateFinder {
         std::vector<std::int32_t> crossed;
         for (int between = edge + step; between != r; between += step)
           for (const std::int32_t x : column.faces(column.row(*this, between)))
-            if (x != f) crossed.push_back(x);
+            if (x != f && (crossed.empty() || crossed.back() != x)) crossed.push_back(x);
         return candidate(f, row.centre, column, edge, r, up, h, d, std::move(crossed));
       }
       if (beyond < 0 || beyond >= face_.rows) break;
@@ -444,22 +450,37 @@ void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid,
   for (const std::int32_t f : crossed)
     if (f >= 2 && f < first_support) candidate[static_cast<std::size_t>(f)] = 1;
   for (const FacePart& p : parts) candidate[static_cast<std::size_t>(p.face)] = 1;
-  std::vector<int> c_lo(n, INT_MAX), c_hi(n, -1), r_lo(n, INT_MAX), r_hi(n, -1);
-  std::vector<std::int32_t> touches(n, -1);
+  struct Extent {
+    std::vector<int> c_lo, c_hi, r_lo, r_hi;
+    std::vector<std::int32_t> touches;
+  };
   const auto supports_end = static_cast<std::int32_t>(first_support + chosen.size());
-  for (int r = 0; r < face.rows; ++r)
-    for (int c = 0; c < face.cols; ++c) {
-      const std::int32_t f = face(c, r);
-      if (f < 0 || !candidate[static_cast<std::size_t>(f)]) continue;
-      const auto i = static_cast<std::size_t>(f);
-      c_lo[i] = std::min(c_lo[i], c), c_hi[i] = std::max(c_hi[i], c);
-      r_lo[i] = std::min(r_lo[i], r), r_hi[i] = std::max(r_hi[i], r);
-      for (const auto& [dc, dr] : {std::pair{-1, 0}, {1, 0}, {0, -1}, {0, 1}}) {
-        if (!face.contains(c + dc, r + dr)) continue;
-        const std::int32_t g = face(c + dc, r + dr);
-        if (g < first_support || g >= supports_end) continue;
-        touches[i] = touches[i] == -1 || touches[i] == g ? g : -2;
+  const auto touch = [](std::int32_t a, std::int32_t b) { return a == -1 || a == b ? b : b == -1 ? a : -2; };
+  std::array<Extent, kBands> bands;
+  for_bands(face.rows, [&](int band, int row_begin, int row_end) {
+    auto& [c_lo, c_hi, r_lo, r_hi, touches] = bands[static_cast<std::size_t>(band)];
+    c_lo.assign(n, INT_MAX), c_hi.assign(n, -1), r_lo.assign(n, INT_MAX), r_hi.assign(n, -1), touches.assign(n, -1);
+    for (int r = row_begin; r < row_end; ++r)
+      for (int c = 0; c < face.cols; ++c) {
+        const std::int32_t f = face(c, r);
+        if (f < 0 || !candidate[static_cast<std::size_t>(f)]) continue;
+        const auto i = static_cast<std::size_t>(f);
+        c_lo[i] = std::min(c_lo[i], c), c_hi[i] = std::max(c_hi[i], c);
+        r_lo[i] = std::min(r_lo[i], r), r_hi[i] = std::max(r_hi[i], r);
+        for (const auto& [dc, dr] : {std::pair{-1, 0}, {1, 0}, {0, -1}, {0, 1}}) {
+          if (!face.contains(c + dc, r + dr)) continue;
+          const std::int32_t g = face(c + dc, r + dr);
+          if (g >= first_support && g < supports_end) touches[i] = touch(touches[i], g);
+        }
       }
+  });
+  auto [c_lo, c_hi, r_lo, r_hi, touches] = std::move(bands[0]);
+  for (std::size_t band = 1; band < kBands; ++band)
+    for (std::size_t i = 0; i < n; ++i) {
+      const Extent& e = bands[band];
+      c_lo[i] = std::min(c_lo[i], e.c_lo[i]), c_hi[i] = std::max(c_hi[i], e.c_hi[i]);
+      r_lo[i] = std::min(r_lo[i], e.r_lo[i]), r_hi[i] = std::max(r_hi[i], e.r_hi[i]);
+      touches[i] = touch(touches[i], e.touches[i]);
     }
   // A narrow one within the rows of the support it touches joins it; other parts go back to their
   // face: the exact plan decides whether they stand.
