@@ -5,7 +5,6 @@
 #include <array>
 #include <climits>
 #include <cmath>
-#include <future>
 #include <map>
 #include <memory>
 #include <optional>
@@ -156,16 +155,10 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, std::sha
     standing = raster_standing(maps.grid, slices, aligned_fold_tolerance_mm(maps.grid));
     exact = false;
   };
-  // The exact plan of the last verdict, kept: the plan kept is drawn in full from it. The one it
-  // replaces is freed on another thread while the next is built (an arrangement takes as long to
-  // free as a tenth of its build).
+  // The exact plan of the last verdict, kept: the plan kept is drawn in full from it. (Freed here,
+  // not on another thread: CGAL is built without thread support, its reference counts not atomic.)
   std::shared_ptr<const PlanBuild> last_build;
-  std::future<void> retired;
-  auto retire = [&] {
-    if (last_build) retired = std::async(std::launch::async, [old = std::move(last_build)]() mutable { old.reset(); });
-  };
   auto adopt = [&](std::shared_ptr<const PlanBuild> build) {
-    retire();
     last_build = std::move(build);
     result.plan = last_build->verdict();
     confirmed = {slices.face, slices.faces};
@@ -175,7 +168,7 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, std::sha
     painted_since.clear();
   };
   auto confirm = [&] {
-    retire();
+    last_build.reset();  // one arrangement at a time in memory
     adopt(std::make_shared<const PlanBuild>(maps, slices, sheet, plan_options));
   };
   // Rounds of supports until every face stands or they stop helping; returns why they stopped.

@@ -43,7 +43,7 @@ struct NarrowStrip {
 struct SupportReport {
   int supports = 0;      // support strips added, before widening merged any
   int rounds = 0;        // rounds of supports chosen
-  int exact_builds = 0;  // exact plans built to confirm the raster graph's verdict
+  int exact_builds = 0;  // exact plans judged by: the slices' own, then one per pass of rounds
   int passes_undone = 0;  // passes of rounds undone because they left no fewer faces invalid
   // The share of the model's pixels in the faces cut out (pieces of the back plane or the floor
   // aside), counted as they are cut; never over a quarter.
