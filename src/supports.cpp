@@ -225,7 +225,7 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, std::sha
       exact = true;
       painted_since.clear();
       ++report.passes_undone;
-    } else {
+    } else if (!exact) {  // else the slices are still the exact plan's, and it stands as it is
       confirm();
     }
     std::vector<std::int32_t> invalid = unsupported(standing, options.allow_dangling);
@@ -239,13 +239,13 @@ Supported supports_in_order(const RasterMaps& maps, SliceResult slices, std::sha
     // graph took for one. Those become faces of their own, and the rounds go on.
     // From then on no support may cut a face in two: the pieces it made would need supports of
     // their own, whose supports cut more faces, without end.
-    // A whole face under the crumb size joins a neighbour instead: once merged away it is gone, not
-    // a face without pixels that the rounds would have to hold. A join adds no piece, so supports
-    // may still cut faces in two.
+    // A part under the crumb size (or a whole face) joins a neighbour instead: a face left without
+    // pixels is merged away, not a face the rounds would have to hold. A join adds no piece, so
+    // supports may still cut faces in two. Either way the slices are no longer the exact plan's.
     if (report.rounds < report.round_bound) {
+      const std::vector<std::int32_t> before = slices.face.values;
       const bool parted = !split_disconnected_faces(slices, apart, crumb_px, slices.block_px).empty();
-      const bool joined = std::ranges::any_of(
-          invalid, [&](std::int32_t f) { return slices.faces[static_cast<std::size_t>(f)].pixels == 0; });
+      const bool joined = slices.face.values != before;
       if (parted || joined) {
         allow_splits = allow_splits && !parted;
         merge_coplanar_faces(slices);
