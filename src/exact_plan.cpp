@@ -998,8 +998,8 @@ exact::Rational exact_Y(const FoldLine& line) { return exact::Rational(line.h) -
 
 }  // namespace
 
-std::vector<PlanBuild::Reached> PlanBuild::faces_reached(double x, double from_Y, bool up, double h, double d,
-                                                         std::span<const PaintedBand> painted, double short_mm) const {
+std::vector<PlanBuild::Reached> PlanBuild::faces_reached(const Ray& ray) const {
+  const auto& [x, from_Y, up, h, d, painted, short_mm] = ray;
   using Rational = exact::Rational;
   const std::vector<State::Crossing>* cached = &state_->line_at(x);
   std::vector<State::Crossing> repainted;

@@ -149,24 +149,31 @@ class PlanBuild {
   const Grid<std::int32_t>& face_map() const;
   const std::vector<RasterFace>& faces() const;
 
+  /// A vertical ray up (or down) the plan from (x, from_Y), for a support leaving a face at OA
+  /// height h and depth d.
+  struct Ray {
+    double x = 0, from_Y = 0;
+    bool up = true;
+    double h = 0, d = 0;
+    std::span<const PaintedBand> painted = {};  // faces painted since the plan, across the ray
+    double short_mm = 0;                   // how far before a face a fold still lands on it (>= 0)
+  };
   /// Where a support may fold onto another face (seed §4.4, "the first face behind or above"):
-  /// the faces the vertical ray from (x, from_Y) meets going up (or down) the plan, nearest first,
-  /// each where a support leaving a face at OA height h and depth d would fold onto it. That is a V
-  /// face at depth d' behind d (in front going down) where the ray meets it at Y = h - d', or an H
-  /// face at height h' above h (below) where it meets it at Y = h' - d. Decided exactly on the
+  /// the faces the ray meets, nearest first, each where the support would fold onto it. That is a
+  /// V face at depth d' behind d (in front going down) where the ray meets it at Y = h - d', or an
+  /// H face at height h' above h (below) where it meets it at Y = h' - d. Decided exactly on the
   /// arrangement, with h and d the doubles the support will carry, so the fold the next plan draws
-  /// there lies on the face. `painted` are the faces painted since, across the ray: they cover what
-  /// the arrangement holds there. Cut-out faces hold nothing and are passed over. A face is also
-  /// met where the fold falls up to `short_mm` before it: a support painted to it there has its end
-  /// within that of the fold line, and the next plan snaps it on. Thread-safe.
+  /// there lies on the face. The painted faces cover what the arrangement holds there. Cut-out
+  /// faces hold nothing and are passed over. A face is also met where the fold falls up to
+  /// `short_mm` before it: a support painted to it there has its end within that of the fold line,
+  /// and the next plan snaps it on. Thread-safe.
   struct Reached {
     std::int32_t face;  // the arrangement's label, or -1 for a painted band
     Orientation orientation;
     double depth_mm;
     double Y;  // the fold's Y (nearest double)
   };
-  std::vector<Reached> faces_reached(double x, double from_Y, bool up, double h, double d,
-                                     std::span<const PaintedBand> painted = {}, double short_mm = 0) const;
+  std::vector<Reached> faces_reached(const Ray& ray) const;
 
  private:
   struct State;
