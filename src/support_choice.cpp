@@ -273,7 +273,7 @@ class CandidateFinder {
     // hold the face where its exact boundary, simplified, passes, and the support painted there has
     // its end within half a pixel of the fold, which the next plan snaps onto it.
     for (const PlanBuild::Reached& reached :
-         exact_.faces_reached((centre + 0.75) * px_mm_, from_Y, up, h, d, column.painted(), px_mm_ / 2)) {
+         exact_.faces_reached({(centre + 0.75) * px_mm_, from_Y, up, h, d, column.painted(), px_mm_ / 2})) {
       // The row the fold falls in; on a row's edge, the row beyond, so that the support ends on the
       // fold, or else the row before, where the target may fill the block when it does not beyond.
       // A fold a rounding short of the edge counts as on it, as faces_reached took it.
@@ -282,7 +282,8 @@ class CandidateFinder {
       const int beyond = up ? static_cast<int>(std::ceil(rows_down)) - 1 : static_cast<int>(std::floor(rows_down));
       const double into_row = up ? beyond + 1 - rows_down : rows_down - beyond;  // rows from its near edge
       const bool on_edge = into_row * px_mm_ <= 2 * kFoldLineTolerance_mm;
-      for (const int r : {beyond, on_edge ? beyond - step : -1}) {
+      for (const int r : {beyond, beyond - step}) {
+        if (r != beyond && !on_edge) break;
         if (r < 0 || r >= face_.rows) continue;
         const BlockColumn::Row& row = column.row(*this, r);
         if (row.centre < 0 || !row.mostly) continue;

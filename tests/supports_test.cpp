@@ -68,9 +68,9 @@ TEST(Supports, FloatingBoxIsSupportedAtTopAndBottom) {
   EXPECT_EQ(found, 2);
 }
 
-// A round that starts from an exact verdict finds what each support reaches on the exact plan
-// (PlanBuild::faces_reached); the rows it paints hold the fold the next exact plan draws there.
-TEST(Supports, ARoundFromAnExactVerdictReachesTheFacesOnTheExactPlan) {
+// A round finds what each support reaches on the exact plan (PlanBuild::faces_reached); the rows
+// it paints hold the fold the next exact plan draws there.
+TEST(Supports, ARoundReachesTheFacesOnTheExactPlan) {
   const test::FloatingBoxPlan box;
   const RasterMaps& maps = box.maps;
   const SliceResult& slices = box.slices;
@@ -155,8 +155,7 @@ TEST(Supports, AFaceWithNoPixelsLeftHasNoEdgeToHold) {
 // would cover the whole piece there. A box G on the floor (front V(30) from h 0 to 50, top H(50)) and
 // a box S floating in front of it (top H(50), d 60 to 80). From S's top, as H(50), the fold onto G's
 // front lies at Y = 50 - 30, its top end, on a pixel edge; the exact plan passes it over and reaches
-// the back plane at Y = 50. (A walk down the raster rows, within half a pixel of the fold, took the
-// front.)
+// the back plane at Y = 50.
 TEST(Supports, AFoldAtTheFarEndOfAFacesPieceLandsBeyondIt) {
   const Sheet sheet;
   const RayScene scene(
@@ -183,7 +182,44 @@ TEST(Supports, AFoldAtTheFarEndOfAFacesPieceLandsBeyondIt) {
   EXPECT_EQ(exact[0].orientation, Orientation::H);
   EXPECT_EQ(exact[0].depth_mm, 50.0);
   EXPECT_EQ(maps.grid.Y(exact[0].target_row), 50 + 0.5 / maps.grid.px_per_mm) << "the row just above the fold";
-  EXPECT_NE(exact[0].target, g_front);
+}
+
+// A fold on a pixel edge lands in the row beyond it, so that the support ends on the fold; where
+// the target does not fill the block there, in the row before it. A box floating with its top at
+// H(78) reaches the back plane at Y = 78, a pixel edge. With the row above the edge cut out of the
+// raster since the exact plan, the support reaches the back plane in the row below the edge.
+TEST(Supports, AFoldOnARowEdgeLandsInTheRowBeforeWhereTheRowBeyondHoldsNoTarget) {
+  const Sheet sheet;
+  const RayScene scene(test::box({60, 41.3, 18.6}, {150, 78, 47.1}));
+  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
+  const SliceResult slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const PlanBuild build(maps, slices, sheet, PlanOptions{});
+  const PixelGrid& grid = maps.grid;
+  std::int32_t top = -1;
+  for (std::size_t f = 2; f < slices.faces.size(); ++f)
+    if (slices.faces[f].orientation == Orientation::H && slices.faces[f].depth_mm == 78) top = static_cast<std::int32_t>(f);
+  ASSERT_GE(top, 0);
+  const Standing standing = standing_of(build.verdict());
+  const std::vector<std::int32_t> invalid{top};
+  const double px_mm = 1 / grid.px_per_mm;
+  const auto row_at = [&](double Y) { return static_cast<int>(std::lround(grid.rows_above_fold - Y / px_mm - 0.5)); };
+  const int beyond = row_at(78 + px_mm / 2), before = row_at(78 - px_mm / 2);
+  ASSERT_EQ(grid.Y(beyond), 78 + px_mm / 2);
+  ASSERT_EQ(grid.Y(before), 78 - px_mm / 2);
+  const std::vector<Candidate> plain = choose_supports(maps, slices, build, {}, standing, invalid, SupportOptions{}, Reach{});
+  ASSERT_EQ(plain.size(), 1u);
+  EXPECT_EQ(plain[0].target, kBackFace);
+  EXPECT_EQ(plain[0].target_row, beyond);
+  SliceResult cut = slices;
+  const auto hole = static_cast<std::int32_t>(cut.faces.size());
+  cut.faces.push_back({Orientation::V, 0, 0, 0, false, true});
+  for (int c = 0; c < cut.face.cols; ++c)
+    if (cut.face(c, beyond) == kBackFace) cut.face(c, beyond) = hole;
+  const std::vector<Candidate> chosen = choose_supports(maps, cut, build, {}, standing, invalid, SupportOptions{}, Reach{});
+  ASSERT_EQ(chosen.size(), 1u);
+  EXPECT_EQ(chosen[0].target, kBackFace);
+  EXPECT_EQ(chosen[0].target_row, before);
+  EXPECT_EQ(chosen[0].depth_mm, 78.0);
 }
 
 TEST(Supports, SlopesBecomeStaircasesAsWideAsTheSlope) {
