@@ -214,7 +214,8 @@ TEST(Plan, AFoldJustShortOfAFaceReachesItWithinTheGivenDistance) {
   const double px_mm = 1 / box.maps.grid.px_per_mm;
   ASSERT_LE(std::abs(bottom - (41.3 - 47.1)), px_mm);
   auto reaches_front = [&](double fold_Y, double short_mm) {
-    const auto reached = build.faces_reached({.x = x, .from_Y = -30.0, .up = true, .h = fold_Y + 47.1, .d = 50, .short_mm = short_mm});
+    const auto reached =
+        build.faces_reached({.x = x, .from_Y = -30.0, .up = true, .h = fold_Y + 47.1, .d = 50, .short_mm = short_mm});
     return !reached.empty() && reached[0].face == box.front && reached[0].Y == fold_Y + 47.1 - 47.1;
   };
   EXPECT_TRUE(reaches_front(bottom + 0.05, 0));
@@ -235,7 +236,8 @@ TEST(Plan, RaysMeetTheFacesPaintedSinceThePlanWasBuiltAndNotWhatTheyCover) {
   const PaintedBand v20{Orientation::V, 20, {50, 0}, {30, 0}};
   // Up as H(62) at depth 25: onto V(20) at Y = 62 - 20 inside the band, then onto what is left of
   // the top above the band, then the back plane.
-  const auto through = build.faces_reached({.x = x, .from_Y = -30.0, .up = true, .h = 62, .d = 25, .painted = std::span(&v20, 1)});
+  const auto through =
+      build.faces_reached({.x = x, .from_Y = -30.0, .up = true, .h = 62, .d = 25, .painted = std::span(&v20, 1)});
   ASSERT_EQ(through.size(), 3u);
   EXPECT_EQ(through[0].face, -1);
   EXPECT_EQ(through[0].orientation, Orientation::V);
@@ -247,13 +249,15 @@ TEST(Plan, RaysMeetTheFacesPaintedSinceThePlanWasBuiltAndNotWhatTheyCover) {
   // An H(10) band over the top's fold point hides it: H(10) is below H(62), no support's target.
   // The line above the band is the top's again, up to the back plane.
   const PaintedBand h10{Orientation::H, 10, {52, 0}, {55, 0}};
-  const auto hidden = build.faces_reached({.x = x, .from_Y = -30.0, .up = true, .h = 62, .d = 25, .painted = std::span(&h10, 1)});
+  const auto hidden =
+      build.faces_reached({.x = x, .from_Y = -30.0, .up = true, .h = 62, .d = 25, .painted = std::span(&h10, 1)});
   ASSERT_EQ(hidden.size(), 1u);
   EXPECT_EQ(hidden[0].face, kBackFace);
   EXPECT_EQ(hidden[0].Y, 62.0);
   // A band ending exactly on the fold line: the piece above it, the top's, holds the fold.
   const PaintedBand to_fold{Orientation::H, 10, {40, 0}, {77.9, 25}};
-  const auto above = build.faces_reached({.x = x, .from_Y = -30.0, .up = true, .h = 62, .d = 25, .painted = std::span(&to_fold, 1)});
+  const auto above =
+      build.faces_reached({.x = x, .from_Y = -30.0, .up = true, .h = 62, .d = 25, .painted = std::span(&to_fold, 1)});
   ASSERT_EQ(above.size(), 2u);
   EXPECT_EQ(above[0].face, top);
   // Bands later in the list lie over earlier ones: V(22) over part of V(18), whose top part shows
@@ -274,12 +278,14 @@ TEST(Plan, RaysMeetTheFacesPaintedSinceThePlanWasBuiltAndNotWhatTheyCover) {
   // A support's height is the double nearest edge Y + d: its fold line lies a rounding off the edge.
   // 70.7 - 20.7 is 50 + 3.6e-15 exactly, 70.1 - 20.1 is 50 - 7.1e-15: both lie on a band ending at 50.
   const PaintedBand below_50{Orientation::V, 20.7, {50, 0}, {30, 0}};
-  const auto down = build.faces_reached({.x = x, .from_Y = 55.0, .up = false, .h = 50 + 20.7, .d = 10, .painted = std::span(&below_50, 1)});
+  const auto down = build.faces_reached(
+      {.x = x, .from_Y = 55.0, .up = false, .h = 50 + 20.7, .d = 10, .painted = std::span(&below_50, 1)});
   ASSERT_FALSE(down.empty());
   EXPECT_EQ(down[0].face, -1);
   EXPECT_EQ(down[0].Y, 50.0);
   const PaintedBand above_50{Orientation::V, 20.1, {50, 0}, {55, 0}};
-  const auto up = build.faces_reached({.x = x, .from_Y = 40.0, .up = true, .h = 50 + 20.1, .d = 25, .painted = std::span(&above_50, 1)});
+  const auto up = build.faces_reached(
+      {.x = x, .from_Y = 40.0, .up = true, .h = 50 + 20.1, .d = 25, .painted = std::span(&above_50, 1)});
   ASSERT_FALSE(up.empty());
   EXPECT_EQ(up[0].face, -1);
   EXPECT_EQ(up[0].depth_mm, 20.1);

@@ -197,7 +197,8 @@ TEST(Supports, AFoldOnARowEdgeLandsInTheRowBeforeWhereTheRowBeyondHoldsNoTarget)
   const PixelGrid& grid = maps.grid;
   std::int32_t top = -1;
   for (std::size_t f = 2; f < slices.faces.size(); ++f)
-    if (slices.faces[f].orientation == Orientation::H && slices.faces[f].depth_mm == 78) top = static_cast<std::int32_t>(f);
+    if (slices.faces[f].orientation == Orientation::H && slices.faces[f].depth_mm == 78)
+      top = static_cast<std::int32_t>(f);
   ASSERT_GE(top, 0);
   const Standing standing = standing_of(build.verdict());
   const std::vector<std::int32_t> invalid{top};
@@ -206,7 +207,8 @@ TEST(Supports, AFoldOnARowEdgeLandsInTheRowBeforeWhereTheRowBeyondHoldsNoTarget)
   const int beyond = row_at(78 + px_mm / 2), before = row_at(78 - px_mm / 2);
   ASSERT_EQ(grid.Y(beyond), 78 + px_mm / 2);
   ASSERT_EQ(grid.Y(before), 78 - px_mm / 2);
-  const std::vector<Candidate> plain = choose_supports(maps, slices, build, {}, standing, invalid, SupportOptions{}, Reach{});
+  const std::vector<Candidate> plain =
+      choose_supports(maps, slices, build, {}, standing, invalid, SupportOptions{}, Reach{});
   ASSERT_EQ(plain.size(), 1u);
   EXPECT_EQ(plain[0].target, kBackFace);
   EXPECT_EQ(plain[0].target_row, beyond);
@@ -215,7 +217,8 @@ TEST(Supports, AFoldOnARowEdgeLandsInTheRowBeforeWhereTheRowBeyondHoldsNoTarget)
   cut.faces.push_back({Orientation::V, 0, 0, 0, false, true});
   for (int c = 0; c < cut.face.cols; ++c)
     if (cut.face(c, beyond) == kBackFace) cut.face(c, beyond) = hole;
-  const std::vector<Candidate> chosen = choose_supports(maps, cut, build, {}, standing, invalid, SupportOptions{}, Reach{});
+  const std::vector<Candidate> chosen =
+      choose_supports(maps, cut, build, {}, standing, invalid, SupportOptions{}, Reach{});
   ASSERT_EQ(chosen.size(), 1u);
   EXPECT_EQ(chosen[0].target, kBackFace);
   EXPECT_EQ(chosen[0].target_row, before);

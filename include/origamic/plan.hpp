@@ -156,7 +156,7 @@ class PlanBuild {
     bool up = true;
     double h = 0, d = 0;
     std::span<const PaintedBand> painted = {};  // faces painted since the plan, across the ray
-    double short_mm = 0;                   // how far before a face a fold still lands on it (>= 0)
+    double short_mm = 0;                        // how far before a face a fold still lands on it (>= 0)
   };
   /// Where a support may fold onto another face (seed §4.4, "the first face behind or above"):
   /// the faces the ray meets, nearest first, each where the support would fold onto it. That is a
