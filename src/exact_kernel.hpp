@@ -36,6 +36,11 @@ using Arrangement = CGAL::Arrangement_2<Traits, Dcel>;
 // The exact rational behind a lazy number (gmpxx: store expressions in a typed variable before use).
 using Rational = std::remove_cvref_t<decltype(std::declval<FT>().exact())>;
 
+/// A point's coordinates as CGAL::to_double gives them for the plan's points (whose intervals are
+/// tight), read off the point's interval: asking for p.x() would make a new lazy number.
+inline double approx_x(const Point& p) { return CGAL::to_double(p.approx().x()); }
+inline double approx_y(const Point& p) { return CGAL::to_double(p.approx().y()); }
+
 /// The double nearest an exact rational (ties to even).
 inline double nearest_double(const Rational& exact) {
   const auto [lo, hi] = CGAL::to_interval(exact);

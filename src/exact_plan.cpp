@@ -20,6 +20,8 @@
 namespace origamic {
 namespace {
 
+using exact::approx_x;
+using exact::approx_y;
 using exact::FT;
 using exact::Kernel;
 using exact::nearest_double;
@@ -40,19 +42,23 @@ struct Sides {
 
 // Plan points on the pixel lattice in half-pixel units: u = 2 col, v = 2 row for pixel corners, odd
 // for edge midpoints. Exact coordinates clamp to the sheet, whose edge the last pixels may overhang.
+// They are made once per lattice line and shared by the points on it (fewer lazy numbers to make
+// and free).
 struct Lattice {
-  FT two_ppm, width, half;
+  std::vector<FT> exact_X, exact_Y;  // by u, by v
   int rows_above_fold;
   double px_mm, half_mm;
 
   Lattice(const PixelGrid& grid, const Sheet& sheet)
-      : two_ppm(FT(2) * FT(grid.px_per_mm)), width(sheet.width_mm), half(sheet.half_height_mm()),
-        rows_above_fold(grid.rows_above_fold), px_mm(1 / grid.px_per_mm), half_mm(sheet.half_height_mm()) {}
+      : rows_above_fold(grid.rows_above_fold), px_mm(1 / grid.px_per_mm), half_mm(sheet.half_height_mm()) {
+    const FT two_ppm = FT(2) * FT(grid.px_per_mm), width(sheet.width_mm), half(sheet.half_height_mm());
+    for (int u = 0; u <= 2 * grid.cols; ++u) exact_X.push_back(CGAL::min(FT(u) / two_ppm, width));
+    for (int v = 0; v <= 2 * grid.rows; ++v)
+      exact_Y.push_back(CGAL::max(CGAL::min(FT(2 * rows_above_fold - v) / two_ppm, half), -half));
+  }
 
   Point exact(int u, int v) const {
-    const FT X = CGAL::min(FT(u) / two_ppm, width);
-    const FT Y = CGAL::max(CGAL::min(FT(2 * rows_above_fold - v) / two_ppm, half), -half);
-    return {X, Y};
+    return {exact_X[static_cast<std::size_t>(u)], exact_Y[static_cast<std::size_t>(v)]};
   }
   double X(int u) const { return u * px_mm / 2; }
   double Y(int v) const { return (2 * rows_above_fold - v) * px_mm / 2; }
@@ -332,7 +338,7 @@ double ccb_area(Arrangement::Ccb_halfedge_const_circulator first) {
   auto he = first;
   do {
     const Point &p = he->source()->point(), &q = he->target()->point();
-    twice += CGAL::to_double(p.x()) * CGAL::to_double(q.y()) - CGAL::to_double(q.x()) * CGAL::to_double(p.y());
+    twice += approx_x(p) * approx_y(q) - approx_x(q) * approx_y(p);
   } while (++he != first);
   return twice / 2;
 }
@@ -347,7 +353,7 @@ struct Built {
 
 double length_of(Arrangement::Halfedge_const_handle he) {
   const Point &p = he->source()->point(), &q = he->target()->point();
-  return std::hypot(CGAL::to_double(p.x()) - CGAL::to_double(q.x()), CGAL::to_double(p.y()) - CGAL::to_double(q.y()));
+  return std::hypot(approx_x(p) - approx_x(q), approx_y(p) - approx_y(q));
 }
 
 void build_arrangement(const std::vector<Chain>& chains, const std::vector<Fallback>& fallback,
@@ -745,7 +751,7 @@ struct PlanBuild::State {
   // to_interval calls on them, is built thread-safe in Debian).
   struct Crossing {
     exact::Rational Y;
-    double Y_near;       // nearest double, to rule most comparisons out without exact arithmetic
+    double Y_near;       // nearest double: a smaller one means a smaller Y, an equal one decides nothing
     std::int32_t above;  // the label between this crossing and the next one up
   };
   struct EdgeSpan {
@@ -753,7 +759,8 @@ struct PlanBuild::State {
     Arrangement::Halfedge_const_handle he;  // directed left to right: its face lies above it
   };
   std::mutex mutex;
-  std::vector<EdgeSpan> spans;
+  // The edges by the pixel columns their x-extents meet, so that a line looks at its column's only.
+  std::vector<std::vector<EdgeSpan>> spans_by_column;
   std::map<double, std::vector<Crossing>> lines;  // by x: a map's elements stay where they are
   const std::vector<Crossing>& line_at(double x);
 };
@@ -765,15 +772,23 @@ const std::vector<PlanBuild::State::Crossing>& PlanBuild::State::line_at(double 
   const std::lock_guard lock(mutex);
   if (const auto known = lines.find(x); known != lines.end()) return known->second;
   const Arrangement& arr = built.arrangement;
-  if (spans.empty())
+  const auto columns = static_cast<std::size_t>(std::ceil(plan.sheet.width_mm * grid.px_per_mm)) + 1;
+  const auto column_of = [&](double at) {
+    return std::min(columns - 1, static_cast<std::size_t>(std::max(0.0, std::floor(at * grid.px_per_mm))));
+  };
+  if (spans_by_column.empty()) {
+    spans_by_column.resize(columns);
     for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
       Arrangement::Halfedge_const_handle he = e;
       if (he->direction() != CGAL::ARR_LEFT_TO_RIGHT) he = he->twin();
-      const double lo = CGAL::to_interval(he->source()->point().x()).first;
-      const double hi = CGAL::to_interval(he->target()->point().x()).second;
-      spans.push_back({lo, hi, he});
+      const double lo = he->source()->point().approx().x().inf();
+      const double hi = he->target()->point().approx().x().sup();
+      for (std::size_t c = column_of(lo); c <= column_of(hi); ++c) spans_by_column[c].push_back({lo, hi, he});
     }
+  }
+  const std::vector<EdgeSpan>& spans = spans_by_column[column_of(x)];
   const FT X(x);
+  const Point on_line(X, FT(0));
   struct Met {
     FT Y, slope;  // edges through one vertex on the line: the lower one right of it first
     std::int32_t above;
@@ -782,7 +797,7 @@ const std::vector<PlanBuild::State::Crossing>& PlanBuild::State::line_at(double 
   for (const EdgeSpan& span : spans) {
     if (x < span.x_lo || x > span.x_hi) continue;
     const Point &p = span.he->source()->point(), &q = span.he->target()->point();
-    if (!(p.x() <= X && X < q.x())) continue;
+    if (CGAL::compare_x(p, on_line) == CGAL::LARGER || CGAL::compare_x(on_line, q) != CGAL::SMALLER) continue;
     const Arrangement::Face_const_handle f = span.he->face();
     // A crumb cut out of the sheet holds nothing either: it is passed over like a hole.
     const bool paper = !f->is_unbounded() && f->data() >= 0 && !cut_out[static_cast<std::size_t>(pieces.of.at(f))];
@@ -799,7 +814,12 @@ const std::vector<PlanBuild::State::Crossing>& PlanBuild::State::line_at(double 
     return order == CGAL::SMALLER || (order == CGAL::EQUAL && a.slope < b.slope);
   });
   std::vector<Crossing> line;
-  for (const Met& m : met) line.push_back({m.Y.exact(), nearest_double(m.Y), m.above});
+  for (const Met& m : met) {
+    // Most crossings lie on pixel edges, doubles exactly: their rationals need no exact evaluation.
+    const auto [lo, hi] = CGAL::to_interval(m.Y);
+    line.push_back(lo == hi ? State::Crossing{exact::Rational(lo), lo + 0.0, m.above}
+                            : State::Crossing{m.Y.exact(), nearest_double(m.Y.exact()), m.above});
+  }
   return lines.emplace(x, std::move(line)).first->second;
 }
 
@@ -909,7 +929,8 @@ PlanBuild::PlanBuild(const RasterMaps& maps, const SliceResult& sliced, const Sh
     const Point &p = he->source()->point(), &q = he->target()->point();
     const RasterFace &fu = slices.faces[static_cast<std::size_t>(upper)], &fl = slices.faces[static_cast<std::size_t>(lower)];
     LineKind kind = LineKind::Cut;
-    if (p.y() == q.y() && fu.orientation != fl.orientation && !fu.hole && !fl.hole && !negligible(he)) {
+    if (CGAL::compare_y(p, q) == CGAL::EQUAL && fu.orientation != fl.orientation && !fu.hole && !fl.hole &&
+        !negligible(he)) {
       const RasterFace& v = fu.orientation == Orientation::V ? fu : fl;
       const RasterFace& h = fu.orientation == Orientation::H ? fu : fl;
       if (p.y() == FT(h.depth_mm) - FT(v.depth_mm)) {
@@ -1001,56 +1022,66 @@ exact::Rational exact_Y(const FoldLine& line) { return exact::Rational(line.h) -
 std::vector<PlanBuild::Reached> PlanBuild::faces_reached(const Ray& ray) const {
   const auto& [x, from_Y, up, h, d, painted, short_mm] = ray;
   using Rational = exact::Rational;
-  const std::vector<State::Crossing>* cached = &state_->line_at(x);
-  std::vector<State::Crossing> repainted;
-  if (!painted.empty()) {
-    // A band covers the line from its lower to its upper fold line: the crossings between go, and
-    // the label above its top is what the line held there.
-    repainted = *cached;
-    for (std::size_t k = 0; k < painted.size(); ++k) {
-      Rational lo = exact_Y(painted[k].a), hi = exact_Y(painted[k].b);
-      if (hi < lo) std::swap(lo, hi);
-      // Within the sheet: a run of rows ends on pixel edges, which may lie beyond its outline.
-      if (repainted.empty()) break;
-      lo = std::max(lo, repainted.front().Y), hi = std::min(hi, repainted.back().Y);
-      if (!(lo < hi)) continue;
-      const auto first = std::ranges::lower_bound(repainted, lo, {}, &State::Crossing::Y);
-      const auto last = std::ranges::upper_bound(repainted, hi, {}, &State::Crossing::Y);
-      const std::int32_t above = last == repainted.begin() ? kNoLabel : std::prev(last)->above;
-      const double lo_near = nearest_double(lo), hi_near = nearest_double(hi);
-      const auto at = repainted.erase(first, last);
-      repainted.insert(at, {State::Crossing{std::move(lo), lo_near, kPainted - static_cast<std::int32_t>(k)},
-                            State::Crossing{std::move(hi), hi_near, above}});
-    }
-    cached = &repainted;
+  // The line's crossings, and the ends of the bands painted over it, as marks: a crossing points at
+  // its rational, a band end keeps its fold line, whose rational h - d is made only when needed.
+  // Most comparisons are settled by the nearest doubles (rounding is monotone; for a fold line,
+  // the IEEE difference h - d is the nearest double), and painting copies no rational.
+  struct Mark {
+    const Rational* Y;  // or null: then Y is exactly fold.h - fold.d
+    FoldLine fold;
+    double Y_near;
+    std::int32_t above;
+    Rational exact() const { return Y ? *Y : exact_Y(fold); }
+  };
+  const auto less = [](const Mark& a, const Mark& b) {
+    return a.Y_near != b.Y_near ? a.Y_near < b.Y_near : a.exact() < b.exact();
+  };
+  const auto at_fold = [](const FoldLine& fold, std::int32_t above) {
+    return Mark{nullptr, fold, fold.h - fold.d, above};
+  };
+  std::vector<Mark> line;
+  for (const State::Crossing& c : state_->line_at(x)) line.push_back({&c.Y, {}, c.Y_near, c.above});
+  // A band covers the line from its lower to its upper fold line: the crossings between go, and
+  // the label above its top is what the line held there.
+  for (std::size_t k = 0; k < painted.size() && !line.empty(); ++k) {
+    Mark lo = at_fold(painted[k].a, kPainted - static_cast<std::int32_t>(k)), hi = at_fold(painted[k].b, kNoLabel);
+    if (less(hi, lo)) std::swap(lo.fold, hi.fold), std::swap(lo.Y_near, hi.Y_near);
+    // Within the sheet: a run of rows ends on pixel edges, which may lie beyond its outline.
+    if (less(lo, line.front())) lo = {line.front().Y, line.front().fold, line.front().Y_near, lo.above};
+    if (less(line.back(), hi)) hi = {line.back().Y, line.back().fold, line.back().Y_near, hi.above};
+    if (!less(lo, hi)) continue;
+    const auto first = std::ranges::partition_point(line, [&](const Mark& m) { return less(m, lo); });
+    const auto last = std::partition_point(first, line.end(), [&](const Mark& m) { return !less(hi, m); });
+    hi.above = last == line.begin() ? kNoLabel : std::prev(last)->above;
+    line.insert(line.erase(first, last), {lo, hi});
   }
-  const std::vector<State::Crossing>& line = *cached;
   const std::vector<RasterFace>& faces = state_->faces;
-  const Rational from(from_Y);
+  const Mark from = at_fold({from_Y, 0}, kNoLabel);
   // A fold at Y on the piece of the line between crossings i and i + 1, from the ray's start on.
   // The piece holds its near end, not its far one: a fold there lands on the next piece. Ends are
   // taken as the plan takes fold lines, to kFoldLineTolerance_mm: a support's height is the double
   // nearest edge Y + d, so its fold line h - d lies a rounding off the pixel edge it was drawn from.
   // The near end reaches short_mm farther: a fold that short of it lands on the piece.
-  const Rational tolerance(kFoldLineTolerance_mm);
-  const Rational near_reach = tolerance + Rational(short_mm);
   auto on = [&](const FoldLine& fold, std::size_t i) {
     const double slack = kFoldLineTolerance_mm + short_mm + 1e-9;  // closer calls go exact
-    const State::Crossing &lo = line[i], &hi = line[i + 1];
+    const Mark &lo = line[i], &hi = line[i + 1];
     const double Y_near = fold.h - fold.d;
     if (Y_near < lo.Y_near - slack || Y_near > hi.Y_near + slack) return false;
-    const Rational Y = exact_Y(fold);
-    return up ? from <= Y && lo.Y - near_reach <= Y && Y < hi.Y - tolerance
-              : Y <= from && lo.Y + tolerance < Y && Y <= hi.Y + near_reach;
+    const Rational Y = exact_Y(fold), start(from_Y), tolerance(kFoldLineTolerance_mm);
+    const Rational near_reach = tolerance + Rational(short_mm);
+    return up ? start <= Y && lo.exact() - near_reach <= Y && Y < hi.exact() - tolerance
+              : Y <= start && lo.exact() + tolerance < Y && Y <= hi.exact() + near_reach;
   };
   std::vector<Reached> reached;
   const auto n = static_cast<std::ptrdiff_t>(line.size());
   // Piece i lies between crossings i and i + 1. The first piece walked holds the start: going up,
   // the one beginning at or below it; going down, the one ending at or above it.
   std::ptrdiff_t below = 0;  // crossings under the start (going up: at or under it)
-  while (below < n &&
-         (up ? line[static_cast<std::size_t>(below)].Y <= from : line[static_cast<std::size_t>(below)].Y < from))
+  while (below < n) {
+    const Mark& m = line[static_cast<std::size_t>(below)];
+    if (up ? less(from, m) : !less(m, from)) break;
     ++below;
+  }
   for (std::ptrdiff_t i = below - 1; i >= 0 && i + 1 < n; i += up ? 1 : -1) {
     const auto k = static_cast<std::size_t>(i);
     const std::int32_t g = line[k].above;
@@ -1068,7 +1099,7 @@ std::vector<PlanBuild::Reached> PlanBuild::faces_reached(const Ray& ray) const {
     }
     if (!support_folds_onto(orientation, depth_mm, up, h, d)) continue;
     const FoldLine fold = support_fold(orientation, depth_mm, h, d);
-    if (on(fold, k)) reached.push_back({std::max(g, kNoLabel), orientation, depth_mm, nearest_double(exact_Y(fold))});
+    if (on(fold, k)) reached.push_back({std::max(g, kNoLabel), orientation, depth_mm, fold.h - fold.d});
   }
   return reached;
 }
