@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // One round of supports (seed §4.4) on the raster plan: candidates from the unjoined top and bottom
 // edges of invalid faces to the first face they can fold onto, chosen greedily and widened, then
-// painted in as faces of their own. The loop that runs the rounds is in supports.cpp.
+// painted in as faces of their own (support_paint.cpp). The loop that runs the rounds is in
+// supports.cpp.
 #pragma once
 
 #include <cstdint>

@@ -1,0 +1,176 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "boundary_chains.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <utility>
+
+#include "bands.hpp"
+
+namespace origamic::chains {
+
+Grid<std::int32_t> labels_inside_sheet(Grid<std::int32_t> labels) {
+  std::vector<std::pair<int, int>> ring, next;
+  // Only a pixel whose row and column lie next to (or on) ones with outside pixels can border one.
+  std::vector<std::uint8_t> row_out(static_cast<std::size_t>(labels.rows), 0),
+      col_out(static_cast<std::size_t>(labels.cols), 0);
+  for (int row = 0; row < labels.rows; ++row)
+    for (int col = 0; col < labels.cols; ++col)
+      if (labels(col, row) < 0) row_out[static_cast<std::size_t>(row)] = col_out[static_cast<std::size_t>(col)] = 1;
+  auto near = [](const std::vector<std::uint8_t>& out, int i) {
+    return out[static_cast<std::size_t>(i)] || (i > 0 && out[static_cast<std::size_t>(i) - 1]) ||
+           (static_cast<std::size_t>(i) + 1 < out.size() && out[static_cast<std::size_t>(i) + 1]);
+  };
+  for (int row = 0; row < labels.rows; ++row)
+    for (int col = 0; col < labels.cols; ++col) {
+      if (!near(row_out, row) || !near(col_out, col) || labels(col, row) < 0) continue;
+      const bool borders_outside =
+          (col > 0 && labels(col - 1, row) < 0) || (col + 1 < labels.cols && labels(col + 1, row) < 0) ||
+          (row > 0 && labels(col, row - 1) < 0) || (row + 1 < labels.rows && labels(col, row + 1) < 0);
+      if (borders_outside) ring.emplace_back(col, row);
+    }
+  while (!ring.empty()) {
+    next.clear();
+    for (const auto& [col, row] : ring)
+      for (const auto& [c, r] : {std::pair{col - 1, row}, {col + 1, row}, {col, row - 1}, {col, row + 1}})
+        if (labels.contains(c, r) && labels(c, r) < 0) {
+          labels(c, r) = labels(col, row);
+          next.emplace_back(c, r);
+        }
+    ring.swap(next);
+  }
+  return labels;
+}
+
+std::vector<Chain> trace_chains(const Grid<std::int32_t>& labels) {
+  const int cols = labels.cols, rows = labels.rows, corner_cols = cols + 1;
+  if (cols == 0 || rows == 0) return {};
+  auto corner = [&](int c, int r) { return static_cast<std::size_t>(r) * corner_cols + c; };
+  struct Edge {
+    std::size_t from, to;
+    std::int32_t left, right;
+  };
+  std::vector<Edge> edges;
+  // Directed so that the smaller label lies on the left: then each chain runs one way throughout.
+  auto directed = [](std::size_t a, std::size_t b, std::int32_t left, std::int32_t right) {
+    return left < right ? Edge{a, b, left, right} : Edge{b, a, right, left};
+  };
+  // The scans run in bands of rows in parallel; each band's edges keep their place in the order.
+  // Between pixel rows r - 1 (above) and r, walking +X, above on the left: row by row.
+  std::array<std::vector<Edge>, kBands> band_edges;
+  for_bands(rows - 1, [&](int band, int begin, int end) {
+    for (int r = begin + 1; r < end + 1; ++r)
+      for (int c = 0; c < cols; ++c)
+        if (labels(c, r - 1) != labels(c, r))
+          band_edges[static_cast<std::size_t>(band)].push_back(
+              directed(corner(c, r), corner(c + 1, r), labels(c, r - 1), labels(c, r)));
+  });
+  for (const std::vector<Edge>& band : band_edges) edges.insert(edges.end(), band.begin(), band.end());
+  // Between pixel columns c - 1 and c, walking +Y (up), c - 1 on the left: column by column, as the
+  // tracing order depends on it, but found row by row (columns are far apart in memory): each band
+  // counts its edges per column, and then writes them where its rows fall in each column.
+  std::array<std::vector<std::size_t>, kBands> band_next;  // per band and column: where its next edge goes
+  for_bands(rows, [&](int band, int begin, int end) {
+    std::vector<std::size_t>& count = band_next[static_cast<std::size_t>(band)];
+    count.assign(static_cast<std::size_t>(cols), 0);
+    for (int r = begin; r < end; ++r)
+      for (int c = 1; c < cols; ++c) count[static_cast<std::size_t>(c)] += labels(c - 1, r) != labels(c, r);
+  });
+  std::size_t total = edges.size();
+  for (std::size_t c = 1; c < static_cast<std::size_t>(cols); ++c)
+    for (std::vector<std::size_t>& next : band_next) total += std::exchange(next[c], total);
+  edges.resize(total);
+  for_bands(rows, [&](int band, int begin, int end) {
+    std::vector<std::size_t>& next = band_next[static_cast<std::size_t>(band)];
+    for (int r = begin; r < end; ++r)
+      for (int c = 1; c < cols; ++c)
+        if (labels(c - 1, r) != labels(c, r))
+          edges[next[static_cast<std::size_t>(c)]++] =
+              directed(corner(c, r + 1), corner(c, r), labels(c - 1, r), labels(c, r));
+  });
+
+  const std::size_t corners = static_cast<std::size_t>(corner_cols) * (rows + 1);
+  std::vector<std::uint8_t> degree(corners, 0);
+  std::vector<std::uint32_t> first_out(corners + 1, 0);
+  for (const Edge& e : edges) ++degree[e.from], ++degree[e.to], ++first_out[e.from + 1];
+  for (std::size_t i = 0; i < corners; ++i) first_out[i + 1] += first_out[i];
+  std::vector<std::uint32_t> out(edges.size());
+  {
+    std::vector<std::uint32_t> fill(first_out.begin(), first_out.end() - 1);
+    for (std::uint32_t i = 0; i < edges.size(); ++i) out[fill[edges[i].from]++] = i;
+  }
+  auto is_junction = [&](std::size_t k) {
+    const int c = static_cast<int>(k % corner_cols), r = static_cast<int>(k / corner_cols);
+    return degree[k] != 2 || c == 0 || c == cols || r == 0 || r == rows;
+  };
+  auto lattice = [&](std::size_t k) {
+    return LatticePoint{2 * static_cast<int>(k % corner_cols), 2 * static_cast<int>(k / corner_cols)};
+  };
+
+  std::vector<bool> used(edges.size(), false);
+  std::vector<Chain> chains;
+  auto follow = [&](std::uint32_t first) {
+    Chain chain{edges[first].left, edges[first].right, {lattice(edges[first].from)}};
+    std::uint32_t e = first;
+    for (;;) {
+      used[e] = true;
+      const std::size_t at = edges[e].to;
+      chain.corners.push_back(lattice(at));
+      if (is_junction(at)) break;
+      std::uint32_t next = UINT32_MAX;
+      for (std::uint32_t i = first_out[at]; i < first_out[at + 1]; ++i)
+        if (!used[out[i]]) next = out[i];
+      if (next == UINT32_MAX) break;  // a closed loop is back at its start
+      e = next;
+    }
+    chains.push_back(std::move(chain));
+  };
+  for (std::size_t k = 0; k < corners; ++k)
+    if (degree[k] > 0 && is_junction(k))
+      for (std::uint32_t i = first_out[k]; i < first_out[k + 1]; ++i)
+        if (!used[out[i]]) follow(out[i]);
+  for (std::uint32_t i = 0; i < edges.size(); ++i)
+    if (!used[i]) follow(i);
+  return chains;
+}
+
+std::vector<LatticePoint> simplified(const Chain& chain, const LatticeScale& lattice, double tolerance_mm) {
+  if (tolerance_mm <= 0) return chain.corners;
+  std::vector<LatticePoint> points = {chain.corners.front()};
+  for (std::size_t i = 1; i < chain.corners.size(); ++i) {
+    const LatticePoint a = chain.corners[i - 1], b = chain.corners[i];
+    points.push_back({(a.u + b.u) / 2, (a.v + b.v) / 2});
+  }
+  points.push_back(chain.corners.back());
+  std::vector<bool> keep(points.size(), false);
+  keep.front() = keep.back() = true;
+  std::vector<std::pair<std::size_t, std::size_t>> stack = {{0, points.size() - 1}};
+  while (!stack.empty()) {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    if (j <= i + 1) continue;
+    const double ax = lattice.X(points[i].u), ay = lattice.Y(points[i].v);
+    const double bx = lattice.X(points[j].u), by = lattice.Y(points[j].v);
+    const double dx = bx - ax, dy = by - ay, length = std::hypot(dx, dy);
+    double worst = -1;
+    std::size_t worst_k = i;
+    for (std::size_t k = i + 1; k < j; ++k) {
+      const double px = lattice.X(points[k].u) - ax, py = lattice.Y(points[k].v) - ay;
+      const double distance = length > 0 ? std::abs(dx * py - dy * px) / length : std::hypot(px, py);
+      if (distance > worst) worst = distance, worst_k = k;
+    }
+    if (worst > tolerance_mm) {
+      keep[worst_k] = true;
+      stack.emplace_back(i, worst_k);
+      stack.emplace_back(worst_k, j);
+    }
+  }
+  std::vector<LatticePoint> result;
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (keep[k]) result.push_back(points[k]);
+  return result;
+}
+
+}  // namespace origamic::chains
