@@ -125,193 +125,258 @@ constexpr int kSplitRetryFromOrder = 3;
 constexpr int kBelowTipsFromOrder = 2;
 constexpr int kCornersFromOrder = 3;
 
-// One greedy run of the support loop in the face order that `random` draws.
-// `initial` is the exact plan of `slices`, which every order starts from.
-Supported supports_in_order(const RasterMaps& maps, SliceResult slices, std::shared_ptr<const PlanBuild> initial,
-                            const Sheet& sheet, const PlanOptions& plan_options, const SupportOptions& options,
-                            std::mt19937& random, bool retry_splits, Reach reach) {
-  Supported result;
-  SupportReport& report = result.report;
-  report.round_bound = slices.face.cols / std::max(1, slices.block_px) + 1;
-  const double tolerance = fold_snap_tolerance_mm(plan_options, slices, maps.grid);
-  // A part of a face under W x W / 8 (a crumb left where a support or a slanted cut met it) joins a
-  // neighbour rather than become a face to be supported.
-  const std::int64_t crumb_px = std::int64_t{slices.block_px} * slices.block_px / 8;
-  // The verdict of the raster graph, confirmed by the exact plan whenever the raster graph sees
-  // nothing left to do: the exact plan always has the last word.
-  bool exact = false;
-  bool allow_splits = true;
-  bool splits_retried = false;
-  int split_rounds_left = 0;
-  Standing standing;
-  // The face map and faces the last exact verdict was built of: an undone pass goes back to them, and
-  // so does the end (the plan kept is drawn in full from that verdict; a crumb joined to a
+// What every face order starts from and keeps to.
+struct OrderSetting {
+  const RasterMaps& maps;
+  const Sheet& sheet;
+  const PlanOptions& plan_options;
+  const SupportOptions& options;
+  std::shared_ptr<const PlanBuild> initial;  // the exact plan of the slices
+};
+
+// What one order may do beyond the plain rules.
+struct OrderRules {
+  // Before any of the model is cut out, a few more rounds in which supports may cut faces in two.
+  bool retry_splits = false;
+  Reach reach;
+};
+
+// One greedy run of the support loop in the face order that `random` draws: passes of rounds on
+// the raster graph, each ending in a verdict of the exact plan, which always has the last word.
+class OrderRun {
+ public:
+  OrderRun(const OrderSetting& setting, SliceResult slices, OrderRules rules, std::mt19937& random)
+      : setting_(setting),
+        maps_(setting.maps),
+        options_(setting.options),
+        slices_(std::move(slices)),
+        rules_(rules),
+        random_(random),
+        tolerance_(fold_snap_tolerance_mm(setting.plan_options, slices_, maps_.grid)),
+        // A part of a face under W x W / 8 (a crumb left where a support or a slanted cut met it)
+        // joins a neighbour rather than become a face to be supported.
+        crumb_px_(std::int64_t{slices_.block_px} * slices_.block_px / 8) {
+    report().round_bound = slices_.face.cols / std::max(1, slices_.block_px) + 1;
+    for (std::size_t f = 2; f < slices_.faces.size(); ++f) model_pixels_ += slices_.faces[f].pixels;
+  }
+
+  Supported run();
+
+ private:
+  SupportReport& report() { return result_.report; }
+  std::vector<std::int32_t> invalid_faces() const { return unsupported(standing_, options_.allow_dangling); }
+  bool rounds_left() const { return result_.report.rounds < result_.report.round_bound; }
+
+  // The verdict of the raster graph.
+  void settle() {
+    standing_ = raster_standing(maps_.grid, slices_, aligned_fold_tolerance_mm(maps_.grid));
+    exact_ = false;
+  }
+  void adopt(std::shared_ptr<const PlanBuild> build) {
+    last_build_ = std::move(build);
+    result_.plan = last_build_->verdict();
+    confirmed_ = {slices_.face, slices_.faces};
+    ++report().exact_builds;
+    standing_ = standing_of(result_.plan);
+    exact_ = true;
+    painted_since_.clear();
+  }
+  // The verdict of the exact plan of the slices as they are.
+  void confirm() {
+    last_build_.reset();  // one arrangement at a time in memory
+    adopt(std::make_shared<const PlanBuild>(maps_, slices_, setting_.sheet, setting_.plan_options));
+  }
+  std::string support_rounds();
+  std::string pass();
+  bool part_faces(const std::vector<std::int32_t>& invalid, int loose);
+  bool cut_out_smaller_half(std::vector<std::int32_t> invalid);
+  void cut_out(std::int32_t f) {
+    slices_.faces[static_cast<std::size_t>(f)].hole = true;
+    ++report().cut_out;
+  }
+  Supported finish();
+
+  const OrderSetting& setting_;
+  const RasterMaps& maps_;
+  const SupportOptions& options_;
+  SliceResult slices_;
+  OrderRules rules_;
+  std::mt19937& random_;
+  double tolerance_;
+  std::int64_t crumb_px_;
+  Supported result_;
+  bool exact_ = false;  // whether standing_ is the exact plan's word on slices_
+  bool allow_splits_ = true;
+  bool splits_retried_ = false;
+  int split_rounds_left_ = 0;
+  Standing standing_;
+  // The face map and faces the last exact verdict was built of: an undone pass goes back to them,
+  // and so does the end (the plan kept is drawn in full from that verdict; a crumb joined to a
   // neighbour after it would make them disagree).
-  std::pair<Grid<std::int32_t>, std::vector<RasterFace>> confirmed;
+  std::pair<Grid<std::int32_t>, std::vector<RasterFace>> confirmed_;
   // The supports painted since the last verdict: rounds find what their supports reach on its exact
   // plan and on these (and on what else changed since, which the raster shows).
-  std::vector<Candidate> painted_since;
-  auto settle = [&] {
-    standing = raster_standing(maps.grid, slices, aligned_fold_tolerance_mm(maps.grid));
-    exact = false;
-  };
+  std::vector<Candidate> painted_since_;
   // The exact plan of the last verdict, kept: the plan kept is drawn in full from it. (Freed here,
   // not on another thread: CGAL is built without thread support, its reference counts not atomic.)
-  std::shared_ptr<const PlanBuild> last_build;
-  auto adopt = [&](std::shared_ptr<const PlanBuild> build) {
-    last_build = std::move(build);
-    result.plan = last_build->verdict();
-    confirmed = {slices.face, slices.faces};
-    ++report.exact_builds;
-    standing = standing_of(result.plan);
-    exact = true;
-    painted_since.clear();
-  };
-  auto confirm = [&] {
-    last_build.reset();  // one arrangement at a time in memory
-    adopt(std::make_shared<const PlanBuild>(maps, slices, sheet, plan_options));
-  };
-  // Rounds of supports until every face stands or they stop helping; returns why they stopped.
-  auto support_rounds = [&]() -> std::string {
-    std::size_t fewest_invalid = SIZE_MAX;
-    int rounds_without_progress = 0;
-    for (;;) {
-      std::vector<std::int32_t> invalid = unsupported(standing, options.allow_dangling);
-      if (invalid.empty()) return {};
-      // Supports that split other faces can leave as many invalid faces as they fixed: give up
-      // when three rounds in a row made no progress.
-      if (invalid.size() < fewest_invalid) fewest_invalid = invalid.size(), rounds_without_progress = 0;
-      else if (++rounds_without_progress >= 3)
-        return std::to_string(invalid.size()) + " faces still invalid: no progress in 3 rounds";
-      if (report.rounds >= report.round_bound)
-        return std::to_string(invalid.size()) + " faces still invalid after " + std::to_string(report.round_bound) +
-               " rounds (the loop's bound)";
-      ++report.rounds;
-      std::shuffle(invalid.begin(), invalid.end(), random);
-      Reach round_reach = reach;
-      round_reach.split_faces = allow_splits || split_rounds_left-- > 0;
-      const std::vector<Candidate> chosen =
-          choose_supports(maps, slices, *last_build, painted_since, standing, invalid, options, round_reach);
-      if (chosen.empty()) return std::to_string(invalid.size()) + " faces invalid and no support reaches them";
-      report.supports += static_cast<int>(chosen.size());
-      paint_supports(chosen, maps.grid, tolerance, crumb_px, slices);
-      painted_since.insert(painted_since.end(), chosen.begin(), chosen.end());
-      settle();
-    }
-  };
-  std::int64_t model_pixels = 0;
-  for (std::size_t f = 2; f < slices.faces.size(); ++f) model_pixels += slices.faces[f].pixels;
-  std::int64_t cut_out_pixels = 0;
-  std::size_t fewest_exact = SIZE_MAX;
-  adopt(std::move(initial));  // every pass, the first too, walks an exact plan
+  std::shared_ptr<const PlanBuild> last_build_;
+  std::int64_t model_pixels_ = 0, cut_out_pixels_ = 0;
+};
+
+// Rounds of supports until every face stands or they stop helping; returns why they stopped.
+std::string OrderRun::support_rounds() {
+  SupportReport& tally = report();
+  std::size_t fewest_invalid = SIZE_MAX;
+  int rounds_without_progress = 0;
   for (;;) {
-    // A pass of rounds from an exact verdict that leaves at least as many faces invalid as it found
-    // is undone: its supports held nothing, and the exact plan of the slices before it is at hand.
-    // Found is the fewer of the exact count and the raster graph's: the pass's end is counted on the
-    // raster graph, which may miss a face the exact plan sees.
-    const bool from_exact = exact;
-    std::size_t invalid_before = unsupported(standing, options.allow_dangling).size();
-    if (exact) {
-      const Standing raster = raster_standing(maps.grid, slices, aligned_fold_tolerance_mm(maps.grid));
-      invalid_before = std::min(invalid_before, unsupported(raster, options.allow_dangling).size());
-    }
-    const int supports_before = report.supports;
-    const std::string why = support_rounds();
-    if (from_exact && !why.empty() && unsupported(standing, options.allow_dangling).size() >= invalid_before) {
-      slices.face = confirmed.first;
-      slices.faces = confirmed.second;
-      report.supports = supports_before;  // the rounds still count against the bound
-      standing = standing_of(result.plan);
-      exact = true;
-      painted_since.clear();
-      ++report.passes_undone;
-    } else if (!exact) {  // else the slices are still the exact plan's, and it stands as it is
-      confirm();
-    }
-    std::vector<std::int32_t> invalid = unsupported(standing, options.allow_dangling);
-    const int loose = result.plan.loose_card_pieces;
+    std::vector<std::int32_t> invalid = invalid_faces();
+    if (invalid.empty()) return {};
+    // Supports that split other faces can leave as many invalid faces as they fixed: give up
+    // when three rounds in a row made no progress.
+    if (invalid.size() < fewest_invalid)
+      fewest_invalid = invalid.size(), rounds_without_progress = 0;
+    else if (++rounds_without_progress >= 3)
+      return std::to_string(invalid.size()) + " faces still invalid: no progress in 3 rounds";
+    if (!rounds_left())
+      return std::to_string(invalid.size()) + " faces still invalid after " + std::to_string(tally.round_bound) +
+             " rounds (the loop's bound)";
+    ++tally.rounds;
+    std::shuffle(invalid.begin(), invalid.end(), random_);
+    Reach round_reach = rules_.reach;
+    round_reach.split_faces = allow_splits_ || split_rounds_left_-- > 0;
+    const std::vector<Candidate> chosen =
+        choose_supports(maps_, slices_, *last_build_, painted_since_, standing_, invalid, options_, round_reach);
+    if (chosen.empty()) return std::to_string(invalid.size()) + " faces invalid and no support reaches them";
+    tally.supports += static_cast<int>(chosen.size());
+    paint_supports(chosen, maps_.grid, tolerance_, crumb_px_, slices_);
+    painted_since_.insert(painted_since_.end(), chosen.begin(), chosen.end());
+    settle();
+  }
+}
+
+// A pass of rounds from the last verdict, and the exact plan's verdict on where it ends; returns why
+// the rounds stopped. A pass from an exact verdict that leaves at least as many faces invalid as it
+// found is undone: its supports held nothing, and the exact plan of the slices before it is at
+// hand. Found is the fewer of the exact count and the raster graph's: the pass's end is counted on
+// the raster graph, which may miss a face the exact plan sees.
+std::string OrderRun::pass() {
+  const bool from_exact = exact_;
+  std::size_t invalid_before = invalid_faces().size();
+  if (exact_) {
+    const Standing raster = raster_standing(maps_.grid, slices_, aligned_fold_tolerance_mm(maps_.grid));
+    invalid_before = std::min(invalid_before, unsupported(raster, options_.allow_dangling).size());
+  }
+  const int supports_before = report().supports;
+  std::string why = support_rounds();
+  if (from_exact && !why.empty() && invalid_faces().size() >= invalid_before) {
+    slices_.face = confirmed_.first;
+    slices_.faces = confirmed_.second;
+    report().supports = supports_before;  // the rounds still count against the bound
+    standing_ = standing_of(result_.plan);
+    exact_ = true;
+    painted_since_.clear();
+    ++report().passes_undone;
+  } else if (!exact_) {  // else the slices are still the exact plan's, and it stands as it is
+    confirm();
+  }
+  return why;
+}
+
+// The exact plan decides on pieces of paper: a face it finds invalid may be in pieces the raster
+// graph took for one. Those become faces of their own, and the rounds go on. From then on no
+// support may cut a face in two: the pieces it made would need supports of their own, whose
+// supports cut more faces, without end. A part under the crumb size (or a whole face) joins a
+// neighbour instead: a face left without pixels is merged away, not a face the rounds would have to
+// hold. A join adds no piece, so supports may still cut faces in two. Either way the slices are no
+// longer the exact plan's. Returns whether the face map changed.
+bool OrderRun::part_faces(const std::vector<std::int32_t>& invalid, int loose) {
+  std::vector<std::int32_t> apart = invalid;
+  if (loose > 0) apart.insert(apart.end(), {kBackFace, kFloorFace});
+  const std::vector<std::int32_t> before = slices_.face.values;
+  const bool parted = !split_disconnected_faces(slices_, apart, crumb_px_, slices_.block_px).empty();
+  if (!parted && slices_.face.values == before) return false;
+  allow_splits_ = allow_splits_ && !parted;
+  merge_coplanar_faces(slices_);
+  settle();
+  return true;
+}
+
+// The last resort: the smaller half of the faces no support holds are cut out of the sheet (holes,
+// reported as "removed"). That can open the way for supports to the larger ones. A card missing
+// more than a quarter of its model is no likeness: then nothing is cut, and false returned.
+bool OrderRun::cut_out_smaller_half(std::vector<std::int32_t> invalid) {
+  const auto pixels = [&](std::int32_t f) { return slices_.faces[static_cast<std::size_t>(f)].pixels; };
+  std::ranges::sort(
+      invalid, [&](std::int32_t a, std::int32_t b) { return pixels(a) != pixels(b) ? pixels(a) < pixels(b) : a < b; });
+  const std::int64_t limit = pixels(invalid[invalid.size() / 2]);
+  std::int64_t more = 0;
+  for (const std::int32_t f : invalid)
+    if (pixels(f) <= limit) more += pixels(f);
+  if (4 * (cut_out_pixels_ + more) > model_pixels_) {
+    report().stop_reason += "; cutting them out would remove over a quarter of the model";
+    return false;
+  }
+  cut_out_pixels_ += more;
+  report().cut_out_share = static_cast<double>(cut_out_pixels_) / static_cast<double>(model_pixels_);
+  for (const std::int32_t f : invalid)
+    if (pixels(f) <= limit) cut_out(f);
+  return true;
+}
+
+Supported OrderRun::run() {
+  adopt(setting_.initial);  // every pass, the first too, walks an exact plan
+  std::size_t fewest_exact = SIZE_MAX;
+  for (;;) {
+    const std::string why = pass();
+    std::vector<std::int32_t> invalid = invalid_faces();
+    const int loose = result_.plan.loose_card_pieces;
     if (invalid.empty() && loose == 0) break;
-    report.stop_reason = why.empty() ? std::to_string(invalid.size()) + " faces invalid in the exact plan" : why;
-    if (loose > 0) report.stop_reason += "; " + std::to_string(loose) + " loose pieces of the back plane or the floor";
-    std::vector<std::int32_t> apart = invalid;
-    if (loose > 0) apart.insert(apart.end(), {kBackFace, kFloorFace});
-    // The exact plan decides on pieces of paper: a face it finds invalid may be in pieces the raster
-    // graph took for one. Those become faces of their own, and the rounds go on.
-    // From then on no support may cut a face in two: the pieces it made would need supports of
-    // their own, whose supports cut more faces, without end.
-    // A part under the crumb size (or a whole face) joins a neighbour instead: a face left without
-    // pixels is merged away, not a face the rounds would have to hold. A join adds no piece, so
-    // supports may still cut faces in two. Either way the slices are no longer the exact plan's.
-    if (report.rounds < report.round_bound) {
-      const std::vector<std::int32_t> before = slices.face.values;
-      const bool parted = !split_disconnected_faces(slices, apart, crumb_px, slices.block_px).empty();
-      const bool joined = slices.face.values != before;
-      if (parted || joined) {
-        allow_splits = allow_splits && !parted;
-        merge_coplanar_faces(slices);
-        settle();
-        continue;
-      }
-    }
+    report().stop_reason = why.empty() ? std::to_string(invalid.size()) + " faces invalid in the exact plan" : why;
+    if (loose > 0)
+      report().stop_reason += "; " + std::to_string(loose) + " loose pieces of the back plane or the floor";
+    if (rounds_left() && part_faces(invalid, loose)) continue;
     // The exact plan found fewer invalid faces than last time: another pass of rounds from its word.
     const bool progress = invalid.size() < fewest_exact;
     fewest_exact = std::min(fewest_exact, invalid.size());
-    if (progress && report.rounds < report.round_bound) continue;
+    if (progress && rounds_left()) continue;
     if (invalid.empty()) break;  // only loose pieces the raster plan cannot tell apart
-    // The last resort: the smaller half of the faces no support holds are cut out of the sheet
-    // (holes, reported as "removed"). That can open the way for supports to the larger ones, so
-    // the rounds resume. A card missing more than a quarter of its model is no likeness: then the
-    // plan stays invalid, with the reason.
-    if (!options.cut_out_unsupported) break;
-    auto cut_out = [&](std::int32_t f) {
-      slices.faces[static_cast<std::size_t>(f)].hole = true;
-      ++report.cut_out;
-    };
+    if (!options_.cut_out_unsupported) break;
     // Pieces of the back plane or the floor that strips around them parted from it are card, not
     // model: a hole there takes nothing from the likeness, so they go first and free of the quota.
     const auto card_piece = [&](std::int32_t f) {
-      return f > kFloorFace && slices.faces[static_cast<std::size_t>(f)].depth_mm == 0;
+      return f > kFloorFace && slices_.faces[static_cast<std::size_t>(f)].depth_mm == 0;
     };
     const auto model_faces = std::ranges::partition(invalid, card_piece);
     if (model_faces.begin() != invalid.begin()) {
-      std::for_each(invalid.begin(), model_faces.begin(), cut_out);
-    } else if (retry_splits && !splits_retried && report.rounds < report.round_bound) {
-      // From the third order on, before any of the model is cut out: a few more rounds in which
-      // supports may cut faces in two again, so that a face held only by reaching across others (a
-      // ring's top) stands.
-      splits_retried = true;
-      split_rounds_left = kSplitRetryRounds;
+      std::for_each(invalid.begin(), model_faces.begin(), [&](std::int32_t f) { cut_out(f); });
+    } else if (rules_.retry_splits && !splits_retried_ && rounds_left()) {
+      // Before any of the model is cut out: a few more rounds in which supports may cut faces in
+      // two again, so that a face held only by reaching across others (a ring's top) stands.
+      splits_retried_ = true;
+      split_rounds_left_ = kSplitRetryRounds;
       continue;
-    } else {
-      const auto pixels = [&](std::int32_t f) { return slices.faces[static_cast<std::size_t>(f)].pixels; };
-      std::ranges::sort(invalid, [&](std::int32_t a, std::int32_t b) {
-        return pixels(a) != pixels(b) ? pixels(a) < pixels(b) : a < b;
-      });
-      const std::int64_t limit = pixels(invalid[invalid.size() / 2]);
-      std::int64_t more = 0;
-      for (const std::int32_t f : invalid)
-        if (pixels(f) <= limit) more += pixels(f);
-      if (4 * (cut_out_pixels + more) > model_pixels) {
-        report.stop_reason += "; cutting them out would remove over a quarter of the model";
-        break;
-      }
-      cut_out_pixels += more;
-      report.cut_out_share = static_cast<double>(cut_out_pixels) / static_cast<double>(model_pixels);
-      for (const std::int32_t f : invalid)
-        if (pixels(f) <= limit) cut_out(f);
+    } else if (!cut_out_smaller_half(std::move(invalid))) {
+      break;
     }
-    merge_coplanar_faces(slices);
-    align_folds_to_lines(slices, maps.grid, tolerance);
+    // The rounds resume with the holes.
+    merge_coplanar_faces(slices_);
+    align_folds_to_lines(slices_, maps_.grid, tolerance_);
     settle();
   }
-  report.converged = report.cut_out == 0 && unsupported(standing, options.allow_dangling).empty() && result.plan.loose_card_pieces == 0;
-  if (report.converged) report.stop_reason.clear();
-  slices.face = std::move(confirmed.first);
-  slices.faces = std::move(confirmed.second);
-  result.plan = last_build->full();
-  report.narrow = narrow_strips(slices, maps.grid);
-  result.slices = std::move(slices);
-  return result;
+  return finish();
+}
+
+// The plan kept: drawn in full from the last verdict, with the slices it was built of.
+Supported OrderRun::finish() {
+  SupportReport& tally = report();
+  tally.converged = tally.cut_out == 0 && invalid_faces().empty() && result_.plan.loose_card_pieces == 0;
+  if (tally.converged) tally.stop_reason.clear();
+  slices_.face = std::move(confirmed_.first);
+  slices_.faces = std::move(confirmed_.second);
+  result_.plan = last_build_->full();
+  tally.narrow = narrow_strips(slices_, maps_.grid);
+  result_.slices = std::move(slices_);
+  return std::move(result_);
 }
 
 bool stands(const Supported& s, bool allow_dangling) {
@@ -337,15 +402,15 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
   // The greedy choice depends on the order the faces choose in, and one order can paint itself into
   // a corner that another avoids: the next orders of the same random sequence get their turn.
   std::mt19937 random(options.seed);
-  const auto initial = std::make_shared<const PlanBuild>(maps, slices, sheet, plan_options);
+  const OrderSetting setting{maps, sheet, plan_options, options,
+                             std::make_shared<const PlanBuild>(maps, slices, sheet, plan_options)};
   std::optional<Supported> best;
   for (int order = 1; order <= std::max(1, options.orders); ++order) {
     const bool last = order >= options.orders;
-    const bool retry_splits = order >= std::min(options.orders, kSplitRetryFromOrder);
-    const Reach reach{true, order >= std::min(options.orders, kBelowTipsFromOrder),
-                      order >= std::min(options.orders, kCornersFromOrder)};
-    Supported run = supports_in_order(maps, last ? std::move(slices) : slices, initial, sheet, plan_options, options,
-                                      random, retry_splits, reach);
+    const OrderRules rules{order >= std::min(options.orders, kSplitRetryFromOrder),
+                           {true, order >= std::min(options.orders, kBelowTipsFromOrder),
+                            order >= std::min(options.orders, kCornersFromOrder)}};
+    Supported run = OrderRun(setting, last ? std::move(slices) : slices, rules, random).run();
     if (!best || shortfall(run, options.allow_dangling) < shortfall(*best, options.allow_dangling))
       best = std::move(run);
     best->report.orders = order;
