@@ -83,16 +83,16 @@ struct DesignArgs {
   double rotate_deg = 0;
   std::optional<double> scale;
   std::string offset;
-  double margin_mm = 10;
-  double px_per_mm = 4;
-  double min_strip_mm = 3;
+  double margin_mm = origamic::PlacementOptions{}.margin_mm;
+  double px_per_mm = origamic::RasterOptions{}.px_per_mm;
+  double min_strip_mm = origamic::SliceOptions{}.min_strip_mm;
   std::string out_dir;
   std::string maps_dir;
   bool strict = false;
   bool no_supports = false;
   bool allow_dangling = false;
-  std::uint32_t seed = 1;
-  int orders = 8;
+  std::uint32_t seed = origamic::SupportOptions{}.seed;
+  int orders = origamic::SupportOptions{}.orders;
   std::string colours = "laser";
   std::string dxf = "r12";
 };
@@ -299,7 +299,7 @@ int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const
 struct ValidateArgs {
   std::string plan;
   double min_strip_mm = 0;
-  double tolerance_mm = 1e-6;
+  double tolerance_mm = origamic::AnalysisOptions{}.tolerance_mm;
   bool json = false;
   origamic::LayerNames layers;
 };
