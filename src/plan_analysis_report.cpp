@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The verdict of a plan's analysis for the terminal and as JSON.
+// The verdict of a plan's analysis for the terminal and as JSON, and the names of its problem kinds.
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -36,6 +36,38 @@ std::string counted(PlanProblemKind kind, int count) {
 }
 
 }  // namespace
+
+std::string_view to_string(PlanProblemKind kind) {
+  switch (kind) {
+    case PlanProblemKind::ConflictingLines:
+      return "conflicting_lines";
+    case PlanProblemKind::SheetNotSplit:
+      return "sheet_not_split";
+    case PlanProblemKind::FoldNotHorizontal:
+      return "fold_not_horizontal";
+    case PlanProblemKind::FoldInsideFace:
+      return "fold_inside_face";
+    case PlanProblemKind::InconsistentFold:
+      return "inconsistent_fold";
+    case PlanProblemKind::WrongFoldKind:
+      return "wrong_fold_kind";
+    case PlanProblemKind::Floating:
+      return "floating";
+    case PlanProblemKind::Dangling:
+      return "dangling";
+    case PlanProblemKind::Invalid:
+      return "invalid";
+    case PlanProblemKind::NarrowStrip:
+      return "narrow_strip";
+    case PlanProblemKind::OutsideCard:
+      return "outside_card";
+    case PlanProblemKind::CutInsideFace:
+      return "cut_inside_face";
+    case PlanProblemKind::OutsideSheet:
+      return "outside_sheet";
+  }
+  return "?";
+}
 
 std::string analysis_summary_line(const PlanAnalysis& analysis) {
   std::string line = std::string("plan ") + (analysis.valid() ? "VALID" : "INVALID") + ": " +

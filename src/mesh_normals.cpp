@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Shading normals at the corners of a loaded triangle soup: computed over the faces around each
+// vertex within a feature angle, or taken from the file and made unit length.
+#include "mesh_normals.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <numbers>
+#include <numeric>
+
+namespace origamic {
+namespace {
+
+glm::dvec3 face_normal(const TriangleMesh& mesh, const std::array<std::uint32_t, 3>& t) {
+  const glm::dvec3 n =
+      glm::cross(mesh.positions[t[1]] - mesh.positions[t[0]], mesh.positions[t[2]] - mesh.positions[t[0]]);
+  const double length = glm::length(n);
+  return length > 0 ? n / length : glm::dvec3(0.0);
+}
+
+double corner_angle(const TriangleMesh& mesh, const std::array<std::uint32_t, 3>& t, int corner) {
+  const glm::dvec3& p = mesh.positions[t[static_cast<std::size_t>(corner)]];
+  const glm::dvec3 a = mesh.positions[t[static_cast<std::size_t>((corner + 1) % 3)]] - p;
+  const glm::dvec3 b = mesh.positions[t[static_cast<std::size_t>((corner + 2) % 3)]] - p;
+  const double la = glm::length(a), lb = glm::length(b);
+  if (la == 0 || lb == 0) return 0;
+  return std::acos(std::clamp(glm::dot(a, b) / (la * lb), -1.0, 1.0));
+}
+
+}  // namespace
+
+// Angle-weighted normals per corner over the faces around the corner's vertex whose normal is
+// within the feature angle of the corner's own face.
+std::vector<glm::vec3> feature_corner_normals(const TriangleMesh& mesh, double feature_angle_deg) {
+  const std::size_t n_vertices = mesh.positions.size();
+  std::vector<std::uint32_t> first(n_vertices + 1, 0);
+  for (const auto& t : mesh.triangles)
+    for (auto v : t) ++first[v + 1];
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  std::vector<std::uint32_t> corners(first.back());
+  std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+    for (int c = 0; c < 3; ++c)
+      corners[fill[mesh.triangles[f][static_cast<std::size_t>(c)]]++] = static_cast<std::uint32_t>(3 * f + c);
+
+  // Each triangle's values depend on nothing written in the same loop: both loops run on all cores.
+  std::vector<glm::dvec3> normals(mesh.triangles.size());
+  std::vector<double> angles(3 * mesh.triangles.size());
+  tbb::parallel_for(std::size_t{0}, mesh.triangles.size(), [&](std::size_t f) {
+    normals[f] = face_normal(mesh, mesh.triangles[f]);
+    for (int c = 0; c < 3; ++c) angles[3 * f + c] = corner_angle(mesh, mesh.triangles[f], c);
+  });
+
+  const double cos_feature = std::cos(feature_angle_deg * std::numbers::pi / 180);
+  std::vector<glm::vec3> result(3 * mesh.triangles.size());
+  tbb::parallel_for(std::size_t{0}, mesh.triangles.size(), [&](std::size_t f) {
+    for (int c = 0; c < 3; ++c) {
+      const std::uint32_t v = mesh.triangles[f][static_cast<std::size_t>(c)];
+      glm::dvec3 sum(0.0);
+      for (std::uint32_t k = first[v]; k < first[v + 1]; ++k) {
+        const std::size_t g = corners[k] / 3;
+        if (glm::dot(normals[g], normals[f]) >= cos_feature) sum += angles[corners[k]] * normals[g];
+      }
+      const double length = glm::length(sum);
+      result[3 * f + c] = glm::vec3(length > 0 ? sum / length : normals[f]);
+    }
+  });
+  return result;
+}
+
+// File normals may be unnormalised or missing (zero); those corners take their face's normal.
+void unit_or_face_normals(TriangleMesh& mesh) {
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      glm::vec3& n = mesh.corner_normals[3 * f + c];
+      const float length = glm::length(n);
+      n = std::isfinite(length) && length > 0 ? n / length : glm::vec3(face_normal(mesh, mesh.triangles[f]));
+    }
+  }
+}
+
+}  // namespace origamic

@@ -1,0 +1,22 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Internal: the corner normals of a loaded triangle soup (mesh_io.cpp reads the soup).
+#pragma once
+
+#include <glm/vec3.hpp>
+#include <vector>
+
+#include "origamic/mesh_io.hpp"
+
+namespace origamic {
+
+/// Unit normals at each triangle corner (3 per triangle, in triangle order): the mean, weighted by
+/// corner angle, of the normals of the faces around the corner's vertex that lie within
+/// feature_angle_deg of the corner's own face, so sharp edges stay sharp. Where that mean is zero
+/// the corner takes its face's normal.
+std::vector<glm::vec3> feature_corner_normals(const TriangleMesh& mesh, double feature_angle_deg);
+
+/// Makes the file's corner normals in mesh.corner_normals unit length; a zero or non-finite one takes
+/// its face's normal. \pre mesh.corner_normals holds 3 normals per triangle.
+void unit_or_face_normals(TriangleMesh& mesh);
+
+}  // namespace origamic

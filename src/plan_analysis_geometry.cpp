@@ -1,0 +1,355 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The exact geometry under a plan's analysis (plan_analysis.cpp): the plan's lines collected onto the
+// sheet, the faces of their arrangement as rings, and the narrowest chords across a face. CGAL is
+// heavy to compile: the analysis has these two translation units and no more. Not reentrant: see
+// exact_kernel.hpp.
+#define CGAL_HAS_NO_THREADS 1
+
+#include "plan_analysis_geometry.hpp"
+
+#include <CGAL/intersections.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <tuple>
+#include <unordered_map>
+#include <utility>
+
+#include "origamic/error.hpp"
+#include "origamic/mm_text.hpp"
+
+namespace origamic {
+namespace {
+
+using exact::Arrangement;
+using exact::FT;
+using exact::Kernel;
+using exact::nearest_double;
+using exact::Point;
+using exact::Traits;
+using Face = Arrangement::Face_const_handle;
+using Halfedge = Arrangement::Halfedge_const_handle;
+
+}  // namespace
+
+// Numbers in messages: plan mm to 1e-6, small amounts with three significant digits.
+std::string num(double value) {
+  if (value == 0 || std::abs(value) >= 1e-3) return mm_text(value);
+  char text[64];
+  std::snprintf(text, sizeof text, "%.3g", value);
+  return text;
+}
+
+std::string point_text(PlanPoint p) { return "(" + num(p.X) + ", " + num(p.Y) + ")"; }
+
+PlanPoint plan_point(const Point& p) { return {nearest_double(p.x()), nearest_double(p.y())}; }
+
+// ---------------------------------------------------------------------------------------------
+// The arrangement of every line, clipped to the sheet.
+
+namespace {
+
+FT exact_unit(DrawingUnit unit) {
+  switch (unit) {
+    case DrawingUnit::Millimetre:
+      return FT(1);
+    case DrawingUnit::Centimetre:
+      return FT(10);
+    case DrawingUnit::Metre:
+      return FT(1000);
+    case DrawingUnit::Inch:
+      return FT(254) / FT(10);
+    case DrawingUnit::Foot:
+      return FT(3048) / FT(10);
+  }
+  return FT(1);
+}
+
+// A horizontal piece of a fold as drawn: the whole fold, a printed dash or a perforation cut.
+struct FoldPiece {
+  FT Y, lo, hi;
+  LineKind kind;
+  bool perforation;
+};
+
+// Folds drawn in pieces stand for whole folds: collinear pieces of one kind with no cut (or outline)
+// reaching their line between them are one fold, which ends where they do; perforations keep clear
+// of the cuts, so a fold drawn with them runs on to the cut on either side (the sheet's edge if
+// none). The ends are exact: a joined fold meets its cut at their exact crossing.
+void add_joined_folds(std::vector<FoldPiece> pieces, Input& in) {
+  std::vector<std::pair<Kernel::Segment_2, std::pair<double, double>>> cuts;  // with their Y range
+  for (const Traits::Curve_2& curve : in.curves)
+    if (in.kind[static_cast<std::size_t>(curve.data())] != LineKind::Mountain &&
+        in.kind[static_cast<std::size_t>(curve.data())] != LineKind::Valley) {
+      const double a = CGAL::to_double(curve.source().y()), b = CGAL::to_double(curve.target().y());
+      cuts.emplace_back(Kernel::Segment_2(curve.source(), curve.target()), std::pair{std::min(a, b), std::max(a, b)});
+    }
+  std::ranges::sort(pieces, [](const FoldPiece& a, const FoldPiece& b) {
+    return std::tie(a.Y, a.kind, a.lo) < std::tie(b.Y, b.kind, b.lo);
+  });
+  std::vector<FT> crossings;
+  for (std::size_t i = 0; i < pieces.size();) {
+    const FT Y = pieces[i].Y;
+    const double Y_double = CGAL::to_double(Y);
+    crossings.clear();
+    for (const auto& [cut, range] : cuts) {
+      if (Y_double < range.first - 1 || Y_double > range.second + 1) continue;
+      const Point &p = cut.source(), &q = cut.target();
+      const CGAL::Comparison_result sp = CGAL::compare(p.y(), Y), sq = CGAL::compare(q.y(), Y);
+      if (sp == sq && sp != CGAL::EQUAL) continue;
+      if (sp == CGAL::EQUAL) crossings.push_back(p.x());
+      if (sq == CGAL::EQUAL) crossings.push_back(q.x());
+      if (sp != CGAL::EQUAL && sq != CGAL::EQUAL)
+        crossings.push_back(p.x() + (q.x() - p.x()) * (Y - p.y()) / (q.y() - p.y()));
+    }
+    std::ranges::sort(crossings);
+    // Whether a cut reaches the line within [a, b].
+    auto cut_between = [&](const FT& a, const FT& b) {
+      const auto first = std::ranges::lower_bound(crossings, a);
+      return first != crossings.end() && *first <= b;
+    };
+    std::size_t j = i;
+    while (j < pieces.size() && pieces[j].Y == Y && pieces[j].kind == pieces[i].kind) ++j;
+    for (std::size_t k = i; k < j;) {
+      FT lo = pieces[k].lo, hi = pieces[k].hi;
+      bool perforated = pieces[k].perforation;
+      for (++k; k < j && !cut_between(hi, pieces[k].lo); ++k)
+        hi = CGAL::max(hi, pieces[k].hi), perforated |= pieces[k].perforation;
+      if (perforated) {
+        const auto after = std::ranges::lower_bound(crossings, hi);
+        const auto before = std::ranges::upper_bound(crossings, lo);
+        hi = after != crossings.end() ? *after : in.max_X;
+        lo = before != crossings.begin() ? *std::prev(before) : in.min_X;
+      }
+      in.curves.emplace_back(Kernel::Segment_2(Point(lo, Y), Point(hi, Y)), static_cast<std::int32_t>(in.kind.size()));
+      in.kind.push_back(pieces[i].kind);
+    }
+    i = j;
+  }
+}
+
+}  // namespace
+
+Input collect(const std::vector<PlanPolyline>& lines, const AnalysisOptions& options) {
+  const FT unit = exact_unit(options.unit);
+  const bool scaled = options.unit != DrawingUnit::Millimetre;
+  auto exact = [&](PlanPoint p) {
+    if (!std::isfinite(p.X) || !std::isfinite(p.Y)) throw InputError("plan: a coordinate is not finite");
+    return scaled ? Point(FT(p.X) * unit, FT(p.Y) * unit) : Point(p.X, p.Y);
+  };
+  std::vector<std::vector<Point>> points(lines.size());
+  bool any_line = false, any_outline = false;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    for (const PlanPoint& p : lines[i].points) points[i].push_back(exact(p));
+    if (lines[i].points.size() >= 2) (lines[i].kind == LineKind::Outline ? any_outline : any_line) = true;
+  }
+  if (!any_line) throw InputError("plan: no cut or fold line");
+
+  Input in;
+  bool first = true;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (any_outline && lines[i].kind != LineKind::Outline) continue;
+    for (const Point& p : points[i]) {
+      if (first || p.x() < in.min_X) in.min_X = p.x();
+      if (first || p.x() > in.max_X) in.max_X = p.x();
+      if (first || p.y() < in.min_Y) in.min_Y = p.y();
+      if (first || p.y() > in.max_Y) in.max_Y = p.y();
+      first = false;
+    }
+  }
+  if (!(in.min_X < in.max_X) || !(in.min_Y < FT(0)) || !(FT(0) < in.max_Y))
+    throw InputError("plan: the sheet (X " + num(nearest_double(in.min_X)) + " to " + num(nearest_double(in.max_X)) +
+                     ", Y " + num(nearest_double(in.min_Y)) + " to " + num(nearest_double(in.max_Y)) +
+                     " mm) does not straddle the main fold Y = 0: origamic plans have the back plane above Y = 0 "
+                     "and the floor below");
+
+  const Kernel::Iso_rectangle_2 sheet(Point(in.min_X, in.min_Y), Point(in.max_X, in.max_Y));
+  std::vector<FoldPiece> fold_pieces;
+  bool perforation = false;
+  auto add = [&](const Point& p, const Point& q, LineKind kind) {
+    if (p == q) return;
+    if ((kind == LineKind::Mountain || kind == LineKind::Valley) && p.y() == q.y()) {
+      fold_pieces.push_back({p.y(), CGAL::min(p.x(), q.x()), CGAL::max(p.x(), q.x()), kind, perforation});
+      return;
+    }
+    in.curves.emplace_back(Kernel::Segment_2(p, q), static_cast<std::int32_t>(in.kind.size()));
+    in.kind.push_back(kind);
+  };
+  const Point corners[4] = {{in.min_X, in.min_Y}, {in.max_X, in.min_Y}, {in.max_X, in.max_Y}, {in.min_X, in.max_Y}};
+  for (int k = 0; k < 4; ++k) add(corners[k], corners[(k + 1) % 4], LineKind::Outline);
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    perforation = lines[i].perforation;
+    bool reported = false;
+    for (std::size_t k = 1; k < points[i].size(); ++k) {
+      const Point &p = points[i][k - 1], &q = points[i][k];
+      if (!sheet.has_on_unbounded_side(p) && !sheet.has_on_unbounded_side(q)) {
+        add(p, q, lines[i].kind);
+        continue;
+      }
+      if (!reported) {
+        reported = true;
+        const PlanPoint at = plan_point(sheet.has_on_unbounded_side(p) ? p : q);
+        in.warnings.push_back({PlanProblemKind::OutsideSheet, at, plan_point(p), plan_point(q), -1, 0,
+                               "a line leaves the sheet at " + point_text(at) + ": clipped to the sheet"});
+      }
+      const auto clipped = CGAL::intersection(Kernel::Segment_2(p, q), sheet);
+      if (!clipped) continue;
+      if (const auto* s = boost::get<Kernel::Segment_2>(&*clipped)) add(s->source(), s->target(), lines[i].kind);
+    }
+  }
+  add_joined_folds(std::move(fold_pieces), in);
+  return in;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Faces as rings.
+
+// The boundary of a face without the edges that have it on both sides (slits and loose ends): from
+// each remaining halfedge, the next one around its target vertex that still bounds another face.
+std::vector<Ring> rings_of(Face f) {
+  std::vector<Halfedge> real;
+  auto collect = [&](Arrangement::Ccb_halfedge_const_circulator first) {
+    auto he = first;
+    do
+      if (he->twin()->face() != f) real.push_back(he);
+    while (++he != first);
+  };
+  for (auto ccb = f->outer_ccbs_begin(); ccb != f->outer_ccbs_end(); ++ccb) collect(*ccb);
+  for (auto ccb = f->inner_ccbs_begin(); ccb != f->inner_ccbs_end(); ++ccb) collect(*ccb);
+  std::unordered_map<const void*, bool> used;
+  for (const Halfedge& he : real) used[&*he] = false;
+  std::vector<std::pair<FT, Ring>> rings;  // (twice the signed area, ring)
+  for (const Halfedge& start : real) {
+    if (used[&*start]) continue;
+    Ring ring;
+    FT twice = 0;
+    Halfedge he = start;
+    do {
+      used[&*he] = true;
+      ring.push_back(he->source()->point());
+      const Point &p = he->source()->point(), &q = he->target()->point();
+      twice += p.x() * q.y() - q.x() * p.y();
+      Halfedge next = he->next();
+      while (next->twin()->face() == f) next = next->twin()->next();
+      he = next;
+    } while (he != start);
+    rings.emplace_back(twice, std::move(ring));
+  }
+  // Counter-clockwise rings (positive area) are outer boundaries: the largest first, then the holes.
+  std::stable_sort(rings.begin(), rings.end(), [](const auto& a, const auto& b) {
+    const bool outer_a = CGAL::is_positive(a.first), outer_b = CGAL::is_positive(b.first);
+    if (outer_a != outer_b) return outer_a;
+    return outer_a && a.first > b.first;
+  });
+  std::vector<Ring> out;
+  for (auto& [area, ring] : rings) out.push_back(std::move(ring));
+  return out;
+}
+
+double ring_area(const Ring& ring) {
+  double twice = 0;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Point &p = ring[i], &q = ring[(i + 1) % ring.size()];
+    twice += CGAL::to_double(p.x()) * CGAL::to_double(q.y()) - CGAL::to_double(q.x()) * CGAL::to_double(p.y());
+  }
+  return twice / 2;
+}
+
+// A point strictly inside: on the horizontal line midway across the widest gap between vertex
+// heights, the middle of the widest stretch inside.
+Point inside_point(const std::vector<Ring>& rings) {
+  std::vector<FT> ys;
+  for (const Ring& ring : rings)
+    for (const Point& p : ring) ys.push_back(p.y());
+  std::sort(ys.begin(), ys.end());
+  ys.erase(std::unique(ys.begin(), ys.end()), ys.end());
+  std::size_t gap = 0;
+  for (std::size_t i = 1; i + 1 < ys.size(); ++i)
+    if (ys[i + 1] - ys[i] > ys[gap + 1] - ys[gap]) gap = i;
+  const FT y = (ys[gap] + ys[gap + 1]) / 2;
+  std::vector<FT> xs;
+  for (const Ring& ring : rings)
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Point &p = ring[i], &q = ring[(i + 1) % ring.size()];
+      if ((p.y() < y) != (q.y() < y)) xs.push_back(p.x() + (q.x() - p.x()) * (y - p.y()) / (q.y() - p.y()));
+    }
+  std::sort(xs.begin(), xs.end());
+  std::size_t best = 0;
+  for (std::size_t i = 2; i + 1 < xs.size(); i += 2)
+    if (xs[i + 1] - xs[i] > xs[best + 1] - xs[best]) best = i;
+  return {(xs[best] + xs[best + 1]) / 2, y};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Strips narrower than W: chords of a face along one axis through each of its vertices.
+
+// The shortest chord through a vertex, along Y (vertical chords at each vertex X) or along X, that is
+// longer than zero (a corner's tip is no strip) and shorter than W; `narrow` counts such chords. A
+// chord is a connected piece of the closed face on the line: the union of the stretches inside just
+// before and just after the line (half-open crossing rules on both sides, exact).
+std::optional<Chord> narrowest_chord(const std::vector<Ring>& rings, bool along_Y, const FT& W, int& narrow) {
+  struct Edge {
+    FT u0, v0, u1, v1;  // u across the chord, v along it; u0 <= u1
+  };
+  auto u_of = [&](const Point& p) { return along_Y ? p.x() : p.y(); };
+  auto v_of = [&](const Point& p) { return along_Y ? p.y() : p.x(); };
+  std::vector<Edge> edges;
+  std::vector<std::pair<FT, FT>> vertices;
+  for (const Ring& ring : rings)
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Point &p = ring[i], &q = ring[(i + 1) % ring.size()];
+      vertices.emplace_back(u_of(p), v_of(p));
+      if (u_of(p) <= u_of(q))
+        edges.push_back({u_of(p), v_of(p), u_of(q), v_of(q)});
+      else
+        edges.push_back({u_of(q), v_of(q), u_of(p), v_of(p)});
+    }
+  std::sort(vertices.begin(), vertices.end());
+  std::sort(edges.begin(), edges.end(), [](const Edge& a, const Edge& b) { return a.u0 < b.u0; });
+  std::optional<Chord> best;
+  std::vector<const Edge*> active;
+  std::vector<FT> after, before;
+  std::vector<std::pair<FT, FT>> pieces;
+  std::size_t next_edge = 0;
+  for (std::size_t i = 0; i < vertices.size();) {
+    const FT u = vertices[i].first;
+    std::size_t j = i;
+    while (j < vertices.size() && vertices[j].first == u) ++j;
+    while (next_edge < edges.size() && edges[next_edge].u0 <= u) active.push_back(&edges[next_edge++]);
+    std::erase_if(active, [&](const Edge* e) { return e->u1 < u; });
+    after.clear(), before.clear();
+    for (const Edge* e : active) {
+      if (e->u0 == e->u1) continue;  // along the line: both faces' sides come from the other edges
+      const FT v = u == e->u0 ? e->v0 : u == e->u1 ? e->v1 : e->v0 + (e->v1 - e->v0) * (u - e->u0) / (e->u1 - e->u0);
+      if (e->u0 <= u && u < e->u1) after.push_back(v);
+      if (e->u0 < u && u <= e->u1) before.push_back(v);
+    }
+    pieces.clear();
+    for (std::vector<FT>* side : {&after, &before}) {
+      std::sort(side->begin(), side->end());
+      for (std::size_t k = 0; k + 1 < side->size(); k += 2) pieces.emplace_back((*side)[k], (*side)[k + 1]);
+    }
+    std::sort(pieces.begin(), pieces.end());
+    std::vector<std::pair<FT, FT>> merged;
+    for (const auto& piece : pieces)
+      if (!merged.empty() && piece.first <= merged.back().second)
+        merged.back().second = CGAL::max(merged.back().second, piece.second);
+      else
+        merged.push_back(piece);
+    const std::pair<FT, FT>* last = nullptr;
+    for (std::size_t k = i; k < j; ++k)
+      for (const auto& piece : merged) {
+        if (vertices[k].second < piece.first || piece.second < vertices[k].second || &piece == last) continue;
+        last = &piece;  // vertices of one chord count it once
+        const FT length = piece.second - piece.first;
+        if (!CGAL::is_positive(length) || !(length < W)) continue;
+        ++narrow;
+        if (!best || length < best->hi - best->lo) best = Chord{u, piece.first, piece.second};
+      }
+    i = j;
+  }
+  return best;
+}
+
+}  // namespace origamic
