@@ -230,7 +230,7 @@ void build_arrangement(const std::vector<Chain>& chains, const std::vector<Fallb
   // Each face takes the label that most of its boundary length names. Sides moved by a snapped fold
   // still name the face that was there before: a short minority, outvoted.
   built.conflicts = 0;
-  std::map<std::int32_t, double> votes;
+  std::vector<std::pair<std::int32_t, double>> votes;  // a face's few labels: a map per face cost more
   for (auto f = built.arrangement.faces_begin(); f != built.arrangement.faces_end(); ++f) {
     f->set_data(kNoLabel);
     if (f->is_unbounded()) continue;
@@ -243,7 +243,10 @@ void build_arrangement(const std::vector<Chain>& chains, const std::vector<Fallb
         for (const std::int32_t d : he->curve().data()) {
           const Sides& s = built.sides[static_cast<std::size_t>(d)];
           const std::int32_t label = he->direction() == CGAL::ARR_LEFT_TO_RIGHT ? s.left : s.right;
-          if (label >= 0) votes[label] += length, total += length;
+          if (label < 0) continue;
+          const auto known = std::ranges::find(votes, label, &std::pair<std::int32_t, double>::first);
+          (known != votes.end() ? known->second : votes.emplace_back(label, 0.0).second) += length;
+          total += length;
         }
       } while (++he != first);
     };
@@ -251,8 +254,9 @@ void build_arrangement(const std::vector<Chain>& chains, const std::vector<Fallb
     for (auto ccb = f->inner_ccbs_begin(); ccb != f->inner_ccbs_end(); ++ccb) vote(*ccb);
     std::int32_t best = kNoLabel;
     double best_votes = 0;
-    for (const auto& [label, weight] : votes)
-      if (weight > best_votes) best = label, best_votes = weight;
+    for (const auto& [label, weight] : votes)  // ties to the smallest label
+      if (weight > best_votes || (weight == best_votes && best != kNoLabel && label < best))
+        best = label, best_votes = weight;
     if (best == kNoLabel || best_votes * 2 <= total) ++built.conflicts;
     f->set_data(best);
   }
