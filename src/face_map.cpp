@@ -30,12 +30,21 @@ void merge_coplanar_faces(SliceResult& result) {
   Grid<std::int32_t>& face = result.face;
   std::vector<std::int64_t> pixels(n, 0);
   bool merged = false;
+  // Faces numbered by plane, so that the scan keeps only the meetings of coplanar faces. Holes
+  // merge with each other whatever plane they came from, and never with paper.
+  std::vector<std::int32_t> plane(n);
+  {
+    std::map<std::pair<Orientation, double>, std::int32_t> planes;
+    for (std::size_t f = 0; f < n; ++f) {
+      const RasterFace& face_f = result.faces[f];
+      plane[f] =
+          face_f.hole
+              ? 0
+              : planes.try_emplace({face_f.orientation, face_f.depth_mm}, static_cast<std::int32_t>(planes.size()) + 1)
+                    .first->second;
+    }
+  }
   auto join = [&](std::int32_t f, std::int32_t g) {
-    if (g < 2 || g == f) return;
-    const RasterFace &a_face = result.faces[f], &b_face = result.faces[g];
-    // Holes merge with each other whatever plane they came from, and never with paper.
-    if (a_face.hole != b_face.hole) return;
-    if (!a_face.hole && (a_face.orientation != b_face.orientation || a_face.depth_mm != b_face.depth_mm)) return;
     const std::int32_t a = root(f), b = root(g);
     if (a != b) parent[std::max(a, b)] = std::min(a, b), merged = true;
   };
@@ -56,11 +65,15 @@ void merge_coplanar_faces(SliceResult& result) {
         while (end < face.cols && here[end] == f) ++end;
         if (f >= 0) count[static_cast<std::size_t>(f)] += end - col;
         if (f >= 2) {
-          if (end < face.cols && here[end] >= 2) meets.emplace_back(f, here[end]);
+          const auto meet = [&](std::int32_t g) {
+            if (g >= 2 && g != f && plane[static_cast<std::size_t>(g)] == plane[static_cast<std::size_t>(f)] &&
+                (meets.empty() || meets.back() != std::pair{f, g}))
+              meets.emplace_back(f, g);
+          };
+          if (end < face.cols) meet(here[end]);
           if (below)
             for (int c = col; c < end; ++c)
-              if (below[c] != f && below[c] >= 2 && (c == col || below[c] != below[c - 1]))
-                meets.emplace_back(f, below[c]);
+              if (c == col || below[c] != below[c - 1]) meet(below[c]);
         }
         col = end;
       }
