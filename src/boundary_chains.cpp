@@ -12,25 +12,20 @@
 namespace origamic::chains {
 
 Grid<std::int32_t> labels_inside_sheet(Grid<std::int32_t> labels) {
+  // The pixels inside that border one outside, row by row, found in bands in parallel.
+  std::array<std::vector<std::pair<int, int>>, kBands> band_rings;
+  for_bands(labels.rows, [&](int band, int row_begin, int row_end) {
+    for (int row = row_begin; row < row_end; ++row)
+      for (int col = 0; col < labels.cols; ++col) {
+        if (labels(col, row) < 0) continue;
+        const bool borders_outside =
+            (col > 0 && labels(col - 1, row) < 0) || (col + 1 < labels.cols && labels(col + 1, row) < 0) ||
+            (row > 0 && labels(col, row - 1) < 0) || (row + 1 < labels.rows && labels(col, row + 1) < 0);
+        if (borders_outside) band_rings[static_cast<std::size_t>(band)].emplace_back(col, row);
+      }
+  });
   std::vector<std::pair<int, int>> ring, next;
-  // Only a pixel whose row and column lie next to (or on) ones with outside pixels can border one.
-  std::vector<std::uint8_t> row_out(static_cast<std::size_t>(labels.rows), 0),
-      col_out(static_cast<std::size_t>(labels.cols), 0);
-  for (int row = 0; row < labels.rows; ++row)
-    for (int col = 0; col < labels.cols; ++col)
-      if (labels(col, row) < 0) row_out[static_cast<std::size_t>(row)] = col_out[static_cast<std::size_t>(col)] = 1;
-  auto near = [](const std::vector<std::uint8_t>& out, int i) {
-    return out[static_cast<std::size_t>(i)] || (i > 0 && out[static_cast<std::size_t>(i) - 1]) ||
-           (static_cast<std::size_t>(i) + 1 < out.size() && out[static_cast<std::size_t>(i) + 1]);
-  };
-  for (int row = 0; row < labels.rows; ++row)
-    for (int col = 0; col < labels.cols; ++col) {
-      if (!near(row_out, row) || !near(col_out, col) || labels(col, row) < 0) continue;
-      const bool borders_outside =
-          (col > 0 && labels(col - 1, row) < 0) || (col + 1 < labels.cols && labels(col + 1, row) < 0) ||
-          (row > 0 && labels(col, row - 1) < 0) || (row + 1 < labels.rows && labels(col, row + 1) < 0);
-      if (borders_outside) ring.emplace_back(col, row);
-    }
+  for (const auto& band : band_rings) ring.insert(ring.end(), band.begin(), band.end());
   while (!ring.empty()) {
     next.clear();
     for (const auto& [col, row] : ring)
