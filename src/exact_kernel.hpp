@@ -37,10 +37,18 @@ using Arrangement = CGAL::Arrangement_2<Traits, Dcel>;
 // The exact rational behind a lazy number (gmpxx: store expressions in a typed variable before use).
 using Rational = std::remove_cvref_t<decltype(std::declval<FT>().exact())>;
 
-/// A point's coordinates as CGAL::to_double gives them for the plan's points (whose intervals are
-/// tight), read off the point's interval: asking for p.x() would make a new lazy number.
-inline double approx_x(const Point& p) { return CGAL::to_double(p.approx().x()); }
-inline double approx_y(const Point& p) { return CGAL::to_double(p.approx().y()); }
+/// A coordinate as CGAL::to_double gives it, read off its interval without making a new lazy number
+/// (as p.x() would): the interval's midpoint when it is tight, else the exact value's double.
+inline double approx_coordinate(const Point& p, int i) {
+  const CGAL::Interval_nt<false>& interval = i == 0 ? p.approx().x() : p.approx().y();
+  double value;
+  if (CGAL::fit_in_double(interval, value)) return value;
+  if (CGAL::has_smaller_relative_precision(interval, FT::get_relative_precision_of_to_double()))
+    return CGAL::to_double(interval);
+  return CGAL::to_double(i == 0 ? p.x() : p.y());
+}
+inline double approx_x(const Point& p) { return approx_coordinate(p, 0); }
+inline double approx_y(const Point& p) { return approx_coordinate(p, 1); }
 
 /// The double nearest an exact rational (ties to even).
 inline double nearest_double(const Rational& exact) {

@@ -26,7 +26,6 @@ using chains::simplified;
 using chains::trace_chains;
 using exact::approx_x;
 using exact::approx_y;
-// Each inserted segment carries the index of its side labels.
 using exact::Arrangement;
 using exact::Built;
 using exact::face_validity;
@@ -40,6 +39,7 @@ using exact::pieces_of;
 using exact::PieceVerdict;
 using exact::Point;
 using exact::Sides;
+// Each inserted segment carries the index of its side labels.
 using exact::Traits;
 
 // The lattice's points (boundary_chains.hpp), exactly. Exact coordinates clamp to the sheet, whose
@@ -47,20 +47,18 @@ using exact::Traits;
 // They are made once per lattice line and shared by the points on it (fewer lazy numbers to make
 // and free).
 struct Lattice : chains::LatticeScale {
-  std::vector<FT> exact_X, exact_Y;  // by u, by v
+  std::vector<FT> X_of_u, Y_of_v;
   double half_mm;
 
   Lattice(const PixelGrid& grid, const Sheet& sheet)
       : LatticeScale{grid.rows_above_fold, 1 / grid.px_per_mm}, half_mm(sheet.half_height_mm()) {
     const FT two_ppm = FT(2) * FT(grid.px_per_mm), width(sheet.width_mm), half(sheet.half_height_mm());
-    for (int u = 0; u <= 2 * grid.cols; ++u) exact_X.push_back(CGAL::min(FT(u) / two_ppm, width));
+    for (int u = 0; u <= 2 * grid.cols; ++u) X_of_u.push_back(CGAL::min(FT(u) / two_ppm, width));
     for (int v = 0; v <= 2 * grid.rows; ++v)
-      exact_Y.push_back(CGAL::max(CGAL::min(FT(2 * rows_above_fold - v) / two_ppm, half), -half));
+      Y_of_v.push_back(CGAL::max(CGAL::min(FT(2 * rows_above_fold - v) / two_ppm, half), -half));
   }
 
-  Point exact(int u, int v) const {
-    return {exact_X[static_cast<std::size_t>(u)], exact_Y[static_cast<std::size_t>(v)]};
-  }
+  Point exact(int u, int v) const { return {X_of_u[static_cast<std::size_t>(u)], Y_of_v[static_cast<std::size_t>(v)]}; }
 };
 
 struct Curves {

@@ -35,7 +35,7 @@ const std::vector<PlanBuild::State::Crossing>& PlanBuild::State::line_at(double 
   const Arrangement& arr = built.arrangement;
   const auto columns = static_cast<std::size_t>(std::ceil(plan.sheet.width_mm * grid.px_per_mm)) + 1;
   const auto column_of = [&](double at) {
-    return std::min(columns - 1, static_cast<std::size_t>(std::max(0.0, std::floor(at * grid.px_per_mm))));
+    return static_cast<std::size_t>(std::clamp(std::floor(at * grid.px_per_mm), 0.0, static_cast<double>(columns - 1)));
   };
   if (spans_by_column.empty()) {
     spans_by_column.resize(columns);

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <map>
 #include <mutex>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -18,6 +19,10 @@
 
 namespace origamic {
 namespace exact {
+
+// Threads read copies of the lines' rationals at once (PlanBuild::State): gmpxx copies are deep,
+// where CGAL's own Gmpq would share a reference count that CGAL_HAS_NO_THREADS leaves unguarded.
+static_assert(std::is_same_v<Rational, mpq_class>, "exact rationals must be gmpxx's mpq_class");
 
 constexpr std::int32_t kNoLabel = -1;
 
@@ -38,8 +43,8 @@ struct Built {
   int folds_snapped = 0;
 };
 
-// The pieces of paper: sets of arrangement faces of one label joined across edges with that label on
-// both sides (those edges are no lines of the plan).
+/// The pieces of paper: sets of arrangement faces of one label joined across edges with that label on
+/// both sides (those edges are no lines of the plan).
 struct Pieces {
   std::map<Arrangement::Face_const_handle, std::int32_t> of;  // bounded labelled face -> piece
   std::vector<std::int32_t> label;                            // per piece

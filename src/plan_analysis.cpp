@@ -22,6 +22,17 @@
 namespace origamic {
 namespace {
 
+using analysis::Chord;
+using analysis::collect;
+using analysis::Input;
+using analysis::inside_point;
+using analysis::narrowest_chord;
+using analysis::num;
+using analysis::plan_point;
+using analysis::point_text;
+using analysis::Ring;
+using analysis::ring_area;
+using analysis::rings_of;
 using exact::FT;
 using exact::nearest_double;
 using exact::Point;

@@ -19,7 +19,7 @@
 #include "origamic/error.hpp"
 #include "origamic/mm_text.hpp"
 
-namespace origamic {
+namespace origamic::analysis {
 namespace {
 
 using exact::Arrangement;
@@ -352,4 +352,4 @@ std::optional<Chord> narrowest_chord(const std::vector<Ring>& rings, bool along_
   return best;
 }
 
-}  // namespace origamic
+}  // namespace origamic::analysis

@@ -12,7 +12,7 @@
 #include "exact_kernel.hpp"
 #include "origamic/plan_analysis.hpp"
 
-namespace origamic {
+namespace origamic::analysis {
 
 using Ring = std::vector<exact::Point>;
 
@@ -66,4 +66,4 @@ struct Chord {
 /// longer than zero and shorter than W, if any; adds the number of such chords to `narrow`.
 std::optional<Chord> narrowest_chord(const std::vector<Ring>& rings, bool along_Y, const exact::FT& W, int& narrow);
 
-}  // namespace origamic
+}  // namespace origamic::analysis

@@ -80,7 +80,7 @@ struct DesignArgs {
   std::string model;
   std::string card = "210x297";
   std::string up = "y";
-  double rotate_deg = 0;
+  double rotate_deg = origamic::PlacementOptions{}.rotate_deg;
   std::optional<double> scale;
   std::string offset;
   double margin_mm = origamic::PlacementOptions{}.margin_mm;
@@ -298,7 +298,7 @@ int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const
 
 struct ValidateArgs {
   std::string plan;
-  double min_strip_mm = 0;
+  double min_strip_mm = origamic::AnalysisOptions{}.min_strip_mm;
   double tolerance_mm = origamic::AnalysisOptions{}.tolerance_mm;
   bool json = false;
   origamic::LayerNames layers;
