@@ -11,6 +11,7 @@
 
 #include "bands.hpp"
 #include "origamic/slice.hpp"
+#include "plane_numbers.hpp"
 
 namespace origamic {
 namespace {
@@ -31,18 +32,11 @@ void merge_coplanar_faces(SliceResult& result) {
   std::vector<std::int64_t> pixels(n, 0);
   bool merged = false;
   // Faces numbered by plane, so that the scan keeps only the meetings of coplanar faces. Holes
-  // merge with each other whatever plane they came from, and never with paper.
+  // (all numbered -1) merge with each other whatever plane they came from, and never with paper.
   std::vector<std::int32_t> plane(n);
   {
-    std::map<std::pair<Orientation, double>, std::int32_t> planes;
-    for (std::size_t f = 0; f < n; ++f) {
-      const RasterFace& face_f = result.faces[f];
-      plane[f] =
-          face_f.hole
-              ? 0
-              : planes.try_emplace({face_f.orientation, face_f.depth_mm}, static_cast<std::int32_t>(planes.size()) + 1)
-                    .first->second;
-    }
+    PlaneNumbers number;
+    for (std::size_t f = 0; f < n; ++f) plane[f] = number(result.faces[f]);
   }
   auto join = [&](std::int32_t f, std::int32_t g) {
     const std::int32_t a = root(f), b = root(g);

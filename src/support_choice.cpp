@@ -7,7 +7,6 @@
 #include <array>
 #include <climits>
 #include <cmath>
-#include <map>
 #include <optional>
 #include <span>
 #include <tuple>
@@ -15,6 +14,7 @@
 
 #include "bands.hpp"
 #include "origamic/plan.hpp"
+#include "plane_numbers.hpp"
 
 namespace origamic {
 namespace {
@@ -40,12 +40,7 @@ class CandidateFinder {
       if (int& k = slot_[static_cast<std::size_t>(f)]; k < 0)
         k = static_cast<int>(columns_.size()), columns_.push_back({INT_MAX, -1});
     {
-      // Planes numbered, so that a pixel's is compared as one integer; holes have none.
-      std::map<std::pair<Orientation, double>, int> planes;
-      auto plane = [&](const RasterFace& f) {
-        return f.hole ? -1
-                      : planes.try_emplace({f.orientation, f.depth_mm}, static_cast<int>(planes.size())).first->second;
-      };
+      PlaneNumbers plane;
       for (const RasterFace& f : faces_) plane_now_.push_back(plane(f));
       for (const RasterFace& f : exact_.faces()) plane_then_.push_back(plane(f));
       changed_.resize(static_cast<std::size_t>(face_.cols));
