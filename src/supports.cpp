@@ -147,12 +147,10 @@ class OrderRun {
  public:
   OrderRun(const OrderSetting& setting, SliceResult slices, OrderRules rules, std::mt19937& random)
       : setting_(setting),
-        maps_(setting.maps),
-        options_(setting.options),
         slices_(std::move(slices)),
         rules_(rules),
         random_(random),
-        tolerance_(fold_snap_tolerance_mm(setting.plan_options, slices_, maps_.grid)),
+        tolerance_(fold_snap_tolerance_mm(setting.plan_options, slices_, setting_.maps.grid)),
         // A part of a face under W x W / 8 (a crumb left where a support or a slanted cut met it)
         // joins a neighbour rather than become a face to be supported.
         crumb_px_(std::int64_t{slices_.block_px} * slices_.block_px / 8) {
@@ -164,12 +162,12 @@ class OrderRun {
 
  private:
   SupportReport& report() { return result_.report; }
-  std::vector<std::int32_t> invalid_faces() const { return unsupported(standing_, options_.allow_dangling); }
+  std::vector<std::int32_t> invalid_faces() const { return unsupported(standing_, setting_.options.allow_dangling); }
   bool rounds_left() const { return result_.report.rounds < result_.report.round_bound; }
 
   // The verdict of the raster graph.
   void settle() {
-    standing_ = raster_standing(maps_.grid, slices_, aligned_fold_tolerance_mm(maps_.grid));
+    standing_ = raster_standing(setting_.maps.grid, slices_, aligned_fold_tolerance_mm(setting_.maps.grid));
     exact_ = false;
   }
   void adopt(std::shared_ptr<const PlanBuild> build) {
@@ -184,7 +182,7 @@ class OrderRun {
   // The verdict of the exact plan of the slices as they are.
   void confirm() {
     last_build_.reset();  // one arrangement at a time in memory
-    adopt(std::make_shared<const PlanBuild>(maps_, slices_, setting_.sheet, setting_.plan_options));
+    adopt(std::make_shared<const PlanBuild>(setting_.maps, slices_, setting_.sheet, setting_.plan_options));
   }
   std::string support_rounds();
   std::string pass();
@@ -197,8 +195,6 @@ class OrderRun {
   Supported finish();
 
   const OrderSetting& setting_;
-  const RasterMaps& maps_;
-  const SupportOptions& options_;
   SliceResult slices_;
   OrderRules rules_;
   std::mt19937& random_;
@@ -244,11 +240,11 @@ std::string OrderRun::support_rounds() {
     std::shuffle(invalid.begin(), invalid.end(), random_);
     Reach round_reach = rules_.reach;
     round_reach.split_faces = allow_splits_ || split_rounds_left_-- > 0;
-    const std::vector<Candidate> chosen =
-        choose_supports(maps_, slices_, *last_build_, painted_since_, standing_, invalid, options_, round_reach);
+    const std::vector<Candidate> chosen = choose_supports(setting_.maps, slices_, *last_build_, painted_since_,
+                                                          standing_, invalid, setting_.options, round_reach);
     if (chosen.empty()) return std::to_string(invalid.size()) + " faces invalid and no support reaches them";
     tally.supports += static_cast<int>(chosen.size());
-    paint_supports(chosen, maps_.grid, tolerance_, crumb_px_, slices_);
+    paint_supports(chosen, setting_.maps.grid, tolerance_, crumb_px_, slices_);
     painted_since_.insert(painted_since_.end(), chosen.begin(), chosen.end());
     settle();
   }
@@ -263,8 +259,8 @@ std::string OrderRun::pass() {
   const bool from_exact = exact_;
   std::size_t invalid_before = invalid_faces().size();
   if (exact_) {
-    const Standing raster = raster_standing(maps_.grid, slices_, aligned_fold_tolerance_mm(maps_.grid));
-    invalid_before = std::min(invalid_before, unsupported(raster, options_.allow_dangling).size());
+    const Standing raster = raster_standing(setting_.maps.grid, slices_, aligned_fold_tolerance_mm(setting_.maps.grid));
+    invalid_before = std::min(invalid_before, unsupported(raster, setting_.options.allow_dangling).size());
   }
   const int supports_before = report().supports;
   std::string why = support_rounds();
@@ -340,7 +336,7 @@ Supported OrderRun::run() {
     fewest_exact = std::min(fewest_exact, invalid.size());
     if (progress && rounds_left()) continue;
     if (invalid.empty()) break;  // only loose pieces the raster plan cannot tell apart
-    if (!options_.cut_out_unsupported) break;
+    if (!setting_.options.cut_out_unsupported) break;
     // Pieces of the back plane or the floor that strips around them parted from it are card, not
     // model: a hole there takes nothing from the likeness, so they go first and free of the quota.
     const auto card_piece = [&](std::int32_t f) {
@@ -360,7 +356,7 @@ Supported OrderRun::run() {
     }
     // The rounds resume with the holes.
     merge_coplanar_faces(slices_);
-    align_folds_to_lines(slices_, maps_.grid, tolerance_);
+    align_folds_to_lines(slices_, setting_.maps.grid, tolerance_);
     settle();
   }
   return finish();
@@ -374,7 +370,7 @@ Supported OrderRun::finish() {
   slices_.face = std::move(confirmed_.first);
   slices_.faces = std::move(confirmed_.second);
   result_.plan = last_build_->full();
-  tally.narrow = narrow_strips(slices_, maps_.grid);
+  tally.narrow = narrow_strips(slices_, setting_.maps.grid);
   result_.slices = std::move(slices_);
   return std::move(result_);
 }
