@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "origamic/design.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 namespace origamic {
@@ -57,6 +58,13 @@ DesignResult design(const std::filesystem::path& model_file, const DesignOptions
     result.supports = supported.report;
     clock.lap("plan+supports");
   }
+  // Seed §4.4: no strip narrower than W. Supports are chosen W wide and slices W deep, but what the
+  // plan's folds and cuts leave between them is measured on the plan itself, exactly, both ways.
+  const auto drawn = [](const PlanPolyline& line) { return line.kind != LineKind::Outline; };
+  if (std::ranges::any_of(result.plan.lines, drawn))
+    for (PlanProblem& problem : analyze_plan(result.plan.lines, {.min_strip_mm = options.slice.min_strip_mm}).problems)
+      if (problem.kind == PlanProblemKind::NarrowStrip) result.narrow_strips.push_back(std::move(problem));
+  clock.lap("narrow strips");
   return result;
 }
 

@@ -62,6 +62,17 @@ nlohmann::json narrow_json(const std::vector<NarrowStrip>& narrow) {
   return list;
 }
 
+// The places the plan is narrower than W, from the exact measure of its lines.
+nlohmann::json narrow_places_json(const std::vector<PlanProblem>& narrow) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const PlanProblem& p : narrow)
+    list.push_back({{"width_mm", p.value_mm},
+                    {"from_XY", {p.from.X, p.from.Y}},
+                    {"to_XY", {p.to.X, p.to.Y}},
+                    {"message", p.message}});
+  return list;
+}
+
 nlohmann::json plan_json(const Plan& plan, bool allow_dangling) {
   nlohmann::json faces = nlohmann::json::array();
   for (std::size_t i = 0; i < plan.faces.size(); ++i) {
@@ -129,6 +140,7 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
         {"top_h_mm", maps.reference.top_h_mm}}},
       {"raster_plan", slices_json(result, options)},
       {"plan", plan_json(result.plan, result.allow_dangling)},
+      {"narrow_strips", narrow_places_json(result.narrow_strips)},
       {"supports",
        {{"added", result.supports.supports},
         {"rounds", result.supports.rounds},
@@ -155,13 +167,12 @@ std::string summary_line(const DesignResult& result) {
   std::snprintf(line, sizeof line,
                 "%s: %zu triangles at %.4g mm/unit; %d segments -> %zu faces (W %.3g mm); shape error mean %.2f "
                 "mm, p95 %.2f mm (%.2f W); %d supports; plan %s: %d valid, %d indirect, %d floating, %d dangling, "
-                "%d invalid, %d removed; %.0f ms",
+                "%d invalid, %d removed; %zu places narrower than W; %.0f ms",
                 result.model_file.filename().c_str(), result.triangles, result.placement.scale,
-                result.segmentation.count, result.slices.faces.size() - 2,
-                result.slices.min_strip_mm, result.slices.error.mean_mm,
-                result.slices.error.p95_mm, result.slices.error.p95_W, result.supports.supports,
-                plan_stands(v, result.allow_dangling) ? "VALID" : "INVALID", v.valid,
-                v.indirect, v.floating, v.dangling, v.invalid, v.removed, total_ms);
+                result.segmentation.count, result.slices.faces.size() - 2, result.slices.min_strip_mm,
+                result.slices.error.mean_mm, result.slices.error.p95_mm, result.slices.error.p95_W,
+                result.supports.supports, plan_stands(v, result.allow_dangling) ? "VALID" : "INVALID", v.valid,
+                v.indirect, v.floating, v.dangling, v.invalid, v.removed, result.narrow_strips.size(), total_ms);
   return line;
 }
 

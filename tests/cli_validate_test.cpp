@@ -121,6 +121,34 @@ TEST(CliValidate, DesignedPlanValidatesWithTheDesignsCounts) {
     EXPECT_EQ(report["counts"][count], design["counts"][count]) << count;
 }
 
+// The design reports every place its plan is narrower than W, as validate finds them in the DXF it
+// wrote, read back: the same places, widths and ends, in the same order.
+TEST(CliValidate, TheDesignReportsThePlacesValidateFindsNarrowerThanW) {
+  const test::TempDir dir;
+  const test::CommandRun designed =
+      test::run_origamic("design " + test::quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") +
+                         " --out " + test::quoted(dir.path));
+  ASSERT_EQ(designed.status, 0) << designed.output;
+  std::ifstream in(dir / "house.json");
+  const auto narrow = nlohmann::json::parse(in)["narrow_strips"];
+  const test::CommandRun r =
+      test::run_origamic("validate --json --min-strip 3 " + test::quoted(dir / "house.dxf"), true);
+  const auto report = nlohmann::json::parse(r.output);
+  std::vector<nlohmann::json> found;
+  for (const auto& p : report["problems"])
+    if (p["kind"] == "narrow_strip") found.push_back(p);
+  ASSERT_FALSE(found.empty()) << "the house's roof steps leave strips under 3 mm";
+  ASSERT_EQ(narrow.size(), found.size());
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    EXPECT_EQ(narrow[i]["width_mm"], found[i]["value_mm"]) << i;
+    EXPECT_LT(narrow[i]["width_mm"].get<double>(), 3.0) << i;
+    EXPECT_EQ(narrow[i]["from_XY"], found[i]["from"]) << i;
+    EXPECT_EQ(narrow[i]["to_XY"], found[i]["to"]) << i;
+  }
+  EXPECT_NE(designed.output.find(std::to_string(found.size()) + " places narrower than W"), std::string::npos)
+      << designed.output;
+}
+
 // Every plan origamic writes validates, whichever way its folds are drawn: the dashes of the printed
 // style and the perforations are read as the folds they stand for, to the same faces and lengths.
 TEST(CliValidate, EveryFoldStyleValidatesAsTheScoredPlanAndFolds) {

@@ -10,6 +10,7 @@
 #include "origamic/oa.hpp"
 #include "origamic/placement.hpp"
 #include "origamic/plan.hpp"
+#include "origamic/plan_analysis.hpp"
 #include "origamic/raster.hpp"
 #include "origamic/segment.hpp"
 #include "origamic/slice.hpp"
@@ -44,6 +45,9 @@ struct DesignResult {
   Segmentation segmentation;
   SliceResult slices;
   Plan plan;                   // the final plan: with supports unless they are off
+  // Every place the final plan is narrower than W, along X or Y, measured exactly on its lines as
+  // `origamic validate --min-strip W` measures them (PlanProblemKind::NarrowStrip).
+  std::vector<PlanProblem> narrow_strips;
   SupportReport supports;
   bool allow_dangling = false;  // dangling faces do not make the plan invalid
   std::vector<StageTime> times;
