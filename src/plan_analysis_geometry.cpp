@@ -292,19 +292,17 @@ std::optional<Chord> narrowest_chord(const std::vector<Ring>& rings, bool along_
   struct Edge {
     FT u0, v0, u1, v1;  // u across the chord, v along it; u0 <= u1
   };
-  auto u_of = [&](const Point& p) { return along_Y ? p.x() : p.y(); };
-  auto v_of = [&](const Point& p) { return along_Y ? p.y() : p.x(); };
   std::vector<Edge> edges;
-  std::vector<std::pair<FT, FT>> vertices;
-  for (const Ring& ring : rings)
+  std::vector<std::pair<FT, FT>> vertices;  // (u, v), each coordinate read off its point once
+  for (const Ring& ring : rings) {
+    const std::size_t first = vertices.size();
+    for (const Point& p : ring) vertices.emplace_back(along_Y ? p.x() : p.y(), along_Y ? p.y() : p.x());
     for (std::size_t i = 0; i < ring.size(); ++i) {
-      const Point &p = ring[i], &q = ring[(i + 1) % ring.size()];
-      vertices.emplace_back(u_of(p), v_of(p));
-      if (u_of(p) <= u_of(q))
-        edges.push_back({u_of(p), v_of(p), u_of(q), v_of(q)});
-      else
-        edges.push_back({u_of(q), v_of(q), u_of(p), v_of(p)});
+      const auto& [pu, pv] = vertices[first + i];
+      const auto& [qu, qv] = vertices[first + (i + 1) % ring.size()];
+      edges.push_back(pu <= qu ? Edge{pu, pv, qu, qv} : Edge{qu, qv, pu, pv});
     }
+  }
   std::sort(vertices.begin(), vertices.end());
   std::sort(edges.begin(), edges.end(), [](const Edge& a, const Edge& b) { return a.u0 < b.u0; });
   std::optional<Chord> best;
