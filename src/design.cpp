@@ -45,8 +45,12 @@ DesignResult design(const std::filesystem::path& model_file, const DesignOptions
   result.segmentation = segment(result.maps, options.segment);
   clock.lap("segment");
   result.slices = slice(result.maps, result.segmentation, options.slice);
-  align_folds_to_lines(result.slices, result.maps.grid, fold_snap_tolerance_mm(options.plan, result.slices, result.maps.grid));
+  align_folds_to_lines(result.slices, result.maps.grid,
+                       fold_snap_tolerance_mm(options.plan, result.slices, result.maps.grid));
   clock.lap("slice");
+  const double W = options.slice.min_strip_mm;
+  result.sliced_likeness =
+      likeness(result.maps, card_view(result.maps.grid, result.slices.face, result.slices.faces), W);
   result.allow_dangling = options.supports.allow_dangling;
   if (!options.supports.enabled) {
     result.plan = build_plan(result.maps, result.slices, options.sheet, options.plan);
@@ -65,6 +69,11 @@ DesignResult design(const std::filesystem::path& model_file, const DesignOptions
     for (PlanProblem& problem : analyze_plan(result.plan.lines, {.min_strip_mm = options.slice.min_strip_mm}).problems)
       if (problem.kind == PlanProblemKind::NarrowStrip) result.narrow_strips.push_back(std::move(problem));
   clock.lap("narrow strips");
+  std::vector<bool> support;
+  for (const PlanFace& face : result.plan.faces) support.push_back(face.support);
+  result.card = card_view(result.maps.grid, result.plan.regions, support);
+  result.likeness = likeness(result.maps, result.card, W);
+  clock.lap("likeness");
   return result;
 }
 

@@ -82,7 +82,7 @@ std::vector<std::uint8_t> plan_preview_rgb(const RasterMaps& maps, const SliceRe
   return pixels;
 }
 
-// Shape error: black where the pop-up meets the model, white at 2 W and beyond; not model: blue.
+// Likeness error: black where the card meets the model, white at 2 W and beyond; not model: blue.
 std::vector<std::uint8_t> error_rgb(const Grid<float>& error, double W) {
   std::vector<std::uint8_t> pixels(3 * error.size());
   for (std::size_t i = 0; i < error.size(); ++i) {
@@ -100,14 +100,15 @@ std::vector<std::uint8_t> error_rgb(const Grid<float>& error, double W) {
 }  // namespace
 
 std::vector<OutputFile> slice_image_files(const RasterMaps& maps, const Segmentation& segmentation,
-                                          const SliceResult& slices, const std::filesystem::path& dir) {
+                                          const SliceResult& slices, const CardView& card,
+                                          const std::filesystem::path& dir) {
   const int w = maps.grid.cols, h = maps.grid.rows;
   const std::vector<std::pair<std::string, std::vector<std::uint8_t>>> images = {
       {"S.png", id_rgb(segmentation.segment, true)},
       {"SS.png", id_rgb(slices.subsegment, false)},
       {"faces.png", id_rgb(slices.face, true)},
       {"plan_preview.png", plan_preview_rgb(maps, slices)},
-      {"E.png", error_rgb(shape_error_map(maps, slices.face, slices.faces), slices.min_strip_mm)},
+      {"E.png", error_rgb(likeness_error_map(maps, card), slices.min_strip_mm)},
   };
   std::vector<OutputFile> files;
   for (const auto& [name, pixels] : images)

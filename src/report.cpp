@@ -2,7 +2,6 @@
 #include "origamic/report.hpp"
 
 #include <cstdio>
-
 #include <nlohmann/json.hpp>
 
 #include "origamic/version.hpp"
@@ -22,9 +21,10 @@ nlohmann::json placement_json(const Placement& p, const PlacementOptions& option
       {"auto_scale", !options.scale.has_value()},
       {"auto_offset", !options.offset_mm.has_value()},
       {"margin_mm", options.margin_mm},
-      {"transform", {{"comment", "oa_xhd_mm = linear * model_xyz + translation"},
-                     {"linear", linear},
-                     {"translation_mm", vec(p.translation)}}},
+      {"transform",
+       {{"comment", "oa_xhd_mm = linear * model_xyz + translation"},
+        {"linear", linear},
+        {"translation_mm", vec(p.translation)}}},
       {"oa_bbox_mm", {{"min_xhd", vec(p.min_oa)}, {"max_xhd", vec(p.max_oa)}}},
       {"plan_bbox_mm", {{"min_XY", {p.min_plan.X, p.min_plan.Y}}, {"max_XY", {p.max_plan.X, p.max_plan.Y}}}},
   };
@@ -43,15 +43,24 @@ nlohmann::json slices_json(const DesignResult& result, const DesignOptions& opti
                      {"segment", f.segment},
                      {"area_mm2", static_cast<double>(f.pixels) * pixel_area_mm2}});
   }
-  const ShapeError& e = slices.error;
   return {{"min_strip_mm", options.slice.min_strip_mm},
           {"block_px", slices.block_px},
           {"segments", result.segmentation.count},
           {"subsegments", slices.subsegments},
           {"removed_thin_faces", slices.removed_thin},
           {"face_count", slices.faces.size()},
-          {"shape_error", {{"mean_mm", e.mean_mm}, {"p95_mm", e.p95_mm}, {"mean_W", e.mean_W}, {"p95_W", e.p95_W}}},
           {"faces", faces}};
+}
+
+nlohmann::json likeness_json(const Likeness& l) {
+  return {{"mean_mm", l.mean_mm},
+          {"p95_mm", l.p95_mm},
+          {"mean_W", l.mean_W},
+          {"p95_W", l.p95_W},
+          {"coverage", l.coverage},
+          {"support_share", l.support_share},
+          {"cut_out_share", l.cut_out_share},
+          {"model_pixels", l.model_pixels}};
 }
 
 // Faces and supports narrower than W, each with a plan point to find it by.
@@ -89,28 +98,30 @@ nlohmann::json plan_json(const Plan& plan, bool allow_dangling) {
   }
   const Validity& v = plan.validity;
   return {{"verdict", plan_stands(v, allow_dangling) ? "valid" : "invalid"},
-          {"counts", {{"faces", plan.faces.size() - 2},
-                      {"valid", v.valid},
-                      {"indirect", v.indirect},
-                      {"floating", v.floating},
-                      {"dangling", v.dangling},
-                      {"invalid", v.invalid},
-                      {"removed", v.removed},
-                      {"loose_card_pieces", plan.loose_card_pieces}}},
+          {"counts",
+           {{"faces", plan.faces.size() - 2},
+            {"valid", v.valid},
+            {"indirect", v.indirect},
+            {"floating", v.floating},
+            {"dangling", v.dangling},
+            {"invalid", v.invalid},
+            {"removed", v.removed},
+            {"loose_card_pieces", plan.loose_card_pieces}}},
           {"length_mm", {{"cut", plan.cut_mm}, {"mountain", plan.mountain_mm}, {"valley", plan.valley_mm}}},
-          {"exact_checks", {{"arrangement_valid", plan.arrangement_valid},
-                            {"faces_tile_sheet", plan.faces_tile_sheet},
-                            {"arrangement_faces", plan.arrangement_faces},
-                            {"label_conflicts", plan.label_conflicts},
-                            {"folds_snapped", plan.folds_snapped},
-                            {"raw_chains", plan.raw_chains},
-                            {"unsnapped_chains", plan.unsnapped_chains},
-                            {"unresolved_crossings", plan.unresolved_crossings},
-                            {"lost_faces", plan.lost_faces},
-                            {"collapsed_faces", plan.collapsed_faces},
-                            {"crumbs_cut_out", plan.crumbs_cut_out},
-                            {"loose_card_pieces", plan.loose_card_pieces},
-                            {"pieces", plan.pieces}}},
+          {"exact_checks",
+           {{"arrangement_valid", plan.arrangement_valid},
+            {"faces_tile_sheet", plan.faces_tile_sheet},
+            {"arrangement_faces", plan.arrangement_faces},
+            {"label_conflicts", plan.label_conflicts},
+            {"folds_snapped", plan.folds_snapped},
+            {"raw_chains", plan.raw_chains},
+            {"unsnapped_chains", plan.unsnapped_chains},
+            {"unresolved_crossings", plan.unresolved_crossings},
+            {"lost_faces", plan.lost_faces},
+            {"collapsed_faces", plan.collapsed_faces},
+            {"crumbs_cut_out", plan.crumbs_cut_out},
+            {"loose_card_pieces", plan.loose_card_pieces},
+            {"pieces", plan.pieces}}},
           {"faces", faces}};
 }
 
@@ -139,6 +150,10 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
         {"front_d_mm", maps.reference.front_d_mm},
         {"top_h_mm", maps.reference.top_h_mm}}},
       {"raster_plan", slices_json(result, options)},
+      {"likeness",
+       {{"comment", "|card h + d - model h + d| over the model's pixels in the 45-degree view; shares of them"},
+        {"finished", likeness_json(result.likeness)},
+        {"sliced", likeness_json(result.sliced_likeness)}}},
       {"plan", plan_json(result.plan, result.allow_dangling)},
       {"narrow_strips", narrow_places_json(result.narrow_strips)},
       {"supports",
@@ -165,14 +180,17 @@ std::string summary_line(const DesignResult& result) {
   const Validity& v = result.plan.validity;
   char line[768];
   std::snprintf(line, sizeof line,
-                "%s: %zu triangles at %.4g mm/unit; %d segments -> %zu faces (W %.3g mm); shape error mean %.2f "
-                "mm, p95 %.2f mm (%.2f W); %d supports; plan %s: %d valid, %d indirect, %d floating, %d dangling, "
-                "%d invalid, %d removed; %zu places narrower than W; %.0f ms",
+                "%s: %zu triangles at %.4g mm/unit; %d segments -> %zu faces (W %.3g mm); likeness error p95 %.2f W, "
+                "mean %.2f W (sliced p95 %.2f W), coverage %.1f%%, supports %.1f%%, cut out %.1f%%; %d supports; plan "
+                "%s: %d valid, %d indirect, %d floating, %d dangling, %d invalid, %d removed; %zu places narrower "
+                "than W; %.0f ms",
                 result.model_file.filename().c_str(), result.triangles, result.placement.scale,
                 result.segmentation.count, result.slices.faces.size() - 2, result.slices.min_strip_mm,
-                result.slices.error.mean_mm, result.slices.error.p95_mm, result.slices.error.p95_W,
-                result.supports.supports, plan_stands(v, result.allow_dangling) ? "VALID" : "INVALID", v.valid,
-                v.indirect, v.floating, v.dangling, v.invalid, v.removed, result.narrow_strips.size(), total_ms);
+                result.likeness.p95_W, result.likeness.mean_W, result.sliced_likeness.p95_W,
+                100 * result.likeness.coverage, 100 * result.likeness.support_share,
+                100 * result.likeness.cut_out_share, result.supports.supports,
+                plan_stands(v, result.allow_dangling) ? "VALID" : "INVALID", v.valid, v.indirect, v.floating,
+                v.dangling, v.invalid, v.removed, result.narrow_strips.size(), total_ms);
   return line;
 }
 

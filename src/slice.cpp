@@ -320,26 +320,6 @@ void fill_holes(const PixelGrid& grid, const Grid<std::int32_t>& segment, const 
       if (face(col, row) == kUnassigned) face(col, row) = grid.Y(row) > 0 ? kBackFace : kFloorFace;
 }
 
-ShapeError shape_error(const RasterMaps& maps, const Grid<std::int32_t>& face, const std::vector<RasterFace>& faces,
-                       double W) {
-  const Grid<float> error = shape_error_map(maps, face, faces);
-  std::vector<float> errors;
-  errors.reserve(maps.model_pixels);
-  for (const float e : error.values)
-    if (e >= 0) errors.push_back(e);
-  ShapeError e;
-  if (errors.empty()) return e;
-  double sum = 0;
-  for (const float v : errors) sum += v;
-  e.mean_mm = sum / static_cast<double>(errors.size());
-  const auto p95 = errors.begin() + static_cast<std::ptrdiff_t>(0.95 * static_cast<double>(errors.size() - 1));
-  std::nth_element(errors.begin(), p95, errors.end());
-  e.p95_mm = *p95;
-  e.mean_W = e.mean_mm / W;
-  e.p95_W = e.p95_mm / W;
-  return e;
-}
-
 // A face sliced at its mean plane can reach past the card: an H(h) face behind the back plane where
 // Y > h, a V(d) face below the floor where Y < -d (the part of a slope beyond its mean). That part
 // becomes the back plane (the floor), so the face ends on its fold with it, at Y = h (Y = -d), as
@@ -398,22 +378,9 @@ void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vec
   fill_holes(maps.grid, seg.segment, result.faces, result.face);
   keep_within_card(maps.grid, result);
   merge_coplanar_faces(result);
-  result.error = shape_error(maps, result.face, result.faces, W);
 }
 
 }  // namespace
-
-Grid<float> shape_error_map(const RasterMaps& maps, const Grid<std::int32_t>& face, const std::vector<RasterFace>& faces) {
-  Grid<float> error(maps.grid.cols, maps.grid.rows, -1.0f);
-  for (int row = 0; row < maps.grid.rows; ++row)
-    for (int col = 0; col < maps.grid.cols; ++col) {
-      if (maps.kind(col, row) != HitKind::Model) continue;
-      const RasterFace& f = faces[static_cast<std::size_t>(face(col, row))];
-      const double face_d = f.orientation == Orientation::V ? f.depth_mm : f.depth_mm - maps.grid.Y(row);
-      error(col, row) = static_cast<float>(std::abs(face_d - maps.d_mm(col, row)));
-    }
-  return error;
-}
 
 double oriented_box_min_side_px(const std::vector<std::pair<int, int>>& pixels) {
   if (pixels.empty()) return 0;

@@ -10,6 +10,7 @@
 
 #include "helpers.hpp"
 #include "origamic/design.hpp"
+#include "origamic/likeness.hpp"
 #include "origamic/placement.hpp"
 
 namespace origamic {
@@ -47,7 +48,10 @@ TEST(Slice, BoxBecomesOneVFaceAndOneHFaceAtItsDepthAndHeight) {
   }
   EXPECT_EQ(v, 1);
   EXPECT_EQ(h, 1);
-  EXPECT_NEAR(p.slices.error.p95_mm, 0.0, 1e-6);
+  const Likeness l = likeness(p.maps, card_view(p.maps.grid, p.slices.face, p.slices.faces), 3.0);
+  EXPECT_NEAR(l.p95_mm, 0.0, 1e-6);
+  EXPECT_NEAR(l.mean_mm, 0.0, 1e-6);
+  EXPECT_DOUBLE_EQ(l.coverage, 1.0);
 }
 
 // Faces' widths along X and Y, in pixels: (max col - min col + 1), (max row - min row + 1).
@@ -93,7 +97,8 @@ TEST(Slice, HalfCylinderBecomesVerticalSlicesNoNarrowerThanW) {
     EXPECT_LE(centre_and_depth[i].second, centre_and_depth[i - 1].second + W / 2)
         << "depth must fall away from the centre";
   EXPECT_GT(centre_and_depth.front().second, centre_and_depth.back().second + 2 * W);
-  EXPECT_LE(r.slices.error.p95_mm, W);  // the pop-up stays within W of the model
+  // The pop-up stays within W of the model in depth: 2 W in h + d along the 45-degree ray.
+  EXPECT_LE(r.sliced_likeness.p95_mm, 2 * W);
 }
 
 TEST(Slice, FaceCountFallsAsWGrowsAndNoFaceIsNarrowerThanW) {

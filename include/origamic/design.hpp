@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "origamic/likeness.hpp"
 #include "origamic/mesh_io.hpp"
 #include "origamic/oa.hpp"
 #include "origamic/placement.hpp"
@@ -49,6 +50,11 @@ struct DesignResult {
   // `origamic validate --min-strip W` measures them (PlanProblemKind::NarrowStrip).
   std::vector<PlanProblem> narrow_strips;
   SupportReport supports;
+  // The likeness of the card to the model (likeness.hpp): of the sliced raster plan, before any
+  // support, and of the finished plan, its regions as drawn, after supports and cut-outs.
+  Likeness sliced_likeness;
+  Likeness likeness;
+  CardView card;  // the finished plan as the 45-degree view sees it
   bool allow_dangling = false;  // dangling faces do not make the plan invalid
   std::vector<StageTime> times;
 };

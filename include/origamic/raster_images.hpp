@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "origamic/likeness.hpp"
 #include "origamic/output.hpp"
 #include "origamic/raster.hpp"
 #include "origamic/segment.hpp"
@@ -20,9 +21,11 @@ std::vector<OutputFile> raster_image_files(const RasterMaps& maps, const std::fi
 
 /// The segmentation map S, the subsegment map SS and the face map as colour PNGs (one colour per id;
 /// back plane grey, floor tan), plan_preview.png: the raster plan in the seed's style (§4.6), cuts
-/// red, folds green, on white; and E.png, the shape error map (black where the pop-up meets the
-/// model, white at 2 W or more off). Named for the folder dir. \throws OutputError.
+/// red, folds green, on white; and E.png, the likeness error of `card`, the finished plan as the
+/// 45-degree view sees it (|card h + d - model h + d|: black where the card meets the model, white
+/// at 2 W or more off; blue off the model). Named for the folder dir. \throws OutputError.
 std::vector<OutputFile> slice_image_files(const RasterMaps& maps, const Segmentation& segmentation,
-                                          const SliceResult& slices, const std::filesystem::path& dir);
+                                          const SliceResult& slices, const CardView& card,
+                                          const std::filesystem::path& dir);
 
 }  // namespace origamic

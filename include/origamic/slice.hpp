@@ -32,14 +32,6 @@ struct SliceOptions {
   double min_strip_mm = 3.0;  // W: no strip narrower than this, and the depth step of the slices
 };
 
-/// |pop-up face depth - model depth| over model pixels, measured along the 45-degree ray as a depth.
-struct ShapeError {
-  double mean_mm = 0;
-  double p95_mm = 0;
-  double mean_W = 0;
-  double p95_W = 0;
-};
-
 struct SliceResult {
   double min_strip_mm = 0;                   // W
   int block_px = 0;                          // W in pixels: the lattice of supports and narrow strips
@@ -50,7 +42,6 @@ struct SliceResult {
   std::vector<RasterFace> faces;             // faces[kBackFace] is V(0), faces[kFloorFace] is H(0)
   int subsegments = 0;
   int removed_thin = 0;                      // faces whose oriented box had a side under W
-  ShapeError error;
 };
 
 /// Slices every segment. Deterministic: the same maps and options give the same face map.
@@ -80,10 +71,6 @@ std::vector<FacePart> split_disconnected_faces(SliceResult& result, const std::v
 /// then moves it onto the line by under half a pixel and cannot cross a neighbouring boundary on
 /// the way. Pixel counts are kept up to date.
 void align_folds_to_lines(SliceResult& result, const PixelGrid& grid, double tolerance_mm);
-
-/// Per pixel |depth of its pop-up face - depth of the model| in mm along the 45-degree ray, for
-/// model pixels; -1 elsewhere. ShapeError summarises it.
-Grid<float> shape_error_map(const RasterMaps& maps, const Grid<std::int32_t>& face, const std::vector<RasterFace>& faces);
 
 /// The smaller side, in pixels, of the oriented bounding box (principal axes) of a pixel set.
 double oriented_box_min_side_px(const std::vector<std::pair<int, int>>& pixels);
