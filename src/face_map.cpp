@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <set>
 #include <utility>
 
 #include "bands.hpp"
@@ -293,6 +294,70 @@ void align_folds_to_lines(SliceResult& result, const PixelGrid& grid, double tol
   std::vector<int> moved = align_sweep(result, grid, tolerance_mm);
   for (int sweep = 1; sweep < 8 && !moved.empty(); ++sweep)
     std::erase_if(moved, [&](int col) { return align_column(result, grid, tolerance_mm, col) == 0; });
+}
+
+}  // namespace origamic
+
+namespace origamic {
+
+void merge_near_coplanar_faces(SliceResult& result, double tolerance_mm) {
+  const Grid<std::int32_t>& face = result.face;
+  const std::size_t n = result.faces.size();
+  // The pairs of faces of one orientation that touch, each once.
+  std::set<std::pair<std::int32_t, std::int32_t>> touching;
+  for (int r = 0; r < face.rows; ++r)
+    for (int c = 0; c < face.cols; ++c) {
+      const std::int32_t f = face(c, r);
+      if (f < 0) continue;
+      for (const auto& [dc, dr] : {std::pair{1, 0}, {0, 1}}) {
+        if (!face.contains(c + dc, r + dr)) continue;
+        const std::int32_t g = face(c + dc, r + dr);
+        if (g < 0 || g == f) continue;
+        const RasterFace &a = result.faces[static_cast<std::size_t>(f)], &b = result.faces[static_cast<std::size_t>(g)];
+        if (a.orientation != b.orientation || a.hole || b.hole || a.support || b.support) continue;
+        if (std::abs(a.depth_mm - b.depth_mm) <= tolerance_mm) touching.emplace(std::min(f, g), std::max(f, g));
+      }
+    }
+  if (touching.empty()) return;
+  // Closest pairs first; a group's depths stay within the tolerance of each other.
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs(touching.begin(), touching.end());
+  const auto gap = [&](const std::pair<std::int32_t, std::int32_t>& p) {
+    return std::abs(result.faces[static_cast<std::size_t>(p.first)].depth_mm -
+                    result.faces[static_cast<std::size_t>(p.second)].depth_mm);
+  };
+  std::ranges::stable_sort(pairs, {}, gap);
+  std::vector<std::int32_t> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<double> lo(n), hi(n), weighted(n);
+  std::vector<std::int64_t> pixels(n);
+  for (std::size_t f = 0; f < n; ++f) {
+    lo[f] = hi[f] = result.faces[f].depth_mm;
+    pixels[f] = std::max<std::int64_t>(1, result.faces[f].pixels);
+    weighted[f] = result.faces[f].depth_mm * static_cast<double>(pixels[f]);
+  }
+  const auto root = [&](std::int32_t f) {
+    while (parent[static_cast<std::size_t>(f)] != f)
+      f = parent[static_cast<std::size_t>(f)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(f)])];
+    return f;
+  };
+  bool merged = false;
+  for (const auto& [f, g] : pairs) {
+    const auto a = static_cast<std::size_t>(root(f)), b = static_cast<std::size_t>(root(g));
+    if (a == b || std::max(hi[a], hi[b]) - std::min(lo[a], lo[b]) > tolerance_mm) continue;
+    if (a < 2 && b < 2) continue;
+    const std::size_t into = std::min(a, b), from = std::max(a, b);  // the back plane and the floor keep their ids
+    parent[from] = static_cast<std::int32_t>(into);
+    lo[into] = std::min(lo[a], lo[b]), hi[into] = std::max(hi[a], hi[b]);
+    weighted[into] += weighted[from], pixels[into] += pixels[from];
+    merged = true;
+  }
+  if (!merged) return;
+  for (std::size_t f = 0; f < n; ++f)
+    if (root(static_cast<std::int32_t>(f)) == static_cast<std::int32_t>(f) && f >= 2)
+      result.faces[f].depth_mm = weighted[f] / static_cast<double>(pixels[f]);
+  for (std::int32_t& f : result.face.values)
+    if (f >= 0) f = root(f);
+  merge_coplanar_faces(result);
 }
 
 }  // namespace origamic

@@ -71,6 +71,18 @@ nlohmann::json narrow_json(const std::vector<NarrowStrip>& narrow) {
   return list;
 }
 
+// The faces cut out of the sheet, each with its place and why.
+nlohmann::json cut_out_json(const std::vector<CutOutFace>& faces) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const CutOutFace& f : faces)
+    list.push_back({{"at_XY", {f.at.X, f.at.Y}},
+                    {"area_mm2", f.area_mm2},
+                    {"hold_cost", f.hold_cost},
+                    {"hole_cost", f.hole_cost},
+                    {"reason", f.reason}});
+  return list;
+}
+
 // The places the plan is narrower than W, from the exact measure of its lines.
 nlohmann::json narrow_places_json(const std::vector<PlanProblem>& narrow) {
   nlohmann::json list = nlohmann::json::array();
@@ -163,6 +175,7 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
         {"passes_undone", result.supports.passes_undone},
         {"cut_out", result.supports.cut_out},
         {"cut_out_share", result.supports.cut_out_share},
+        {"cut_out_faces", cut_out_json(result.supports.cut_out_faces)},
         {"narrow_strips", narrow_json(result.supports.narrow)},
         {"round_bound", result.supports.round_bound},
         {"orders", result.supports.orders},

@@ -48,8 +48,7 @@ std::vector<Orientation> choose_orientations(const RasterMaps& maps, const Segme
   }
   std::vector<Orientation> orientation(n, Orientation::V);
   orientation[kFloorSegment] = Orientation::H;
-  for (std::size_t s = 2; s < n; ++s)
-    orientation[s] = max_d_span[s] > max_h_span[s] ? Orientation::H : Orientation::V;
+  for (std::size_t s = 2; s < n; ++s) orientation[s] = max_d_span[s] > max_h_span[s] ? Orientation::H : Orientation::V;
   return orientation;
 }
 
@@ -143,7 +142,8 @@ void merge_thin_subsegments(const Grid<std::int32_t>& segment, double min_side_p
     for (std::size_t k = 0; k < n; ++k) {
       const auto r = static_cast<std::size_t>(into[k]);
       size[r] += pixels[k];
-      if (subsegments[k].orientation == subsegments[r].orientation) sum[r] += subsegments[k].depth_mm * pixels[k], count[r] += pixels[k];
+      if (subsegments[k].orientation == subsegments[r].orientation)
+        sum[r] += subsegments[k].depth_mm * pixels[k], count[r] += pixels[k];
     }
     std::vector<std::int32_t> renumber(n, -1);
     std::vector<Subsegment> next;
@@ -207,8 +207,10 @@ std::vector<Subsegment> level_subsegments(const RasterMaps& maps, const Segmenta
     const glm::vec3& normal = maps.normal.values[i];
     const float steep = std::abs(normal.z), flat = std::abs(normal.y);
     Orientation o = orientation[static_cast<std::size_t>(s)];
-    if (flat < steep * tan_35) o = Orientation::V;
-    else if (steep < flat * tan_35) o = Orientation::H;
+    if (flat < steep * tan_35)
+      o = Orientation::V;
+    else if (steep < flat * tan_35)
+      o = Orientation::H;
     part_of[i] = o == Orientation::H;
   }
   auto part = [&](std::size_t i) { return 2 * static_cast<std::size_t>(seg.segment.values[i]) + part_of[i]; };
@@ -231,7 +233,8 @@ std::vector<Subsegment> level_subsegments(const RasterMaps& maps, const Segmenta
   for (std::size_t i = 0; i < level.size(); ++i)
     if (seg.segment.values[i] >= 2) {
       const std::size_t k = part(i);
-      level.values[i] = static_cast<std::int32_t>(std::min(levels[k] - 1, std::floor((depth_at(i) - nearest[k]) / step[k])));
+      level.values[i] =
+          static_cast<std::int32_t>(std::min(levels[k] - 1, std::floor((depth_at(i) - nearest[k]) / step[k])));
     }
   subsegment = Grid<std::int32_t>(cols, seg.segment.rows, -1);
   std::vector<Subsegment> subsegments;
@@ -250,7 +253,8 @@ std::vector<Subsegment> level_subsegments(const RasterMaps& maps, const Segmenta
     for (std::size_t head = 0; head < run.size(); ++head) {
       const std::size_t i = run[head];
       offset_sum += depth_at(i) - base;
-      const int col = static_cast<int>(i % static_cast<std::size_t>(cols)), row = static_cast<int>(i / static_cast<std::size_t>(cols));
+      const int col = static_cast<int>(i % static_cast<std::size_t>(cols)),
+                row = static_cast<int>(i / static_cast<std::size_t>(cols));
       for (const auto& [dc, dr] : kStep) {
         if (!level.contains(col + dc, row + dr)) continue;
         const std::size_t j = level.index(col + dc, row + dr);
@@ -331,21 +335,26 @@ void keep_within_card(const PixelGrid& grid, SliceResult& result) {
       if (f < 2) continue;
       const RasterFace& face = result.faces[static_cast<std::size_t>(f)];
       const double Y = grid.Y(row);
-      if (face.orientation == Orientation::H && Y > face.depth_mm) f = kBackFace;
-      else if (face.orientation == Orientation::V && Y < -face.depth_mm) f = kFloorFace;
+      if (face.orientation == Orientation::H && Y > face.depth_mm)
+        f = kBackFace;
+      else if (face.orientation == Orientation::V && Y < -face.depth_mm)
+        f = kFloorFace;
     }
 }
 
 // Connected pieces of each full-resolution subsegment become faces; pieces whose oriented box has a
 // side under W are removed and their holes filled from the neighbours (§4.3.3, last paragraph).
-void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vector<Subsegment>& subsegments,
-                 double W, SliceResult& result) {
+void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vector<Subsegment>& subsegments, double W,
+                 SliceResult& result) {
   const int cols = maps.grid.cols, rows = maps.grid.rows;
   result.face = Grid<std::int32_t>(cols, rows, kNoFace);
   result.faces = {{Orientation::V, 0.0, kBackSegment, 0}, {Orientation::H, 0.0, kFloorSegment, 0}};
   for (std::size_t i = 0; i < result.face.size(); ++i) {
     const std::int32_t s = seg.segment.values[i];
-    result.face.values[i] = s == kBackSegment ? kBackFace : s == kFloorSegment ? kFloorFace : s < 0 ? kNoFace : kUnassigned;
+    result.face.values[i] = s == kBackSegment    ? kBackFace
+                            : s == kFloorSegment ? kFloorFace
+                            : s < 0              ? kNoFace
+                                                 : kUnassigned;
   }
   const double min_side_px = W * maps.grid.px_per_mm;
   Grid<std::uint8_t> visited(cols, rows, 0);
@@ -371,13 +380,15 @@ void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vec
       }
       const auto id = static_cast<std::int32_t>(result.faces.size());
       const Subsegment& sub = subsegments[static_cast<std::size_t>(k)];
-      result.faces.push_back({sub.orientation, sub.depth_mm,
-                              sub.segment, 0});
+      result.faces.push_back({sub.orientation, sub.depth_mm, sub.segment, 0});
       for (const auto& [col, row] : piece) result.face(col, row) = id;
     }
   fill_holes(maps.grid, seg.segment, result.faces, result.face);
   keep_within_card(maps.grid, result);
   merge_coplanar_faces(result);
+  // Slices of one segment are W apart; faces of different segments nearer than a quarter of it in
+  // depth are one plane of paper (the 0.2 mm between two facets of arch_one_wtc).
+  merge_near_coplanar_faces(result, W / 4);
 }
 
 }  // namespace

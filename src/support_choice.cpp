@@ -7,6 +7,7 @@
 #include <array>
 #include <climits>
 #include <cmath>
+#include <numeric>
 #include <optional>
 #include <span>
 #include <tuple>
@@ -15,22 +16,37 @@
 #include "bands.hpp"
 #include "origamic/plan.hpp"
 #include "plane_numbers.hpp"
+#include "support_ears.hpp"
+#include "support_picture.hpp"
 
 namespace origamic {
 namespace {
 
+// The reachable faces a support may fold onto past the first, along its ray: a support that crosses
+// a face to reach one behind it can cost the picture less than one to a face that stands not.
+constexpr int kTargetsPerRay = 3;
+// A support's cost per mm of length, beside the error it adds to the picture (in mm, as below):
+// among supports the picture does not see (through the back plane, the floor, under an overhang)
+// the shortest.
+constexpr double kCostPerLength = 0.25;
+
 class CandidateFinder {
+  struct Run {
+    int row, c0, c1;  // pixels [c0, c1) of the row
+  };
+
  public:
   // Candidates will be asked of the faces in `wanted` only.
   CandidateFinder(const RasterMaps& maps, const SliceResult& slices, const PlanBuild& exact,
-                  std::span<const Candidate> painted, const std::vector<std::int32_t>& wanted, double split_cost,
-                  Reach reach)
+                  std::span<const Candidate> painted, const std::vector<std::int32_t>& wanted,
+                  const SupportPicture& picture, Reach reach)
       : exact_(exact),
+        picture_(picture),
         painted_(painted),
         grid_(maps.grid),
         face_(slices.face),
         faces_(slices.faces),
-        split_cost_(split_cost),
+        W_(slices.min_strip_mm),
         below_tips_(reach.below_tips),
         corners_(reach.corners),
         px_mm_(1 / maps.grid.px_per_mm),
@@ -63,6 +79,7 @@ class CandidateFinder {
           while (end < c_end && row[end] == f && was_row[end] == was) ++end;
           if (changed(f, was))
             for (int k = c; k < end; ++k) note_change(r, k, f);
+
           if (f >= 0 && slot_[static_cast<std::size_t>(f)] >= 0) {
             const auto slot = static_cast<std::size_t>(slot_[static_cast<std::size_t>(f)]);
             for (int k = c; k < end; ++k) {
@@ -81,7 +98,20 @@ class CandidateFinder {
       for (std::size_t slot = 0; slot < columns_.size(); ++slot)
         columns_[slot] = {std::min(columns_[slot].first, band[slot].first),
                           std::max(columns_[slot].second, band[slot].second)};
+    face_runs_.resize(faces_.size());
+    for (int r = 0; r < face_.rows; ++r) {
+      const std::int32_t* row = &face_.values[face_.index(0, r)];
+      for (int c = 0; c < face_.cols;) {
+        int end = c + 1;
+        while (end < face_.cols && row[end] == row[c]) ++end;
+        if (row[c] >= 0) face_runs_[static_cast<std::size_t>(row[c])].push_back({r, c, end});
+        c = end;
+      }
+    }
   }
+
+  // Whether support s, as it is now (widened), cuts face x in two.
+  bool cuts(std::int32_t x, const Candidate& s) const { return splits(x, s); }
 
   // Candidates from the top (up = true) or bottom edge of face f, one per W-wide block column that
   // f fills on that edge. (h, d) is the OA point of the edge: a support leaving it is H(h) reaching
@@ -138,12 +168,14 @@ class CandidateFinder {
         const double edge_Y = grid_.Y(row) + (up ? px_mm_ / 2 : -px_mm_ / 2);
         const double h = face.orientation == Orientation::V ? edge_Y + face.depth_mm : face.depth_mm;
         const double d = face.orientation == Orientation::V ? face.depth_mm : face.depth_mm - edge_Y;
-        if (auto c = walk(f, column, row, up, h, d)) {
-          c->taken = taken;
-          c->cost += extra_cost;
-          candidates.push_back(*c);
-          if (c->cost < split_cost_) break;  // the first that cuts nothing: it takes least of f
+        bool cuts_nothing = false;
+        for (Candidate& c : walk(f, column, row, up, h, d)) {
+          c.taken = taken;
+          c.cost += extra_cost;
+          cuts_nothing |= c.cuts.empty();
+          candidates.push_back(c);
         }
+        if (cuts_nothing) break;  // the first that cuts nothing: it takes least of f
       }
     }
     return candidates;
@@ -175,15 +207,41 @@ class CandidateFinder {
     for (int c = c0; c < c1; ++c) n += face_(c, r) == f;
     return 2 * n >= c1 - c0;
   }
-  // Whether support s cuts face x in two: x lies on both sides of it, within its rows. A support
-  // that only trims x's end leaves it one piece of paper.
+  // Whether support s cuts face x in two: what is left of x falls into more pieces than x is in. A
+  // support that only trims x's end leaves it one piece of paper, and so does one across a ring,
+  // which stays joined around the other side.
   bool splits(std::int32_t x, const Candidate& s) const {
-    bool left = false, right = false;
-    for (int r = s.r0; r < s.r1; ++r) {
-      left |= s.c0 > 0 && face_(s.c0 - 1, r) == x;
-      right |= s.c1 < face_.cols && face_(s.c1, r) == x;
+    const std::vector<Run>& runs = face_runs_[static_cast<std::size_t>(x)];
+    return pieces(runs, s.c0, s.c1, s.r0, s.r1) > pieces(runs, 0, 0, 0, 0);
+  }
+  // The 4-connected pieces of a face's runs less the pixels [c0, c1) x [r0, r1).
+  static int pieces(const std::vector<Run>& runs, int c0, int c1, int r0, int r1) {
+    std::vector<Run> left;
+    left.reserve(runs.size() + 8);
+    for (const Run& run : runs) {
+      if (run.row < r0 || run.row >= r1 || run.c1 <= c0 || c1 <= run.c0) {
+        left.push_back(run);
+        continue;
+      }
+      if (run.c0 < c0) left.push_back({run.row, run.c0, c0});
+      if (c1 < run.c1) left.push_back({run.row, c1, run.c1});
     }
-    return left && right;
+    std::vector<std::size_t> parent(left.size());
+    std::iota(parent.begin(), parent.end(), std::size_t{0});
+    const auto root = [&](std::size_t i) {
+      while (parent[i] != i) i = parent[i] = parent[parent[i]];
+      return i;
+    };
+    int count = static_cast<int>(left.size());
+    // Runs are in row-major order: those of the row above overlapping one are joined to it.
+    for (std::size_t b = 0, a_begin = 0; b < left.size(); ++b) {
+      while (a_begin < b && left[a_begin].row < left[b].row - 1) ++a_begin;
+      for (std::size_t a = a_begin; a < b && left[a].row < left[b].row; ++a)
+        if (left[a].row == left[b].row - 1 && left[a].c0 < left[b].c1 && left[b].c0 < left[a].c1)
+          if (const std::size_t ra = root(a), rb = root(b); ra != rb)
+            parent[std::max(ra, rb)] = std::min(ra, rb), --count;
+    }
+    return count;
   }
   std::size_t at(std::int32_t f, int c) const {
     return static_cast<std::size_t>(slot_[static_cast<std::size_t>(f)]) * face_.cols + c;
@@ -252,13 +310,15 @@ class CandidateFinder {
     int c0_ = 0, c1_ = 0;
   };
 
-  // The first face the support can fold onto, away from the edge: a V face at depth d' where
+  // The first faces the support can fold onto, away from the edge, nearest first, at most
+  // kTargetsPerRay of them: a V face at depth d' where
   // Y = h - d', or an H face at height h' where Y = h' - d, found on the exact plan and the supports
   // painted since. The ray is shot a quarter pixel right of the block column's centre (off the
   // lattice the plan's vertices lie on). The raster, which may have split, merged or renumbered
   // faces since, names the face there: one in the plane the ray met, filling half the block, as a
   // support's far side needs.
-  std::optional<Candidate> walk(std::int32_t f, BlockColumn& column, int edge, bool up, double h, double d) const {
+  std::vector<Candidate> walk(std::int32_t f, BlockColumn& column, int edge, bool up, double h, double d) const {
+    std::vector<Candidate> found;
     const int step = up ? -1 : 1;
     const int centre = (column.c0() + column.c1()) / 2;
     const double from_Y = grid_.Y(edge) + (up ? px_mm_ / 2 : -px_mm_ / 2);
@@ -282,20 +342,23 @@ class CandidateFinder {
         if (row.centre < 0 || !row.mostly) continue;
         const RasterFace& target = faces_[static_cast<std::size_t>(row.centre)];
         if (target.hole || target.orientation != reached.orientation || target.depth_mm != reached.depth_mm) continue;
-        if ((r - step - (edge + step)) * step < 0) return std::nullopt;  // no room: the faces touch already
+        if ((r - step - (edge + step)) * step < 0) return found;  // no room: the faces touch already
         std::vector<std::int32_t> crossed;
         for (int between = edge + step; between != r; between += step)
           for (const std::int32_t x : column.faces(column.row(*this, between)))
-            if (x != f && (crossed.empty() || crossed.back() != x)) crossed.push_back(x);
-        return candidate(f, row.centre, column, edge, r, up, h, d, std::move(crossed));
+            if (crossed.empty() || crossed.back() != x) crossed.push_back(x);  // f too: taking its rows may cut it
+        found.push_back(candidate(f, row.centre, column, edge, r, up, h, d, std::move(crossed)));
+        break;
       }
-      if (beyond < 0 || beyond >= face_.rows) break;
+      if (static_cast<int>(found.size()) >= kTargetsPerRay || beyond < 0 || beyond >= face_.rows) break;
     }
-    return std::nullopt;
+    return found;
   }
 
-  // The support from f's row `edge` to g's row `r` (both outside it), with its cost: its length, and
-  // the split cost for each face it cuts in two among those it crosses.
+  // The support from f's row `edge` to g's row `r` (both outside it), with its cost: the error it adds
+  // to the picture (SupportPicture, per W x W of plan: a support W wide and L long that shows the
+  // model 2 W off or more costs 2 L), a little for its length; and the faces it cuts in two among
+  // those it crosses.
   Candidate candidate(std::int32_t f, std::int32_t g, const BlockColumn& column, int edge, int r, bool up, double h,
                       double d, std::vector<std::int32_t> crossed) const {
     const int step = up ? -1 : 1;
@@ -310,45 +373,90 @@ class CandidateFinder {
     s.depth_mm = onto_v ? h : d;
     s.near = {h, d};
     s.far = support_fold(target.orientation, target.depth_mm, h, d);
-    s.cost = (s.r1 - s.r0) * px_mm_;
+    const double length = (s.r1 - s.r0) * px_mm_;
+    s.picture_mm = std::max(0.0, picture_.added_error(s.orientation, s.depth_mm, s.c0, s.c1, s.r0, s.r1)) / (W_ * W_);
+    s.cost = kCostPerLength * length + s.picture_mm;
     std::ranges::sort(crossed);
     crossed.erase(std::unique(crossed.begin(), crossed.end()), crossed.end());
     for (const std::int32_t x : crossed)
-      if (x != g && splits(x, s)) s.cost += split_cost_;
+      if (x != g && splits(x, s)) s.cuts.push_back(x);
     return s;
   }
 
   const PlanBuild& exact_;
+  const SupportPicture& picture_;
   std::span<const Candidate> painted_;
   const PixelGrid& grid_;
   const Grid<std::int32_t>& face_;
   const std::vector<RasterFace>& faces_;
-  double split_cost_;
+  double W_;
   bool below_tips_, corners_;
   double px_mm_;
   int block_;
-  std::vector<int> slot_;                     // per face: its place in the tables below, -1 for faces not wanted
-  std::vector<int> first_, last_;             // per wanted face and column: its first and last row, -1 if none
-  std::vector<std::pair<int, int>> columns_;  // per wanted face: its first and last column
+  std::vector<int> slot_;                      // per face: its place in the tables below, -1 for faces not wanted
+  std::vector<int> first_, last_;              // per wanted face and column: its first and last row, -1 if none
+  std::vector<std::pair<int, int>> columns_;   // per wanted face: its first and last column
   std::vector<std::vector<Changed>> changed_;  // per column
+  std::vector<std::vector<Run>> face_runs_;    // per face, its runs of pixels in row-major order
   std::vector<int> plane_now_, plane_then_;    // per face of the raster plan and of the exact plan
 };
 
-bool claimed_anywhere(const Grid<std::uint8_t>& claimed, int c0, int c1, int r0, int r1) {
-  for (int r = r0; r < r1; ++r)
-    for (int c = c0; c < c1; ++c)
-      if (claimed(c, r)) return true;
-  return false;
+// The pixels the supports of a round have claimed: those they cover, and their anchors, the rows
+// just outside them, of the face they leave and the face they reach, which must stay those faces for
+// the support to fold onto them. Two supports may share an anchor; neither may cover the other's.
+class Claims {
+ public:
+  Claims(int cols, int rows) : mark_(cols, rows, kFree) {}
+
+  bool fits(const Candidate& s) const { return fits_columns(s, s.c0, s.c1); }
+  bool fits_columns(const Candidate& s, int c0, int c1) const {
+    for (int c = c0; c < c1; ++c) {
+      for (int r = s.r0; r < s.r1; ++r)
+        if (mark_(c, r) != kFree) return false;
+      for (const int r : {s.face_row, s.target_row})
+        if (mark_.contains(c, r) && mark_(c, r) == kCovered) return false;
+    }
+    return true;
+  }
+  void claim(const Candidate& s) {
+    for (int c = s.c0; c < s.c1; ++c) {
+      for (int r = s.r0; r < s.r1; ++r) mark_(c, r) = kCovered;
+      for (const int r : {s.face_row, s.target_row})
+        if (mark_.contains(c, r)) mark_(c, r) = std::max(mark_(c, r), kAnchor);
+    }
+  }
+
+ private:
+  static constexpr std::uint8_t kFree = 0, kAnchor = 1, kCovered = 2;
+  Grid<std::uint8_t> mark_;
+};
+
+// Whether one support covers what the other covers or folds onto.
+bool interfere(const Candidate& a, const Candidate& b) {
+  if (a.c1 <= b.c0 || b.c1 <= a.c0) return false;
+  const auto covers = [](const Candidate& s, int r) { return s.r0 <= r && r < s.r1; };
+  return (a.r0 < b.r1 && b.r0 < a.r1) || covers(a, b.face_row) || covers(a, b.target_row) || covers(b, a.face_row) ||
+         covers(b, a.target_row);
 }
 
 // Seed §4.4, last part: a support grows a column at a time to either side while that column still
-// joins the same two faces and covers no other face.
-void widen(const Grid<std::int32_t>& face, const Grid<std::uint8_t>& claimed, Candidate& s) {
+// joins the same two faces, covers no other face and shows the model no worse than what it covers.
+// It may cover rows of the two faces it joins, but not so as to cut either in two.
+void widen(const Grid<std::int32_t>& face, const Claims& claims, const SupportPicture& picture,
+           const CandidateFinder& finder, Candidate& s) {
   auto column_fits = [&](int c) {
     if (c < 0 || c >= face.cols || face(c, s.face_row) != s.face || face(c, s.target_row) != s.target) return false;
-    for (int r = s.r0; r < s.r1; ++r)
-      if (claimed(c, r) || (face(c, r) != s.face && face(c, r) != s.target)) return false;
-    return true;
+    if (!claims.fits_columns(s, c, c + 1)) return false;
+    bool covers_them = false;
+    for (int r = s.r0; r < s.r1; ++r) {
+      if (face(c, r) != s.face && face(c, r) != s.target) return false;
+      covers_them = true;
+    }
+    if (picture.added_error(s.orientation, s.depth_mm, c, c + 1, s.r0, s.r1) > 0) return false;
+    if (!covers_them) return true;
+    Candidate wider = s;
+    wider.c0 = std::min(s.c0, c), wider.c1 = std::max(s.c1, c + 1);
+    return !finder.cuts(s.face, wider) && !finder.cuts(s.target, wider);
   };
   while (column_fits(s.c0 - 1)) --s.c0;
   while (column_fits(s.c1)) ++s.c1;
@@ -365,58 +473,131 @@ Standing standing_of(const Plan& plan) {
   return s;
 }
 
-std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const PlanBuild& exact,
-                                       std::span<const Candidate> painted, const Standing& standing,
-                                       const std::vector<std::int32_t>& invalid, const SupportOptions& options,
-                                       Reach reach) {
-  const CandidateFinder finder(maps, slices, exact, painted, invalid, options.split_cost_mm, reach);
-  Grid<std::uint8_t> claimed(slices.face.cols, slices.face.rows, 0);
-  std::vector<Candidate> chosen;
-  // Seed: an edge already folded to a face is not supported again; a floating face gets both. A
-  // support chosen in this round joins the target's facing edge too, so that one is not supported
-  // again from the other side.
-  std::vector<std::uint8_t> top_joined = standing.fold_on_top, bottom_joined = standing.fold_on_bottom;
-  // First the seed's rule: unjoined edges only. If that finds nothing, faces whose every edge is
-  // folded but which hang from one plane only (a staircase standing on the floor, reaching
-  // nowhere) are supported on the side of the missing plane: up towards the back plane when no
-  // fold path reaches it, down towards the floor likewise.
-  for (const bool by_missing_plane : {false, true}) {
-    if (by_missing_plane && !chosen.empty()) break;
-    auto wanted = [&](std::size_t i, bool up) {
-      return by_missing_plane ? !(up ? standing.validity.in_X[i] : standing.validity.in_Y[i])
-                              : !(up ? top_joined[i] : bottom_joined[i]);
-    };
-    // The candidates of every edge that wants them, found in parallel (the search only reads);
-    // the greedy choice below stays in order, and skips edges an earlier choice joined.
-    std::vector<std::vector<Candidate>> found(2 * invalid.size());
-    tbb::parallel_for(std::size_t{0}, found.size(), [&](std::size_t k) {
-      const std::int32_t f = invalid[k / 2];
-      const bool up = k % 2 == 0;
-      if (!wanted(static_cast<std::size_t>(f), up)) return;
-      found[k] = finder.from_edge(f, up);
-      std::ranges::sort(found[k], [](const Candidate& a, const Candidate& b) {
-        return std::tie(a.cost, a.taken, a.c0) < std::tie(b.cost, b.taken, b.c0);
-      });
-    });
-    for (std::size_t k = 0; k < found.size(); ++k) {
-      const std::int32_t f = invalid[k / 2];
-      const auto i = static_cast<std::size_t>(f);
-      const bool up = k % 2 == 0;
-      if (!wanted(i, up)) continue;
-      for (Candidate& s : found[k]) {
-        if (!reach.split_faces && s.cost >= options.split_cost_mm) break;  // sorted: no cheaper one follows
-        if (claimed_anywhere(claimed, s.c0, s.c1, s.r0, s.r1)) continue;
-        widen(slices.face, claimed, s);
-        for (int r = s.r0; r < s.r1; ++r)
-          for (int c = s.c0; c < s.c1; ++c) claimed(c, r) = 1;
-        chosen.push_back(s);
-        (up ? top_joined[i] : bottom_joined[i]) = 1;
-        (up ? bottom_joined[static_cast<std::size_t>(s.target)] : top_joined[static_cast<std::size_t>(s.target)]) = 1;
-        break;
-      }
+namespace {
+
+// The candidates of both edges of the faces, found in parallel (the search only reads), then taken
+// in order; a support that cuts the face it holds, or the one it reaches, in two holds nothing.
+std::vector<Candidate> candidates_of(const CandidateFinder& finder, const std::vector<std::int32_t>& faces,
+                                     bool split_faces) {
+  std::vector<std::vector<Candidate>> found(2 * faces.size());
+  tbb::parallel_for(std::size_t{0}, found.size(),
+                    [&](std::size_t k) { found[k] = finder.from_edge(faces[k / 2], k % 2 == 0); });
+  std::vector<Candidate> candidates;
+  for (std::vector<Candidate>& edge : found)
+    for (Candidate& c : edge) {
+      const auto cuts = [&](std::int32_t x) { return std::ranges::find(c.cuts, x) != c.cuts.end(); };
+      if (!cuts(c.face) && !cuts(c.target) && (split_faces || c.cuts.empty())) candidates.push_back(std::move(c));
     }
+  return candidates;
+}
+
+}  // namespace
+
+std::vector<Candidate> support_candidates(const RasterMaps& maps, const SliceResult& slices, const PlanBuild& exact,
+                                          std::span<const Candidate> painted, const std::vector<std::int32_t>& faces,
+                                          Reach reach) {
+  const SupportPicture picture(maps, slices);
+  return candidates_of(CandidateFinder(maps, slices, exact, painted, faces, picture, reach), faces, reach.split_faces);
+}
+
+SupportChoice choose_supports(const RasterMaps& maps, const SliceResult& slices, const PlanBuild& exact,
+                              std::span<const Candidate> painted, const Standing& standing,
+                              std::span<const FoldEdge> folds, const std::vector<std::int32_t>& invalid,
+                              const SupportOptions& options, Reach reach) {
+  const SupportPicture picture(maps, slices);
+  const CandidateFinder finder(maps, slices, exact, painted, invalid, picture, reach);
+  const std::vector<Candidate> candidates = candidates_of(finder, invalid, reach.split_faces);
+  const std::size_t n = slices.faces.size();
+  std::vector<std::uint8_t> stands(n, 0), open(n, 0), usable(candidates.size(), 1);
+  for (std::size_t f = 0; f < n && f < standing.validity.status.size(); ++f)
+    stands[f] = standing.validity.status[f] == FaceStatus::Valid && !slices.faces[f].hole;
+  // A face is held only while that costs the picture no more than cutting it out.
+  std::vector<double> limit(n, 0);
+  const double W = slices.min_strip_mm;
+  for (const std::int32_t f : invalid) {
+    open[static_cast<std::size_t>(f)] = 1;
+    limit[static_cast<std::size_t>(f)] = std::max(0.0, picture.hole_error(f)) / (W * W);
   }
-  return chosen;
+  // A support that cuts a face in two leaves a piece to hold: a face not yet held costs the split
+  // cost, one that stands ten times that (its pieces need holding anew).
+  const auto edges_now = [&] {
+    std::vector<SupportEdge> edges;
+    edges.reserve(candidates.size());
+    for (const Candidate& c : candidates) {
+      double cuts = 0;
+      for (const std::int32_t x : c.cuts)
+        cuts += (stands[static_cast<std::size_t>(x)] ? 10 : 1) * options.split_cost_mm;
+      edges.push_back({c.face, c.target, c.near.h - c.near.d, c.far.h - c.far.d, c.cost + cuts, c.cost, c.cuts});
+    }
+    return edges;
+  };
+  // Ear by ear, the hardest face's first: its faces stand from then on, and its supports claim their
+  // pixels, which no later support may overlap.
+  Claims claims(slices.face.cols, slices.face.rows);
+  SupportChoice choice;
+  std::vector<Candidate>& chosen = choice.supports;
+  // First the ears that cut no standing face in two, as many as there are; only when there are
+  // none, one ear that does, the cheapest: the faces it cuts are pieces for the next round to hold,
+  // as it sees them, where ears taken after it here would assume them whole.
+  const auto cuts_standing = [&](const Candidate& c) {
+    return std::ranges::any_of(c.cuts, [&](std::int32_t x) { return stands[static_cast<std::size_t>(x)] != 0; });
+  };
+  // An ear's supports may interfere with each other or with those taken before (they were found
+  // apart), or cut a face of their own ear in two: such a support is given up and the ear sought
+  // again without it.
+  const auto admissible = [&](const Ear& ear) {
+    bool all = true;
+    for (std::size_t i = 0; i < ear.supports.size(); ++i) {
+      const Candidate& c = candidates[ear.supports[i]];
+      bool bad = !claims.fits(c);
+      for (std::size_t j = 0; j < i && !bad; ++j) bad = interfere(c, candidates[ear.supports[j]]);
+      for (const std::int32_t x : c.cuts) bad = bad || std::ranges::find(ear.faces, x) != ear.faces.end();
+      if (bad) usable[ear.supports[i]] = 0, all = false;
+    }
+    return all;
+  };
+  const auto take = [&](const Ear& ear) {
+    const std::size_t first_new = chosen.size();
+    for (const std::size_t k : ear.supports) {
+      Candidate s = candidates[k];
+      widen(slices.face, claims, picture, finder, s);
+      claims.claim(s);
+      chosen.push_back(s);
+    }
+    for (const std::int32_t f : ear.faces)
+      stands[static_cast<std::size_t>(f)] = 1, open[static_cast<std::size_t>(f)] = 0;
+    for (std::size_t k = 0; k < candidates.size(); ++k)
+      for (std::size_t j = first_new; j < chosen.size() && usable[k]; ++j)
+        usable[k] = !interfere(candidates[k], chosen[j]);
+  };
+  for (bool cutting = false;;) {
+    std::vector<std::uint8_t> allowed = usable;
+    if (!cutting)
+      for (std::size_t k = 0; k < allowed.size(); ++k) allowed[k] &= !cuts_standing(candidates[k]);
+    const EarSearch search(static_cast<std::int32_t>(n), folds, edges_now());
+    EarSearch::Choice next =
+        cutting ? search.cheapest(stands, open, limit, allowed) : search.hardest(stands, open, limit, allowed);
+    if (next.ears.empty()) {
+      if (!cutting && chosen.empty()) {
+        cutting = true;
+        continue;
+      }
+      if (chosen.empty())
+        for (const auto& [f, hold] : next.beyond_limit)
+          choice.cut_out.push_back({f, hold, limit[static_cast<std::size_t>(f)]});
+      break;
+    }
+    // The batch in order, each ear but those to be sought again; a cutting ear alone.
+    bool took = false;
+    for (const Ear& ear : next.ears) {
+      if (!admissible(ear)) continue;
+      take(ear);
+      took = true;
+      if (cutting) break;
+    }
+    if (cutting && took) break;
+  }
+  return choice;
 }
 
 }  // namespace origamic

@@ -14,6 +14,7 @@
 #include "origamic/slice.hpp"
 #include "origamic/supports.hpp"
 #include "origamic/validity.hpp"
+#include "support_ears.hpp"
 
 namespace origamic {
 
@@ -27,9 +28,11 @@ struct Candidate {
   int target_row = 0;  // the row of `target` just outside it, on the other side
   Orientation orientation = Orientation::V;
   double depth_mm = 0;
-  FoldLine near, far;  // where it folds onto `face` (or ends, in its plane) and onto `target`
-  double cost = 0;
-  int taken = 0;  // rows of `face` the support takes, on its edge
+  FoldLine near, far;              // where it folds onto `face` (or ends, in its plane) and onto `target`
+  double cost = 0;                 // the picture's, and a little for its length (the faces it cuts aside)
+  double picture_mm = 0;           // the error it adds to the picture, per W x W of plan (part of its cost)
+  std::vector<std::int32_t> cuts;  // the faces it cuts in two
+  int taken = 0;                   // rows of `face` the support takes, on its edge
 };
 
 // What the loop needs to know of a plan: each face's status and which of its sides are folded.
@@ -37,6 +40,11 @@ struct Standing {
   Validity validity;
   std::vector<std::uint8_t> fold_on_top, fold_on_bottom;
 };
+
+/// The folds of the raster plan: wherever a V(d) pixel and an H(h) pixel meet one above the other
+/// within `tolerance` of Y = h - d, as the exact plan snaps them (plan.hpp), the upper face first; a
+/// run of one pair once, in row order.
+std::vector<FoldEdge> raster_folds(const PixelGrid& grid, const SliceResult& slices, double tolerance);
 
 /// The exact plan's word on each face, as the rounds read it.
 Standing standing_of(const Plan& plan);
@@ -53,15 +61,43 @@ struct Reach {
   bool corners = false;
 };
 
-/// Supports for the invalid faces, chosen greedily in their order, widened, never overlapping; not
-/// yet painted. `exact` is the exact plan of `slices` before the supports `painted` since: the face
-/// each support reaches is found on it and them (PlanBuild::faces_reached).
-std::vector<Candidate> choose_supports(const RasterMaps& maps, const SliceResult& slices, const PlanBuild& exact,
-                                       std::span<const Candidate> painted, const Standing& standing,
-                                       const std::vector<std::int32_t>& invalid, const SupportOptions& options,
-                                       Reach reach);
+/// Supports for the invalid faces, chosen ear by ear (support_ears.hpp), the cheapest first, over
+/// the plan's folds and the candidates of both edges of every invalid face; widened, never
+/// overlapping; not yet painted. `exact` is the exact plan of `slices` before the supports `painted`
+/// since: the face each support reaches is found on it and them (PlanBuild::faces_reached). A
+/// candidate costs the error it adds to the picture and a little for its length (and much for
+/// each face it cuts in two). A face is held only where that costs no more than the error a hole
+/// in its place would add (seed §4.4 shows supports always exist; here they must also be worth it).
+/// The candidate supports from both edges of the faces (seed §4.4, a few per ray: the first faces
+/// it can fold onto), each with its cost and the faces it cuts in two; what choose_supports chooses
+/// among. `exact` and `painted` as there.
+std::vector<Candidate> support_candidates(const RasterMaps& maps, const SliceResult& slices, const PlanBuild& exact,
+                                          std::span<const Candidate> painted, const std::vector<std::int32_t>& faces,
+                                          Reach reach);
 
-/// Paints the chosen supports into the raster plan as faces of their own (RasterFace::support).
+struct SupportChoice {
+  std::vector<Candidate> supports;
+  // Invalid faces whose every ear costs the picture more than cutting them out would: the face, the
+  // picture cost of its cheapest ear and that of its hole (per W x W of plan, as Candidate::cost).
+  struct CostlyFace {
+    std::int32_t face;
+    double hold, hole;
+  };
+  std::vector<CostlyFace> cut_out;
+};
+SupportChoice choose_supports(const RasterMaps& maps, const SliceResult& slices, const PlanBuild& exact,
+                              std::span<const Candidate> painted, const Standing& standing,
+                              std::span<const FoldEdge> folds, const std::vector<std::int32_t>& invalid,
+                              const SupportOptions& options, Reach reach);
+
+/// Makes every face of the raster plan one piece of paper, as the exact plan judges them: each
+/// 4-connected part of a face (a loose piece of the back plane or the floor too) becomes a face of
+/// its own, a part under crumb_px pixels joins a neighbour. The face graph of the rounds is then the
+/// exact plan's graph of pieces.
+void split_into_pieces(SliceResult& slices, std::int64_t crumb_px);
+
+/// Paints the chosen supports into the raster plan as faces of their own (RasterFace::support),
+/// then splits it into pieces.
 void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid, double tolerance,
                     std::int64_t crumb_px, SliceResult& slices);
 

@@ -87,6 +87,13 @@ void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid,
   });
   merge_coplanar_faces(slices);
   align_folds_to_lines(slices, grid, tolerance);
+  split_into_pieces(slices, crumb_px);
+}
+
+void split_into_pieces(SliceResult& slices, std::int64_t crumb_px) {
+  std::vector<std::int32_t> all(slices.faces.size());
+  std::iota(all.begin(), all.end(), 0);
+  if (!split_disconnected_faces(slices, all, crumb_px, 0).empty()) merge_coplanar_faces(slices);
 }
 
 }  // namespace origamic

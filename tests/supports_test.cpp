@@ -36,9 +36,35 @@ void expect_exact_and_standing(const Plan& plan) {
   EXPECT_TRUE(plan.faces_tile_sheet);
   EXPECT_EQ(plan.lost_faces, 0);
   EXPECT_EQ(plan.unresolved_crossings, 0);
-  EXPECT_TRUE(plan_stands(plan.validity, false))
-      << plan.validity.floating << " floating, " << plan.validity.dangling << " dangling, " << plan.validity.invalid
-      << " invalid";
+  EXPECT_TRUE(plan_stands(plan.validity, false)) << plan.validity.floating << " floating, " << plan.validity.dangling
+                                                 << " dangling, " << plan.validity.invalid << " invalid";
+}
+
+// The candidates leaving face f's top edge (up) or bottom edge at that edge itself (taking none of
+// its rows), the nearest target of each block column first.
+std::vector<Candidate> leaving(const std::vector<Candidate>& candidates, std::int32_t f, bool up) {
+  std::vector<Candidate> out;
+  for (const Candidate& c : candidates)
+    if (c.face == f && c.taken == 0 && (c.target_row < c.face_row) == up) out.push_back(c);
+  std::ranges::stable_sort(out, [](const Candidate& a, const Candidate& b) {
+    return std::pair{a.c0, a.r1 - a.r0} < std::pair{b.c0, b.r1 - b.r0};
+  });
+  return out;
+}
+
+// The nearest target of every block column.
+std::vector<Candidate> nearest(const std::vector<Candidate>& leaving) {
+  std::vector<Candidate> out;
+  for (const Candidate& c : leaving)
+    if (out.empty() || out.back().c0 != c.c0) out.push_back(c);
+  return out;
+}
+
+// choose_supports on the raster plan's own folds.
+SupportChoice choose(const RasterMaps& maps, const SliceResult& slices, const PlanBuild& build,
+                     const Standing& standing, const std::vector<std::int32_t>& invalid, Reach reach = {}) {
+  const std::vector<FoldEdge> folds = raster_folds(maps.grid, slices, aligned_fold_tolerance_mm(maps.grid));
+  return choose_supports(maps, slices, build, {}, standing, folds, invalid, SupportOptions{}, reach);
 }
 
 TEST(Supports, FloatingBoxIsSupportedAtTopAndBottom) {
@@ -79,8 +105,8 @@ TEST(Supports, ARoundReachesTheFacesOnTheExactPlan) {
   const Standing standing = standing_of(verdict);
   const std::vector<std::int32_t> invalid{2, 3};
   ASSERT_EQ(verdict.validity.floating, 2);
-  const std::vector<Candidate> exact =
-      choose_supports(maps, slices, build, {}, standing, invalid, SupportOptions{}, Reach{});
+  // One ear: the floor, the front, its fold with the top, the top, the back plane.
+  const std::vector<Candidate> exact = choose(maps, slices, build, standing, invalid).supports;
   ASSERT_EQ(exact.size(), 2u);
   const double px_mm = 1 / maps.grid.px_per_mm;
   for (const Candidate& s : exact) {
@@ -108,7 +134,6 @@ TEST(Supports, RaysMeetFacesTheRasterPlanGainedSinceTheExactPlan) {
   const RasterMaps& maps = box.maps;
   const SliceResult& slices = box.slices;
   const PlanBuild& build = box.build;
-  const Standing standing = standing_of(build.verdict());
   const std::int32_t front = box.front;
   // Below the front V(47.1) (Y from 41.3 - 47.1 up), the floor gains an H(20) band from Y -30 to
   // -20 across the box: the front, reaching down along its plane, folds onto it at 20 - 47.1.
@@ -119,19 +144,22 @@ TEST(Supports, RaysMeetFacesTheRasterPlanGainedSinceTheExactPlan) {
   for (int r = 0; r < changed.face.rows; ++r)
     for (int c = 0; c < changed.face.cols; ++c)
       if (grid.Y(r) > -30 && grid.Y(r) < -20 && grid.X(c) > 60.2 && grid.X(c) < 150.7) changed.face(c, r) = h20;
-  const std::vector<std::int32_t> invalid{front};
-  const std::vector<Candidate> chosen =
-      choose_supports(maps, changed, build, {}, standing, invalid, SupportOptions{}, Reach{});
-  ASSERT_EQ(chosen.size(), 1u);
-  EXPECT_EQ(chosen[0].target, h20);
-  EXPECT_EQ(chosen[0].orientation, Orientation::V);
-  EXPECT_EQ(chosen[0].depth_mm, 47.1);
-  EXPECT_LE(std::abs(grid.Y(chosen[0].target_row) - (20 - 47.1)), 0.5 / grid.px_per_mm);
+  const std::vector<std::int32_t> faces{front};
+  const std::vector<Candidate> down =
+      nearest(leaving(support_candidates(maps, changed, build, {}, faces, Reach{}), front, false));
+  ASSERT_FALSE(down.empty());
+  for (const Candidate& c : down) {
+    if (c.c0 < 60.2 * grid.px_per_mm || c.c1 > 150.7 * grid.px_per_mm) continue;  // the band's columns
+    EXPECT_EQ(c.target, h20);
+    EXPECT_EQ(c.orientation, Orientation::V);
+    EXPECT_EQ(c.depth_mm, 47.1);
+    EXPECT_LE(std::abs(grid.Y(c.target_row) - (20 - 47.1)), 0.5 / grid.px_per_mm);
+  }
   // On the plan as built, the front reaches the floor, at Y = -47.1.
   const std::vector<Candidate> before =
-      choose_supports(maps, slices, build, {}, standing, invalid, SupportOptions{}, Reach{});
-  ASSERT_EQ(before.size(), 1u);
-  EXPECT_EQ(before[0].target, kFloorFace);
+      nearest(leaving(support_candidates(maps, slices, build, {}, faces, Reach{}), front, false));
+  ASSERT_FALSE(before.empty());
+  for (const Candidate& c : before) EXPECT_EQ(c.target, kFloorFace);
 }
 
 // A face whose every pixel has gone to a neighbour (a whole crumb joined to it) has no edge left to
@@ -143,12 +171,11 @@ TEST(Supports, AFaceWithNoPixelsLeftHasNoEdgeToHold) {
     if (f == box.top) f = box.front;
   joined.faces[static_cast<std::size_t>(box.front)].pixels +=
       std::exchange(joined.faces[static_cast<std::size_t>(box.top)].pixels, 0);
-  const Standing standing = standing_of(box.build.verdict());
-  const std::vector<std::int32_t> invalid{box.top, box.front};
-  const std::vector<Candidate> chosen =
-      choose_supports(box.maps, joined, box.build, {}, standing, invalid, SupportOptions{}, Reach{true, true, true});
-  ASSERT_FALSE(chosen.empty());
-  for (const Candidate& s : chosen) EXPECT_EQ(s.face, box.front);
+  const std::vector<std::int32_t> faces{box.top, box.front};
+  const std::vector<Candidate> found =
+      support_candidates(box.maps, joined, box.build, {}, faces, Reach{true, true, true});
+  ASSERT_FALSE(found.empty());
+  for (const Candidate& s : found) EXPECT_EQ(s.face, box.front);
 }
 
 // A fold exactly at the far end of a face's piece of the ray does not land on that face: the support
@@ -158,8 +185,7 @@ TEST(Supports, AFaceWithNoPixelsLeftHasNoEdgeToHold) {
 // the back plane at Y = 50.
 TEST(Supports, AFoldAtTheFarEndOfAFacesPieceLandsBeyondIt) {
   const Sheet sheet;
-  const RayScene scene(
-      test::merged(test::box({60, 0, 0}, {150, 50, 30}), test::box({80, 40, 60}, {130, 50, 80})));
+  const RayScene scene(test::merged(test::box({60, 0, 0}, {150, 50, 30}), test::box({80, 40, 60}, {130, 50, 80})));
   const RasterMaps maps = raster(scene, sheet, RasterOptions{});
   const SliceResult slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
   const PlanBuild build(maps, slices, sheet, PlanOptions{});
@@ -173,15 +199,15 @@ TEST(Supports, AFoldAtTheFarEndOfAFacesPieceLandsBeyondIt) {
   }
   ASSERT_GE(s_top, 0);
   ASSERT_GE(g_front, 0);
-  const Standing standing = standing_of(verdict);
-  const std::vector<std::int32_t> invalid{s_top};
-  const std::vector<Candidate> exact =
-      choose_supports(maps, slices, build, {}, standing, invalid, SupportOptions{}, Reach{});
-  ASSERT_EQ(exact.size(), 1u);
-  EXPECT_EQ(exact[0].target, kBackFace);
-  EXPECT_EQ(exact[0].orientation, Orientation::H);
-  EXPECT_EQ(exact[0].depth_mm, 50.0);
-  EXPECT_EQ(maps.grid.Y(exact[0].target_row), 50 + 0.5 / maps.grid.px_per_mm) << "the row just above the fold";
+  const std::vector<Candidate> up =
+      nearest(leaving(support_candidates(maps, slices, build, {}, {s_top}, Reach{}), s_top, true));
+  ASSERT_FALSE(up.empty());
+  for (const Candidate& c : up) {
+    EXPECT_EQ(c.target, kBackFace);
+    EXPECT_EQ(c.orientation, Orientation::H);
+    EXPECT_EQ(c.depth_mm, 50.0);
+    EXPECT_EQ(maps.grid.Y(c.target_row), 50 + 0.5 / maps.grid.px_per_mm) << "the row just above the fold";
+  }
 }
 
 // A fold on a pixel edge lands in the row beyond it, so that the support ends on the fold; where
@@ -200,36 +226,39 @@ TEST(Supports, AFoldOnARowEdgeLandsInTheRowBeforeWhereTheRowBeyondHoldsNoTarget)
     if (slices.faces[f].orientation == Orientation::H && slices.faces[f].depth_mm == 78)
       top = static_cast<std::int32_t>(f);
   ASSERT_GE(top, 0);
-  const Standing standing = standing_of(build.verdict());
-  const std::vector<std::int32_t> invalid{top};
   const double px_mm = 1 / grid.px_per_mm;
   const auto row_at = [&](double Y) { return static_cast<int>(std::lround(grid.rows_above_fold - Y / px_mm - 0.5)); };
   const int beyond = row_at(78 + px_mm / 2), before = row_at(78 - px_mm / 2);
   ASSERT_EQ(grid.Y(beyond), 78 + px_mm / 2);
   ASSERT_EQ(grid.Y(before), 78 - px_mm / 2);
   const std::vector<Candidate> plain =
-      choose_supports(maps, slices, build, {}, standing, invalid, SupportOptions{}, Reach{});
-  ASSERT_EQ(plain.size(), 1u);
-  EXPECT_EQ(plain[0].target, kBackFace);
-  EXPECT_EQ(plain[0].target_row, beyond);
+      nearest(leaving(support_candidates(maps, slices, build, {}, {top}, Reach{}), top, true));
+  ASSERT_FALSE(plain.empty());
+  for (const Candidate& c : plain) {
+    EXPECT_EQ(c.target, kBackFace);
+    EXPECT_EQ(c.target_row, beyond);
+  }
   SliceResult cut = slices;
   const auto hole = static_cast<std::int32_t>(cut.faces.size());
   cut.faces.push_back({Orientation::V, 0, 0, 0, false, true});
   for (int c = 0; c < cut.face.cols; ++c)
     if (cut.face(c, beyond) == kBackFace) cut.face(c, beyond) = hole;
   const std::vector<Candidate> chosen =
-      choose_supports(maps, cut, build, {}, standing, invalid, SupportOptions{}, Reach{});
-  ASSERT_EQ(chosen.size(), 1u);
-  EXPECT_EQ(chosen[0].target, kBackFace);
-  EXPECT_EQ(chosen[0].target_row, before);
-  EXPECT_EQ(chosen[0].depth_mm, 78.0);
+      nearest(leaving(support_candidates(maps, cut, build, {}, {top}, Reach{}), top, true));
+  ASSERT_FALSE(chosen.empty());
+  for (const Candidate& c : chosen) {
+    EXPECT_EQ(c.target, kBackFace);
+    EXPECT_EQ(c.target_row, before);
+    EXPECT_EQ(c.depth_mm, 78.0);
+  }
 }
 
 TEST(Supports, SlopesBecomeStaircasesAsWideAsTheSlope) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   // The wedge is one slope across the model's whole width; the Mayan pyramid's tiers are boxes,
   // and only its small top needs supports.
-  for (const auto& [model, slope_width_fraction] : {std::pair{"seedlike/wedge.stl", 0.95}, {"seedlike/mayan_pyramid.stl", 0.0}}) {
+  for (const auto& [model, slope_width_fraction] :
+       {std::pair{"seedlike/wedge.stl", 0.95}, {"seedlike/mayan_pyramid.stl", 0.0}}) {
     SCOPED_TRACE(model);
     DesignOptions options;
     options.placement.up = UpAxis::Z;
@@ -281,7 +310,8 @@ TEST(Supports, QuarterSphereStandsWithEverySliceSupportedAndSupportsAtLeastWWide
   double radius_mm = 0;  // the placed model's height: the sphere's radius
   for (std::size_t i = 0; i < r.maps.kind.size(); ++i)
     if (r.maps.kind.values[i] == HitKind::Model) radius_mm = std::max(radius_mm, r.maps.h_mm.values[i]);
-  EXPECT_GE(slices, 2 * static_cast<int>(radius_mm / r.slices.min_strip_mm) - 6) << "about one slice per W of the radius, each way";
+  EXPECT_GE(slices, 2 * static_cast<int>(radius_mm / r.slices.min_strip_mm) - 6)
+      << "about one slice per W of the radius, each way";
   EXPECT_GT(vertical, 0);
   EXPECT_LT(vertical, slices);
   // A support is at least W wide when chosen; a later one crossing it can leave a narrower piece.
@@ -293,8 +323,11 @@ TEST(Supports, QuarterSphereStandsWithEverySliceSupportedAndSupportsAtLeastWWide
   for (const NarrowStrip& n : r.supports.narrow) {
     if (n.support) reported.push_back(n.face);
     EXPECT_LT(n.width_mm, r.slices.min_strip_mm);
-    EXPECT_EQ(r.slices.face(static_cast<int>(n.at.X * r.maps.grid.px_per_mm), r.maps.grid.rows_above_fold - 1 -
-                            static_cast<int>(std::floor(n.at.Y * r.maps.grid.px_per_mm))), n.face) << "its place is in it";
+    EXPECT_EQ(
+        r.slices.face(static_cast<int>(n.at.X * r.maps.grid.px_per_mm),
+                      r.maps.grid.rows_above_fold - 1 - static_cast<int>(std::floor(n.at.Y * r.maps.grid.px_per_mm))),
+        n.face)
+        << "its place is in it";
   }
   EXPECT_EQ(narrow_supports, reported);
 }
@@ -331,30 +364,22 @@ TEST(Supports, ShippedHouseStandsAtTheDefaultOptions) {
   }
 }
 
-// The windmill's sails are strips that part pieces of the back plane from it; with nothing to hold
-// them, those pieces of card are cut out (holes in the back plane), without counting against the
-// model, and the windmill stands.
-TEST(Supports, PiecesOfTheBackPlanePartedByStripsAreCutOutAndTheModelStands) {
+// The windmill's sails are strips that part pieces of the back plane from the rest: the windmill
+// stands, and every face cut out of the sheet is reported with its place and why.
+TEST(Supports, AModelOfStripsStandsAndEveryFaceCutOutIsReportedWithWhy) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   DesignOptions options;
   options.placement.up = UpAxis::Y;
   const DesignResult r = design(test::models_dir() / "arch_windmill.obj", options);
   expect_exact_and_standing(r.plan);
-  int card_pieces = 0;
-  std::int64_t model_px = 0, model_cut_px = 0;
-  for (std::size_t f = 2; f < r.slices.faces.size(); ++f) {
-    const RasterFace& face = r.slices.faces[f];
-    const bool card = face.depth_mm == 0;
-    if (!card) model_px += face.pixels;
-    if (!face.hole) continue;
-    EXPECT_EQ(r.plan.faces[f].status, FaceStatus::Removed) << "face " << f;
-    if (card)
-      ++card_pieces;
-    else
-      model_cut_px += face.pixels;
+  EXPECT_EQ(r.supports.cut_out_faces.size(), static_cast<std::size_t>(r.supports.cut_out));
+  for (const CutOutFace& f : r.supports.cut_out_faces) {
+    EXPECT_FALSE(f.reason.empty());
+    EXPECT_GT(f.area_mm2, 0);
+    EXPECT_GE(f.at.X, 0);
+    EXPECT_LE(f.at.X, options.sheet.width_mm);
   }
-  EXPECT_GT(card_pieces, 0) << "the pieces of back plane between the sails";
-  EXPECT_LT(4 * model_cut_px, model_px) << "under a quarter of the model cut out";
+  EXPECT_LT(r.likeness.cut_out_share, 0.03);
 }
 
 // A real model (Z up) designed at the default options but `orders` and `seed`: its plan must stand.
@@ -369,41 +394,36 @@ DesignResult standing_design(const char* model, int orders = DesignOptions{}.sup
   return r;
 }
 
-// A flat torus lying on the floor: its top is held only by supports that reach farther than the
-// first face order's plain rules allow (across the ring's front slices, below the tapering ends of
-// its slices, past their ends). By the plain rules the first order stands, if at all, only by
-// cutting out a poor likeness's share of it; the later orders reach farther, and the plan kept
-// stands with less cut out. A single order, allowed all of it at once (it is the last), stands too:
-// the reach holds the ring.
-TEST(Supports, LaterOrdersReachFartherSoAFlatRingStands) {
+// A flat torus lying on the floor. Its rings of slices fold onto each other in chains; one ear
+// through each chain holds it (the old greedy choice left most of the ring to slats or cut it out:
+// 5.5 % of the model). Measured on the finished plan.
+TEST(Supports, AFlatRingStandsWithItsSlicesKept) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   const DesignResult ring = standing_design("prim_torus.stl");
-  EXPECT_GE(ring.supports.orders, 2) << "the first order, by the plain rules, is no likeness";
-  EXPECT_LT(ring.supports.cut_out_share, 0.15);
+  EXPECT_LE(ring.likeness.cut_out_share, 0.02);
+  EXPECT_LE(ring.likeness.p95_W, 2.0);
+  EXPECT_GE(ring.likeness.coverage, 0.98);
   const DesignResult one = standing_design("prim_torus.stl", 1);  // asserts that it stands
   EXPECT_GT(one.supports.supports, 0);
 }
 
-// A tower whose faceted facade tapers: its facets slice into V faces narrowing to tips far longer
-// than 2 W, which no support of the plain rules reaches. Held below their tips, they stand.
-TEST(Supports, ATaperingTowerStandsOnItsFacetsHeldBelowTheirTips) {
+// A tower whose faceted facade tapers: two of its facets lie 0.2 mm apart in depth, one plane of
+// paper; held as one, every facet stands and none is cut out.
+TEST(Supports, ATaperingTowerStandsOnItsFacetsWithNoneCutOut) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   const DesignResult r = standing_design("arch_one_wtc.obj");
-  EXPECT_GE(r.supports.orders, 2) << "the first order, by the plain rules, is no likeness";
-  EXPECT_LT(r.supports.cut_out_share, 0.15) << "an order that cuts out more lets the next ones try";
-  // At seed 4 a face the exact plan found invalid is a crumb, which joins a neighbour whole: the
-  // rounds go on without it (they crashed on it, a face without pixels to hold).
+  EXPECT_LE(r.likeness.cut_out_share, 0.01);
+  EXPECT_LE(r.likeness.p95_W, 1.5);
   const DesignResult seed4 = standing_design("arch_one_wtc.obj", DesignOptions{}.supports.orders, 4);
-  EXPECT_LT(seed4.supports.cut_out_share, 0.15);
+  EXPECT_LE(seed4.likeness.cut_out_share, 0.01);
 }
 
-// A pavilion: a drum under a conical roof on columns. Its roof's slices are held only by supports
-// extended a strip width past their ends (seed §4.4's corner candidates), which the third face
-// order allows; with them, under a tenth of its area is cut out.
-TEST(Supports, FromTheThirdOrderOnCornerSupportsHoldAConicalRoof) {
+// A pavilion: a drum under a conical roof on columns. Its roof's slices are held (some by supports
+// extended a strip width past their ends, seed §4.4's corner candidates), with under a tenth of its
+// area cut out.
+TEST(Supports, AConicalRoofOnColumnsStands) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   const DesignResult r = standing_design("arch_pavilion_csg.stl");
-  EXPECT_GE(r.supports.orders, 3) << "the first two orders, without corner supports, are no likeness";
   EXPECT_LE(r.supports.cut_out_share, 0.1);
 }
 
@@ -412,7 +432,7 @@ TEST(Supports, FromTheThirdOrderOnCornerSupportsHoldAConicalRoof) {
 // or not, may leave them apart.
 TEST(Supports, ThePlanKeptIsTheExactPlanOfTheSlicesKept) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
-  const DesignResult r = standing_design("seedlike/sphere.stl");
+  const DesignResult r = standing_design("seedlike/torus.stl");
   ASSERT_GT(r.supports.passes_undone, 0) << "a design with undone passes";
   const Plan fresh = build_plan(r.maps, r.slices, DesignOptions{}.sheet, PlanOptions{});
   EXPECT_EQ(fresh.validity.status, r.plan.validity.status);
@@ -425,3 +445,75 @@ TEST(Supports, ThePlanKeptIsTheExactPlanOfTheSlicesKept) {
 }  // namespace
 }  // namespace origamic
 
+namespace origamic {
+namespace {
+
+// A box floats in front of the back plane; behind the left part of its top stands a lower box C
+// against the back plane, whose top H(66) the 45-degree view sees just above the box's top. From
+// the top's back edge a support reaches the back plane, 18.6 mm away, either across C's top or
+// over bare back plane right of C: equally long, so the old cost (length) took the first it found,
+// from the left; the picture's cost takes the second.
+TEST(Supports, ASupportThroughTheBackPlaneIsChosenOverAnEquallyLongOneAcrossAVisibleFace) {
+  const Sheet sheet;
+  const RayScene scene(
+      test::merged(test::box({60, 41.3, 18.6}, {150, 77.9, 47.1}), test::box({65, 0, 0}, {105, 66, 8})));
+  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
+  const SliceResult slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const PlanBuild build(maps, slices, sheet, PlanOptions{});
+  std::int32_t top = -1, front = -1, c_top = -1;
+  for (std::size_t f = 2; f < slices.faces.size(); ++f) {
+    const RasterFace& face = slices.faces[f];
+    if (face.orientation == Orientation::H && face.depth_mm == 77.9) top = static_cast<std::int32_t>(f);
+    if (face.orientation == Orientation::V && face.depth_mm == 47.1) front = static_cast<std::int32_t>(f);
+    if (face.orientation == Orientation::H && face.depth_mm == 66) c_top = static_cast<std::int32_t>(f);
+  }
+  ASSERT_GE(top, 0);
+  ASSERT_GE(front, 0);
+  ASSERT_GE(c_top, 0);
+  // Both kinds of candidate are there, as long, to the back plane.
+  const std::vector<Candidate> up =
+      nearest(leaving(support_candidates(maps, slices, build, {}, {top}, Reach{}), top, true));
+  const int c_from = static_cast<int>(65 * maps.grid.px_per_mm), c_to = static_cast<int>(105 * maps.grid.px_per_mm);
+  const auto across_c = std::ranges::find_if(up, [&](const Candidate& c) { return c.c0 > c_from && c.c1 < c_to; });
+  const auto bare = std::ranges::find_if(up, [&](const Candidate& c) { return c.c0 > c_to; });
+  ASSERT_NE(across_c, up.end());
+  ASSERT_NE(bare, up.end());
+  EXPECT_EQ(across_c->target, kBackFace);
+  EXPECT_EQ(bare->target, kBackFace);
+  EXPECT_EQ(across_c->r1 - across_c->r0, bare->r1 - bare->r0) << "equally long";
+  EXPECT_GT(across_c->picture_mm, 1.0);
+  EXPECT_EQ(bare->picture_mm, 0);
+  EXPECT_GT(across_c->cost, bare->cost);
+  // The round holds the top by the back plane, beside C.
+  const SupportChoice choice = choose(maps, slices, build, standing_of(build.verdict()), {top, front});
+  int from_top = 0;
+  for (const Candidate& s : choice.supports) {
+    if (s.face != top) continue;
+    ++from_top;
+    EXPECT_EQ(s.target, kBackFace);
+    EXPECT_TRUE(s.c1 <= c_from || s.c0 >= c_to) << "over bare back plane, not C's top: columns " << s.c0 << "-" << s.c1;
+  }
+  EXPECT_EQ(from_top, 1);
+}
+
+// A dome's top is held by one support over the dome's back to the back plane, the rings below it
+// by the chain they fold into: the old greedy choice cut the top out (a hole where the dome is
+// highest) and painted a support per ring across the back.
+TEST(Supports, ADomesTopStandsAndTheCardStaysCloseToTheModel) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  const DesignResult r = standing_design("seedlike/sphere.stl");
+  std::size_t top = r.maps.kind.size();  // the model pixel highest above the floor
+  for (std::size_t i = 0; i < r.maps.kind.size(); ++i)
+    if (r.maps.kind.values[i] == HitKind::Model &&
+        (top == r.maps.kind.size() || r.maps.h_mm.values[i] > r.maps.h_mm.values[top]))
+      top = i;
+  ASSERT_LT(top, r.maps.kind.size());
+  EXPECT_EQ(r.card.surface.values[top], CardSurface::Model);
+  EXPECT_LE(likeness_error_map(r.maps, r.card).values[top], r.slices.min_strip_mm);
+  EXPECT_LE(r.likeness.p95_W, 2.0);
+  EXPECT_LE(r.likeness.cut_out_share, 0.03);
+  EXPECT_LE(r.likeness.support_share, 0.1);
+}
+
+}  // namespace
+}  // namespace origamic

@@ -17,11 +17,11 @@ namespace origamic {
 /// A face of the raster plan.
 struct RasterFace {
   Orientation orientation = Orientation::V;
-  double depth_mm = 0;          // d of a V face, h of an H face
-  std::int32_t segment = 0;     // the segment it was sliced from
+  double depth_mm = 0;       // d of a V face, h of an H face
+  std::int32_t segment = 0;  // the segment it was sliced from
   std::int64_t pixels = 0;
-  bool support = false;         // added by the support stage (seed §4.4), not sliced from the model
-  bool hole = false;            // cut out of the sheet: a face no support could hold, given up
+  bool support = false;  // added by the support stage (seed §4.4), not sliced from the model
+  bool hole = false;     // cut out of the sheet: a face no support could hold, given up
 };
 
 inline constexpr std::int32_t kBackFace = 0;   // V(0)
@@ -33,15 +33,15 @@ struct SliceOptions {
 };
 
 struct SliceResult {
-  double min_strip_mm = 0;                   // W
-  int block_px = 0;                          // W in pixels: the lattice of supports and narrow strips
+  double min_strip_mm = 0;                       // W
+  int block_px = 0;                              // W in pixels: the lattice of supports and narrow strips
   std::vector<Orientation> segment_orientation;  // per segment (back V, floor H), for its 35-55 degree parts
-  Grid<std::int32_t> block_subsegment;       // SDS: the subsegment at each W x W block's centre, -1 none
-  Grid<std::int32_t> subsegment;             // SS: full-resolution subsegments, -1 back/floor/outside
-  Grid<std::int32_t> face;                   // the raster plan: face id per pixel, kNoFace outside
-  std::vector<RasterFace> faces;             // faces[kBackFace] is V(0), faces[kFloorFace] is H(0)
+  Grid<std::int32_t> block_subsegment;           // SDS: the subsegment at each W x W block's centre, -1 none
+  Grid<std::int32_t> subsegment;                 // SS: full-resolution subsegments, -1 back/floor/outside
+  Grid<std::int32_t> face;                       // the raster plan: face id per pixel, kNoFace outside
+  std::vector<RasterFace> faces;                 // faces[kBackFace] is V(0), faces[kFloorFace] is H(0)
   int subsegments = 0;
-  int removed_thin = 0;                      // faces whose oriented box had a side under W
+  int removed_thin = 0;  // faces whose oriented box had a side under W
 };
 
 /// Slices every segment. Deterministic: the same maps and options give the same face map.
@@ -53,6 +53,13 @@ SliceResult slice(const RasterMaps& maps, const Segmentation& segmentation, cons
 /// the back plane and the floor; ids are renumbered in order and pixel counts recomputed.
 void merge_coplanar_faces(SliceResult& result);
 
+/// Touching faces of one orientation whose depths differ by at most tolerance_mm are one sheet of
+/// paper: a faceted tower's facets a fraction of a millimetre apart, which no support can join (the
+/// fold would need a strip thinner than a pixel). Each group, its depths within the tolerance of each
+/// other, becomes one face at their mean depth by pixels (the back plane and the floor keep depth 0);
+/// supports and holes are left alone. Ids are renumbered as merge_coplanar_faces does.
+void merge_near_coplanar_faces(SliceResult& result, double tolerance_mm);
+
 /// A face whose pixels fall apart into several 4-connected parts (a support cut through it, or the
 /// exact plan found it in pieces) is that many pieces of paper: each part but the largest becomes a
 /// face of its own, with the same plane, appended in order; a part under `min_part_px` pixels or
@@ -63,7 +70,7 @@ struct FacePart {
   std::int32_t from = 0;  // the face it was part of
 };
 std::vector<FacePart> split_disconnected_faces(SliceResult& result, const std::vector<std::int32_t>& faces,
-                                              std::int64_t min_part_px, int min_part_cols);
+                                               std::int64_t min_part_px, int min_part_cols);
 
 /// Seed §4.5 on the raster: where a V(d) face and an H(h) face meet one above the other within
 /// `tolerance_mm` of their fold line Y = h - d, the boundary moves to the pixel boundary nearest

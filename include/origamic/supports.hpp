@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Supports (seed §4.4, second half): strips added to the raster plan until the exact plan has no
-// floating, dangling or other invalid face. Each round proposes, for every invalid face, supports
-// from its unconnected top and bottom edges to the first face behind/above or in front/below,
-// chooses greedily in a seeded random order and widens them. The exact plan, rebuilt from scratch,
-// judges pieces of paper: a face it finds in pieces becomes one face per piece.
+// floating, dangling or other invalid face, chosen for the likeness of the finished card. Each round
+// proposes, from both edges of every invalid face, supports to the first few faces behind/above or
+// in front/below, each costing the error it adds to the 45-degree picture (likeness.hpp); chooses
+// them as ears of the face graph, the face hardest to hold first (support_ears.hpp); and widens
+// them. A face whose holding costs the picture more than its hole is cut out. The exact plan,
+// rebuilt from scratch, judges pieces of paper: a face it finds in pieces becomes one face per piece.
 #pragma once
 
 #include <cstdint>
@@ -18,11 +20,12 @@ namespace origamic {
 
 struct SupportOptions {
   bool enabled = true;
-  std::uint32_t seed = 1;        // the order in which invalid faces choose (--seed)
-  bool allow_dangling = false;   // leave dangling faces (windows, balconies) as they are
-  // c(s) = length + corner + split (seed §4.4): a support that cuts through a third face costs this
-  // much more, so it is chosen only when nothing else reaches.
-  double split_cost_mm = 1000;
+  std::uint32_t seed = 1;       // the orders tried break ties between equally costly ears (--seed)
+  bool allow_dangling = false;  // leave dangling faces (windows, balconies) as they are
+  // c(s) = picture + length + corner + split (seed §4.4, with the error a support adds to the
+  // picture): cutting a face not yet held in two costs this much more (in mm of a W-wide support
+  // 2 W off the model), cutting a standing one ten times as much.
+  double split_cost_mm = 100;
   // When supports run out, cut the faces they could not hold out of the sheet (holes, reported as
   // "removed") so that what is left stands; off, such faces stay in the plan, reported invalid.
   bool cut_out_unsupported = true;
@@ -40,20 +43,31 @@ struct NarrowStrip {
   PlanPoint at;         // a pixel centre of it (in its middle column where it has one), in plan mm
 };
 
+/// A face cut out of the sheet (a hole), and why.
+struct CutOutFace {
+  PlanPoint at;  // a pixel centre of it when it was cut out, in plan mm
+  double area_mm2 = 0;
+  // What holding it and cutting it out cost the picture, as supports' costs are counted (mm of a
+  // W-wide support showing the model 2 W off or more): the cheapest ear found (-1: none) and its hole.
+  double hold_cost = -1, hole_cost = 0;
+  std::string reason;
+};
+
 struct SupportReport {
-  int supports = 0;      // support strips added, before widening merged any
-  int rounds = 0;        // rounds of supports chosen
-  int exact_builds = 0;  // exact plans judged by: the slices' own, then one per pass of rounds
+  int supports = 0;       // support strips added, before widening merged any
+  int rounds = 0;         // rounds of supports chosen
+  int exact_builds = 0;   // exact plans judged by: the slices' own, then one per pass of rounds
   int passes_undone = 0;  // passes of rounds undone because they left no fewer faces invalid
   // The share of the model's pixels in the faces cut out (pieces of the back plane or the floor
   // aside), counted as they are cut; never over a quarter.
   double cut_out_share = 0;
-  int round_bound = 0;   // the loop's bound: one round per W-wide column of the sheet, plus one
-  int orders = 0;        // face orders tried (SupportOptions::orders); the rest is of the one kept
+  int round_bound = 0;  // the loop's bound: one round per W-wide column of the sheet, plus one
+  int orders = 0;       // face orders tried (SupportOptions::orders); the rest is of the one kept
   bool converged = false;
-  std::string stop_reason;  // why supports alone did not make every face stand; empty when they did
-  int cut_out = 0;          // faces cut out of the sheet as the last resort
-  std::vector<NarrowStrip> narrow;  // faces and supports narrower than W, with their place
+  std::string stop_reason;                // why supports alone did not make every face stand; empty when they did
+  int cut_out = 0;                        // faces cut out of the sheet as the last resort
+  std::vector<CutOutFace> cut_out_faces;  // each, with its place and why
+  std::vector<NarrowStrip> narrow;        // faces and supports narrower than W, with their place
 };
 
 struct Supported {

@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Internal: what a support does to the picture (likeness.hpp). On every model pixel it covers, the
+// card shows the support's plane instead of the face there: the support adds the error of its plane
+// less the error of that face, each counted up to a cap (support_picture.cpp). Off the model it adds
+// nothing: there it covers the back plane, the floor, or paper the 45-degree view does not compare
+// (under an overhang, behind a face).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "origamic/grid.hpp"
+#include "origamic/oa.hpp"
+#include "origamic/raster.hpp"
+#include "origamic/slice.hpp"
+
+namespace origamic {
+
+class SupportPicture {
+ public:
+  /// The picture of the raster plan as it is.
+  SupportPicture(const RasterMaps& maps, const SliceResult& slices);
+
+  /// The error a face of this plane would add over the pixels [c0, c1) x [r0, r1), in mm of h + d
+  /// (capped) times mm² of plan (negative where it would show the model better than what is there).
+  double added_error(Orientation orientation, double depth_mm, int c0, int c1, int r0, int r1) const;
+
+  /// The error cutting face f out of the sheet would add: through the hole the back plane shows
+  /// above the main fold and the floor below it, and no model. In mm times mm², as added_error.
+  double hole_error(std::int32_t f) const { return hole_error_[static_cast<std::size_t>(f)]; }
+
+ private:
+  const PixelGrid& grid_;
+  float cap_mm_;
+  Grid<float> model_key_;           // h + d of the model, NaN off it
+  Grid<float> error_;               // |key of the face there - model key| up to the cap, 0 off the model
+  std::vector<double> hole_error_;  // per face
+};
+
+}  // namespace origamic
