@@ -108,6 +108,8 @@ class CandidateFinder {
         c = end;
       }
     }
+    face_pieces_.resize(faces_.size());
+    for (std::size_t f = 2; f < faces_.size(); ++f) face_pieces_[f] = pieces(face_runs_[f], 0, 0, 0, 0);
   }
 
   // Whether support s, as it is now (widened), cuts face x in two.
@@ -210,14 +212,17 @@ class CandidateFinder {
   // Whether support s cuts face x in two: what is left of x falls into more pieces than x is in. A
   // support that only trims x's end leaves it one piece of paper, and so does one across a ring,
   // which stays joined around the other side.
+  // The back plane and the floor reach round everything on them: a W-wide support parts neither.
   bool splits(std::int32_t x, const Candidate& s) const {
-    const std::vector<Run>& runs = face_runs_[static_cast<std::size_t>(x)];
-    return pieces(runs, s.c0, s.c1, s.r0, s.r1) > pieces(runs, 0, 0, 0, 0);
+    if (x == kBackFace || x == kFloorFace) return false;
+    const auto i = static_cast<std::size_t>(x);
+    return pieces(face_runs_[i], s.c0, s.c1, s.r0, s.r1) > face_pieces_[i];
   }
   // The 4-connected pieces of a face's runs less the pixels [c0, c1) x [r0, r1).
   static int pieces(const std::vector<Run>& runs, int c0, int c1, int r0, int r1) {
-    std::vector<Run> left;
-    left.reserve(runs.size() + 8);
+    thread_local std::vector<Run> left;
+    thread_local std::vector<std::uint32_t> parent;
+    left.clear();
     for (const Run& run : runs) {
       if (run.row < r0 || run.row >= r1 || run.c1 <= c0 || c1 <= run.c0) {
         left.push_back(run);
@@ -226,9 +231,9 @@ class CandidateFinder {
       if (run.c0 < c0) left.push_back({run.row, run.c0, c0});
       if (c1 < run.c1) left.push_back({run.row, c1, run.c1});
     }
-    std::vector<std::size_t> parent(left.size());
-    std::iota(parent.begin(), parent.end(), std::size_t{0});
-    const auto root = [&](std::size_t i) {
+    parent.resize(left.size());
+    std::iota(parent.begin(), parent.end(), std::uint32_t{0});
+    const auto root = [&](std::uint32_t i) {
       while (parent[i] != i) i = parent[i] = parent[parent[i]];
       return i;
     };
@@ -238,7 +243,7 @@ class CandidateFinder {
       while (a_begin < b && left[a_begin].row < left[b].row - 1) ++a_begin;
       for (std::size_t a = a_begin; a < b && left[a].row < left[b].row; ++a)
         if (left[a].row == left[b].row - 1 && left[a].c0 < left[b].c1 && left[b].c0 < left[a].c1)
-          if (const std::size_t ra = root(a), rb = root(b); ra != rb)
+          if (const std::uint32_t ra = root(static_cast<std::uint32_t>(a)), rb = root(static_cast<std::uint32_t>(b)); ra != rb)
             parent[std::max(ra, rb)] = std::min(ra, rb), --count;
     }
     return count;
@@ -398,6 +403,7 @@ class CandidateFinder {
   std::vector<std::pair<int, int>> columns_;   // per wanted face: its first and last column
   std::vector<std::vector<Changed>> changed_;  // per column
   std::vector<std::vector<Run>> face_runs_;    // per face, its runs of pixels in row-major order
+  std::vector<int> face_pieces_;               // per face, the 4-connected pieces of them
   std::vector<int> plane_now_, plane_then_;    // per face of the raster plan and of the exact plan
 };
 
