@@ -10,7 +10,9 @@
 #include <numeric>
 #include <optional>
 #include <span>
+#include <functional>
 #include <tuple>
+#include <unordered_map>
 #include <utility>
 
 #include "bands.hpp"
@@ -34,7 +36,18 @@ class CandidateFinder {
   struct Run {
     int row, c0, c1;  // pixels [c0, c1) of the row
   };
-
+  // Whether face x is cut in two by the pixels [c0, c1) x [r0, r1), as found for one edge's walks.
+  struct SplitMemo {
+    using Key = std::pair<std::uint64_t, std::uint64_t>;
+    static Key key(std::int32_t x, int c0, int c1, int r0, int r1) {  // each under 2^21
+      return {static_cast<std::uint64_t>(x) << 21 | static_cast<std::uint64_t>(c0),
+              static_cast<std::uint64_t>(c1) << 42 | static_cast<std::uint64_t>(r0) << 21 | static_cast<std::uint64_t>(r1)};
+    }
+    struct Hash {
+      std::size_t operator()(const Key& k) const { return std::hash<std::uint64_t>{}(k.first * 0x9E3779B97F4A7C15ULL ^ k.second); }
+    };
+    std::unordered_map<Key, bool, Hash> known;
+  };
  public:
   // Candidates will be asked of the faces in `wanted` only.
   CandidateFinder(const RasterMaps& maps, const SliceResult& slices, const PlanBuild& exact,
@@ -141,6 +154,7 @@ class CandidateFinder {
     if (corners_ && hi + 1 - block_ >= 0 && hi + 1 + block_ <= face_.cols)
       starts.push_back({hi + 1 - block_, hi + 1 + block_, corner_cost});
     BlockColumn column(face_.rows);
+    SplitMemo memo;
     for (const auto [c0, c1, extra_cost] : starts) {
       column.reset(c0, c1);
       column.paint(*this, painted_);
@@ -171,7 +185,7 @@ class CandidateFinder {
         const double h = face.orientation == Orientation::V ? edge_Y + face.depth_mm : face.depth_mm;
         const double d = face.orientation == Orientation::V ? face.depth_mm : face.depth_mm - edge_Y;
         bool cuts_nothing = false;
-        for (Candidate& c : walk(f, column, row, up, h, d)) {
+        for (Candidate& c : walk(f, column, row, up, h, d, memo)) {
           c.taken = taken;
           c.cost += extra_cost;
           cuts_nothing |= c.cuts.empty();
@@ -213,10 +227,53 @@ class CandidateFinder {
   // support that only trims x's end leaves it one piece of paper, and so does one across a ring,
   // which stays joined around the other side.
   // The back plane and the floor reach round everything on them: a W-wide support parts neither.
-  bool splits(std::int32_t x, const Candidate& s) const {
+  bool splits(std::int32_t x, const Candidate& s, SplitMemo* memo = nullptr) const {
     if (x == kBackFace || x == kFloorFace) return false;
     const auto i = static_cast<std::size_t>(x);
-    return pieces(face_runs_[i], s.c0, s.c1, s.r0, s.r1) > face_pieces_[i];
+    if (joined_around(x, s.c0, s.c1, s.r0, s.r1)) return false;
+    // Rows of the support outside x's own rows change nothing of x: the walks of one edge cross a
+    // face between the same columns at many lengths, and count its pieces once.
+    const std::vector<Run>& runs = face_runs_[i];
+    const int r0 = std::max(s.r0, runs.front().row), r1 = std::min(s.r1, runs.back().row + 1);
+    const SplitMemo::Key key = SplitMemo::key(x, s.c0, s.c1, r0, r1);
+    if (memo)
+      if (const auto known = memo->known.find(key); known != memo->known.end()) return known->second;
+    const bool split = pieces(runs, s.c0, s.c1, r0, r1) > face_pieces_[i];
+    if (memo) memo->known.emplace(key, split);
+    return split;
+  }
+  // Whether the pixels of x beside the rectangle [c0, c1) x [r0, r1) that touch its pixels of x in
+  // it are joined along the one-pixel frame round it: then every piece of x the rectangle leaves
+  // reaches the frame and joins the others there (each piece of a 4-connected face it cuts touches
+  // what it took), so x is left in no more pieces than it was.
+  bool joined_around(std::int32_t x, int c0, int c1, int r0, int r1) const {
+    const auto in_x = [&](int c, int r) { return face_.contains(c, r) && face_(c, r) == x; };
+    // The frame clockwise from its top left corner, in arcs of x's pixels, numbered from 1; of each
+    // pixel beside a side of the rectangle (a corner touches none inside), whether it touches a pixel
+    // of x there. The arcs touched come in order: the first, the next after it, the last.
+    int arcs = 0, lowest = 0, next = 0, highest = 0;
+    bool before = false;
+    const auto visit = [&](int c, int r, int inner_c, int inner_r) {
+      const bool here = in_x(c, r);
+      if (here && !before) ++arcs;
+      before = here;
+      if (!here || inner_c < 0 || !in_x(inner_c, inner_r) || highest == arcs) return;
+      if (lowest == 0) lowest = arcs;
+      else if (next == 0) next = arcs;
+      highest = arcs;
+    };
+    visit(c0 - 1, r0 - 1, -1, 0);
+    for (int c = c0; c < c1; ++c) visit(c, r0 - 1, c, r0);
+    visit(c1, r0 - 1, -1, 0);
+    for (int r = r0; r < r1; ++r) visit(c1, r, c1 - 1, r);
+    visit(c1, r1, -1, 0);
+    for (int c = c1 - 1; c >= c0; --c) visit(c, r1, c, r1 - 1);
+    visit(c0 - 1, r1, -1, 0);
+    for (int r = r1 - 1; r >= r0; --r) visit(c0 - 1, r, c0, r);
+    if (lowest == highest) return true;  // one arc touched, or none
+    // Where the frame closes in x, its last arc runs on into its first.
+    const bool closes = before && in_x(c0 - 1, r0 - 1);
+    return closes && lowest == 1 && highest == arcs && next == highest;
   }
   // The 4-connected pieces of a face's runs less the pixels [c0, c1) x [r0, r1).
   static int pieces(const std::vector<Run>& runs, int c0, int c1, int r0, int r1) {
@@ -322,7 +379,8 @@ class CandidateFinder {
   // lattice the plan's vertices lie on). The raster, which may have split, merged or renumbered
   // faces since, names the face there: one in the plane the ray met, filling half the block, as a
   // support's far side needs.
-  std::vector<Candidate> walk(std::int32_t f, BlockColumn& column, int edge, bool up, double h, double d) const {
+  std::vector<Candidate> walk(std::int32_t f, BlockColumn& column, int edge, bool up, double h, double d,
+                              SplitMemo& memo) const {
     std::vector<Candidate> found;
     const int step = up ? -1 : 1;
     const int centre = (column.c0() + column.c1()) / 2;
@@ -352,7 +410,7 @@ class CandidateFinder {
         for (int between = edge + step; between != r; between += step)
           for (const std::int32_t x : column.faces(column.row(*this, between)))
             if (crossed.empty() || crossed.back() != x) crossed.push_back(x);  // f too: taking its rows may cut it
-        found.push_back(candidate(f, row.centre, column, edge, r, up, h, d, std::move(crossed)));
+        found.push_back(candidate(f, row.centre, column, edge, r, up, h, d, std::move(crossed), memo));
         break;
       }
       if (static_cast<int>(found.size()) >= kTargetsPerRay || beyond < 0 || beyond >= face_.rows) break;
@@ -365,7 +423,7 @@ class CandidateFinder {
   // model 2 W off or more costs 2 L), a little for its length; and the faces it cuts in two among
   // those it crosses.
   Candidate candidate(std::int32_t f, std::int32_t g, const BlockColumn& column, int edge, int r, bool up, double h,
-                      double d, std::vector<std::int32_t> crossed) const {
+                      double d, std::vector<std::int32_t> crossed, SplitMemo& memo) const {
     const int step = up ? -1 : 1;
     const int near = edge + step, far = r - step;  // rows the support covers, near to far
     Candidate s;
@@ -384,7 +442,7 @@ class CandidateFinder {
     std::ranges::sort(crossed);
     crossed.erase(std::unique(crossed.begin(), crossed.end()), crossed.end());
     for (const std::int32_t x : crossed)
-      if (x != g && splits(x, s)) s.cuts.push_back(x);
+      if (x != g && splits(x, s, &memo)) s.cuts.push_back(x);
     return s;
   }
 

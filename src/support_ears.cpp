@@ -114,9 +114,9 @@ EarSearch::Choice EarSearch::pick(const std::vector<std::uint8_t>& standing, con
     } else {
       return;
     }
-    if (st.settled < 2 && best[0] >= 0 && best[1] >= 0 && dist_of(best[1]) < dist_of(best[0]) && st.settled == 0)
+    labels.push_back(label);  // before the order below reads its distance
+    if (st.settled == 0 && best[0] >= 0 && best[1] >= 0 && dist_of(best[1]) < dist_of(best[0]))
       std::swap(best[0], best[1]);
-    labels.push_back(label);
     queue.emplace(label.dist, id);
   };
   // Whether a path would cut one of its own faces in two: the arc's support cuts a face of the path

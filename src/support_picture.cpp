@@ -22,41 +22,56 @@ constexpr double kHoleExtra_W = 2;
 SupportPicture::SupportPicture(const RasterMaps& maps, const SliceResult& slices)
     : grid_(maps.grid),
       cap_mm_(static_cast<float>(kErrorCap_W * slices.min_strip_mm)),
-      model_key_(maps.grid.cols, maps.grid.rows, std::numeric_limits<float>::quiet_NaN()),
-      error_(maps.grid.cols, maps.grid.rows, 0.0f),
       hole_error_(slices.faces.size(), 0.0) {
-  Grid<float> hole_added(grid_.cols, grid_.rows, 0.0f);
-  tbb::parallel_for(0, grid_.rows, [&](int row) {
+  // Off the model nothing is compared: the tables cover the model's bounding box only.
+  int c_end = 0, r_end = 0;
+  c0_ = grid_.cols, r0_ = grid_.rows;
+  for (int row = 0; row < grid_.rows; ++row)
+    for (int col = 0; col < grid_.cols; ++col)
+      if (maps.kind(col, row) == HitKind::Model)
+        c0_ = std::min(c0_, col), c_end = std::max(c_end, col + 1), r0_ = std::min(r0_, row), r_end = row + 1;
+  if (c0_ >= c_end) c0_ = r0_ = c_end = r_end = 0;
+  model_key_ = Grid<float>(c_end - c0_, r_end - r0_, std::numeric_limits<float>::quiet_NaN());
+  error_ = Grid<float>(c_end - c0_, r_end - r0_, 0.0f);
+  const auto key_of = [&](const RasterFace& face, double Y) {
+    return face.hole ? std::abs(Y) : face.orientation == Orientation::V ? Y + 2 * face.depth_mm : 2 * face.depth_mm - Y;
+  };
+  tbb::parallel_for(r0_, r_end, [&](int row) {
     const double Y = grid_.Y(row);
-    for (int col = 0; col < grid_.cols; ++col) {
+    for (int col = c0_; col < c_end; ++col) {
       if (maps.kind(col, row) != HitKind::Model) continue;
       const double model = maps.h_mm(col, row) + maps.d_mm(col, row);
-      model_key_(col, row) = static_cast<float>(model);
-      const std::int32_t f = slices.face(col, row);
-      if (f < 0) continue;
-      const RasterFace& face = slices.faces[static_cast<std::size_t>(f)];
-      const double key = face.hole                            ? std::abs(Y)
-                         : face.orientation == Orientation::V ? Y + 2 * face.depth_mm
-                                                              : 2 * face.depth_mm - Y;
-      error_(col, row) = std::min(cap_mm_, static_cast<float>(std::abs(key - model)));
-      hole_added(col, row) = std::min(cap_mm_, static_cast<float>(std::abs(std::abs(Y) - model))) +
-                             static_cast<float>(kHoleExtra_W * slices.min_strip_mm) - error_(col, row);
+      model_key_(col - c0_, row - r0_) = static_cast<float>(model);
+      if (const std::int32_t f = slices.face(col, row); f >= 0)
+        error_(col - c0_, row - r0_) = std::min(
+            cap_mm_, static_cast<float>(std::abs(key_of(slices.faces[static_cast<std::size_t>(f)], Y) - model)));
     }
   });
-  for (std::size_t i = 0; i < hole_added.size(); ++i)
-    if (const std::int32_t f = slices.face.values[i]; f >= 0)
-      hole_error_[static_cast<std::size_t>(f)] += hole_added.values[i];
+  // In row order, one pixel after another: the sums do not depend on the threads.
+  const auto extra = static_cast<float>(kHoleExtra_W * slices.min_strip_mm);
+  for (int row = r0_; row < r_end; ++row) {
+    const double Y = grid_.Y(row);
+    for (int col = c0_; col < c_end; ++col) {
+      const std::int32_t f = slices.face(col, row);
+      if (f < 0 || maps.kind(col, row) != HitKind::Model) continue;
+      const double model = maps.h_mm(col, row) + maps.d_mm(col, row);
+      const float error = error_(col - c0_, row - r0_);
+      hole_error_[static_cast<std::size_t>(f)] +=
+          std::min(cap_mm_, static_cast<float>(std::abs(std::abs(Y) - model))) + extra - error;
+    }
+  }
   for (double& e : hole_error_) e /= grid_.px_per_mm * grid_.px_per_mm;
 }
 
 double SupportPicture::added_error(Orientation orientation, double depth_mm, int c0, int c1, int r0, int r1) const {
-  c0 = std::max(c0, 0), c1 = std::min(c1, grid_.cols), r0 = std::max(r0, 0), r1 = std::min(r1, grid_.rows);
+  c0 = std::max(c0, c0_), c1 = std::min(c1, c0_ + error_.cols), r0 = std::max(r0, r0_),
+  r1 = std::min(r1, r0_ + error_.rows);
   double sum = 0;
   for (int row = r0; row < r1; ++row) {
     const double Y = grid_.Y(row);
     const auto key = static_cast<float>(orientation == Orientation::V ? Y + 2 * depth_mm : 2 * depth_mm - Y);
-    const float* model = &model_key_.values[model_key_.index(0, row)];
-    const float* now = &error_.values[error_.index(0, row)];
+    const float* model = &model_key_.values[model_key_.index(0, row - r0_)] - c0_;
+    const float* now = &error_.values[error_.index(0, row - r0_)] - c0_;
     for (int col = c0; col < c1; ++col)
       if (!std::isnan(model[col])) sum += std::min(cap_mm_, std::abs(key - model[col])) - now[col];
   }

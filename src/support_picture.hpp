@@ -32,6 +32,7 @@ class SupportPicture {
  private:
   const PixelGrid& grid_;
   float cap_mm_;
+  int c0_ = 0, r0_ = 0;             // the model's first column and row: the tables start there
   Grid<float> model_key_;           // h + d of the model, NaN off it
   Grid<float> error_;               // |key of the face there - model key| up to the cap, 0 off the model
   std::vector<double> hole_error_;  // per face

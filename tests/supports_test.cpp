@@ -2,6 +2,7 @@
 #include "origamic/supports.hpp"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <climits>
@@ -513,6 +514,30 @@ TEST(Supports, ADomesTopStandsAndTheCardStaysCloseToTheModel) {
   EXPECT_LE(r.likeness.p95_W, 2.0);
   EXPECT_LE(r.likeness.cut_out_share, 0.03);
   EXPECT_LE(r.likeness.support_share, 0.1);
+}
+
+// The plan is the same on one thread as on all: the passes in parallel gather by fixed bands and
+// indices, and nothing reads what another thread may not have written yet.
+TEST(Supports, ThePlanDoesNotDependOnTheThreads) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  DesignOptions options;
+  options.placement.up = UpAxis::Z;
+  const auto model = test::models_dir() / "seedlike/torus.stl";
+  const DesignResult all = design(model, options);
+  const DesignResult one = [&] {
+    const tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+    return design(model, options);
+  }();
+  EXPECT_EQ(one.slices.face.values, all.slices.face.values);
+  EXPECT_EQ(one.supports.supports, all.supports.supports);
+  ASSERT_EQ(one.plan.lines.size(), all.plan.lines.size());
+  for (std::size_t i = 0; i < one.plan.lines.size(); ++i) {
+    EXPECT_EQ(one.plan.lines[i].kind, all.plan.lines[i].kind) << "line " << i;
+    const std::vector<PlanPoint>&a = one.plan.lines[i].points, &b = all.plan.lines[i].points;
+    ASSERT_EQ(a.size(), b.size()) << "line " << i;
+    for (std::size_t k = 0; k < a.size(); ++k)
+      EXPECT_TRUE(a[k].X == b[k].X && a[k].Y == b[k].Y) << "line " << i << " point " << k;
+  }
 }
 
 }  // namespace
