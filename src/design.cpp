@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "origamic/design.hpp"
+#include "origamic/error.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -45,6 +46,11 @@ DesignResult design(const std::filesystem::path& model_file, const DesignOptions
   result.segmentation = segment(result.maps, options.segment);
   clock.lap("segment");
   result.slices = slice(result.maps, result.segmentation, options.slice);
+  if (std::none_of(result.slices.faces.begin() + 2, result.slices.faces.end(),
+                   [](const RasterFace& f) { return !f.hole && f.pixels > 0; }))
+    throw InputError(model_file.string() +
+                     ": the model leaves no face on the card (it is smaller than a strip width W or seen edge on; "
+                     "see --scale, --min-strip and --up)");
   align_folds_to_lines(result.slices, result.maps.grid,
                        fold_snap_tolerance_mm(options.plan, result.slices, result.maps.grid));
   clock.lap("slice");

@@ -210,6 +210,7 @@ void fold_region(const PlanRegion& region, std::int32_t index, const CardFrame& 
     for (const PlanPoint& p : ring) points.emplace_back(p.X, p.Y);
     cdt.insert_constraint(points.begin(), points.end(), true);
   }
+  if (cdt.dimension() < 2) return;  // rings with no area between them: nothing to fold
   mark_nesting(cdt);
   for (Cdt::Vertex_handle v : cdt.finite_vertex_handles()) v->info() = kUnused;
 

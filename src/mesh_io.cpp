@@ -11,7 +11,14 @@
 #include <cstring>
 #include <fstream>
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <climits>
+#include <cstdint>
+#include <iterator>
+#include <regex>
+#include <set>
 #include <sstream>
+#include <string_view>
 
 #include "mesh_normals.hpp"
 #include "origamic/error.hpp"
@@ -28,6 +35,7 @@ class SoupImporter final : public OpenMesh::IO::BaseImporter {
   std::vector<OpenMesh::Vec3d> points;
   std::vector<OpenMesh::Vec3f> normals;  // per point; zero where the file gave none
   std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::size_t out_of_range = 0;  // faces refused for naming a vertex the file does not have
 
   using VertexHandle = OpenMesh::VertexHandle;
   using FaceHandle = OpenMesh::FaceHandle;
@@ -54,7 +62,10 @@ class SoupImporter final : public OpenMesh::IO::BaseImporter {
   FaceHandle add_face(const VHandles& corners) override {
     if (corners.size() < 3) return FaceHandle();
     for (std::size_t i = 0; i < corners.size(); ++i) {
-      if (!holds(corners[i])) return FaceHandle();
+      if (!holds(corners[i])) {
+        ++out_of_range;
+        return FaceHandle();
+      }
       for (std::size_t j = i + 1; j < corners.size(); ++j)
         if (corners[i] == corners[j]) return FaceHandle();
     }
@@ -123,7 +134,14 @@ std::string lower(std::string s) {
 
 bool ends_with_gz(const std::filesystem::path& file) { return lower(file.extension().string()) == ".gz"; }
 
+// Larger than any model a card can show (res_dragon_full, 871,414 triangles, is 17 MB unpacked):
+// beyond it, a file is refused before it is read, and a gzip stream once it unpacks to this much.
+constexpr std::uintmax_t kLargestMeshBytes = std::uintmax_t{1} << 30;
+
 std::string read_plain(const std::filesystem::path& file) {
+  std::error_code error;
+  if (const std::uintmax_t size = std::filesystem::file_size(file, error); !error && size > kLargestMeshBytes)
+    fail(file, "larger than 1 GiB; no model for a card needs that many triangles");
   std::ifstream in(file, std::ios::binary);
   if (!in) fail(file, "cannot open file");
   std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -137,7 +155,13 @@ std::string read_gzipped(const std::filesystem::path& file) {
   std::string bytes;
   char buffer[1 << 16];
   int n = 0;
-  while ((n = gzread(gz, buffer, sizeof buffer)) > 0) bytes.append(buffer, static_cast<std::size_t>(n));
+  while ((n = gzread(gz, buffer, sizeof buffer)) > 0) {
+    bytes.append(buffer, static_cast<std::size_t>(n));
+    if (bytes.size() > kLargestMeshBytes) {
+      gzclose(gz);
+      fail(file, "unpacks to more than 1 GiB; no model for a card needs that many triangles");
+    }
+  }
   int code = Z_OK;
   const std::string message = gzerror(gz, &code);  // a stream cut short ends reading with Z_BUF_ERROR
   gzclose(gz);
@@ -238,6 +262,180 @@ Promised promised_counts(const std::string& format, const std::string& bytes) {
   return promised;
 }
 
+// OpenMesh's OFF and PLY readers trust their headers: an unknown keyword or type, a property before
+// its element, a missing end_header, or a count the file cannot hold made them loop, print without
+// end, allocate without bound or crash. Headers are read here first; OpenMesh reads only files whose
+// headers say what they hold and whose counts fit in their bytes.
+void check_off_header(const std::filesystem::path& file, const std::string& bytes) {
+  std::size_t at = 0;
+  const auto next_line = [&] {
+    while (at < bytes.size()) {
+      std::size_t end = bytes.find('\n', at);
+      if (end == std::string::npos) end = bytes.size();
+      const std::string_view line(bytes.data() + at, end - at);
+      at = end + 1;
+      if (!is_blank_or_comment(line)) return std::string(line);
+    }
+    return std::string();
+  };
+  std::istringstream first(next_line());
+  std::string keyword, binary;
+  first >> keyword >> binary;
+  static const std::regex off_keyword("(ST)?C?N?4?n?OFF");
+  if (!std::regex_match(keyword, off_keyword))
+    fail(file, "not an OFF file (its first word is not OFF, COFF, NOFF, STOFF or the like)");
+  if (keyword.find('4') != std::string::npos || keyword.find('n') != std::string::npos)
+    fail(file, "4D and n-dimensional OFF files are not read; a model is 3D");
+  long long counts[3] = {0, 0, 0};
+  if (binary == "BINARY") {
+    // Three 32-bit counts follow the header line, big-endian by the format's definition.
+    if (bytes.size() < at + 12) fail(file, "truncated binary OFF (no counts after its header)");
+    for (int k = 0; k < 3; ++k) {
+      const auto* b = reinterpret_cast<const unsigned char*>(bytes.data() + at + 4 * k);
+      counts[k] = static_cast<std::int32_t>(std::uint32_t{b[0]} << 24 | std::uint32_t{b[1]} << 16 |
+                                            std::uint32_t{b[2]} << 8 | b[3]);
+    }
+    if (counts[0] < 0 || counts[1] < 0 ||
+        12 * counts[0] + 16 * counts[1] > static_cast<long long>(bytes.size() - at - 12))
+      fail(file, "binary OFF header counts " + std::to_string(counts[0]) + " vertices and " +
+                     std::to_string(counts[1]) + " faces, more than its bytes hold");
+    return;
+  }
+  // The counts may follow the keyword on its line or stand on the next.
+  std::istringstream rest(binary.empty() ? next_line() : binary + " " + std::string(std::istreambuf_iterator<char>(first), {}));
+  if (!(rest >> counts[0] >> counts[1]))
+    fail(file, "OFF header has no vertex and face counts (whole numbers from 0 to 2147483647) after " + keyword);
+  if (counts[0] < 0 || counts[1] < 0 || counts[0] > INT32_MAX || counts[1] > INT32_MAX)
+    fail(file, "OFF header counts " + std::to_string(counts[0]) + " vertices and " + std::to_string(counts[1]) +
+                   " faces; counts are whole numbers from 0 to 2147483647");
+}
+
+void check_ply_header(const std::filesystem::path& file, const std::string& bytes) {
+  // A header longer than this is no header: 64 KiB holds thousands of comment lines.
+  constexpr std::size_t kLongestHeader = 1 << 16;
+  if (bytes.compare(0, 3, "ply") != 0 || (bytes.size() > 3 && !std::isspace(static_cast<unsigned char>(bytes[3]))))
+    fail(file, "not a PLY file (it does not start with 'ply')");
+  const std::size_t end = bytes.find("end_header");
+  if (end == std::string::npos || end > kLongestHeader) fail(file, "PLY header has no end_header in its first 64 KiB");
+  static const std::set<std::string> types = {"char",  "uchar", "short",  "ushort", "int",    "uint",
+                                               "float", "double", "int8",  "uint8",  "int16",  "uint16",
+                                               "int32", "uint32", "float32", "float64"};
+  const auto size_of = [](const std::string& type) -> long long {
+    if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
+    if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+    if (type == "double" || type == "float64") return 8;
+    return 4;
+  };
+  std::istringstream in(bytes.substr(0, end));
+  std::string line, format;
+  long long least_bytes = 0, records = 0, count = 0, record_bytes = 0;
+  bool in_element = false, has_vertex = false;
+  int line_number = 0;
+  const auto close_element = [&] { least_bytes += count * record_bytes, records += count; };
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    const std::string where = "PLY header line " + std::to_string(line_number) + ": ";
+    if (line_number == 1) {
+      if (keyword != "ply") fail(file, "not a PLY file (it does not start with 'ply')");
+      continue;
+    }
+    if (keyword.empty() || keyword == "comment" || keyword == "obj_info") continue;
+    if (keyword == "format") {
+      words >> format;
+      if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
+        fail(file, where + "unknown format '" + format + "'");
+    } else if (keyword == "element") {
+      if (in_element) close_element();
+      std::string name;
+      if (!(words >> name >> count) || count < 0 || count > INT32_MAX)
+        fail(file, where + "an element needs a name and a count from 0 to 2147483647");
+      has_vertex |= name == "vertex" && count > 0;
+      in_element = true, record_bytes = 0;
+    } else if (keyword == "property") {
+      if (!in_element) fail(file, where + "a property before any element");
+      std::string type, name;
+      words >> type;
+      if (type == "list") {
+        std::string count_type, item_type;
+        words >> count_type >> item_type;
+        if (!types.contains(count_type) || !types.contains(item_type))
+          fail(file, where + "unsupported list types '" + count_type + "' and '" + item_type + "'");
+        record_bytes += size_of(count_type);
+      } else {
+        if (!types.contains(type)) fail(file, where + "unsupported property type '" + type + "'");
+        record_bytes += size_of(type);
+      }
+      if (!(words >> name)) fail(file, where + "a property without a name");
+    } else {
+      fail(file, where + "unknown keyword '" + keyword + "'");
+    }
+  }
+  if (in_element) close_element();
+  if (format.empty()) fail(file, "PLY header has no format line");
+  if (!has_vertex) fail(file, "PLY header has no vertex element");
+  const std::size_t data = bytes.find('\n', end);
+  const auto data_bytes = static_cast<long long>(data == std::string::npos ? 0 : bytes.size() - data - 1);
+  if (format != "ascii" && least_bytes > data_bytes)
+    fail(file, "truncated: the PLY header promises at least " + std::to_string(least_bytes) +
+                   " bytes of data, the file has " + std::to_string(data_bytes));
+  if (format == "ascii" && 2 * records > data_bytes)  // a record is a line: a number and a newline at least
+    fail(file, "truncated: the PLY header promises " + std::to_string(records) + " records, more than its " +
+                   std::to_string(data_bytes) + " bytes of data hold");
+}
+
+// OpenMesh's STL readers take "nan" and "inf" for numbers (ASCII: as whatever the stream left;
+// binary: as they are): every vertex is checked to hold three finite numbers first.
+void check_stl_numbers(const std::filesystem::path& file, const std::string& bytes, bool binary) {
+  if (binary) {
+    std::uint32_t count = 0;
+    std::memcpy(&count, bytes.data() + 80, 4);
+    for (std::uint64_t t = 0; t < count; ++t)
+      for (int k = 0; k < 12; ++k) {  // the normal and three corners
+        float value = 0;
+        std::memcpy(&value, bytes.data() + 84 + 50 * t + 4 * k, 4);
+        if (!std::isfinite(value))
+          fail(file, "triangle " + std::to_string(t + 1) + " holds a number that is not finite");
+      }
+    return;
+  }
+  std::size_t line_number = 0;
+  for (std::size_t at = 0; at < bytes.size();) {
+    std::size_t end = bytes.find('\n', at);
+    if (end == std::string::npos) end = bytes.size();
+    ++line_number;
+    std::istringstream words(bytes.substr(at, end - at));
+    at = end + 1;
+    std::string keyword;
+    words >> keyword;
+    if (keyword != "vertex") continue;
+    for (int k = 0; k < 3; ++k) {
+      std::string word;
+      words >> word;
+      char* stop = nullptr;
+      const double value = std::strtod(word.c_str(), &stop);
+      if (word.empty() || *stop != '\0' || !std::isfinite(value))
+        fail(file, "line " + std::to_string(line_number) + ": a vertex needs three finite numbers");
+    }
+  }
+}
+
+// OpenMesh's OBJ reader opens the material libraries a file names, any path (/dev/zero, a FIFO): the
+// plan needs no materials, so `mtllib` lines are made comments before it reads.
+void drop_material_libraries(std::string& bytes) {
+  for (std::size_t at = 0; at < bytes.size();) {
+    std::size_t start = bytes.find_first_not_of(" \t", at);
+    if (start == std::string::npos) break;
+    if (bytes.compare(start, 6, "mtllib") == 0) bytes[start] = '#';
+    const std::size_t end = bytes.find('\n', start);
+    if (end == std::string::npos) break;
+    at = end + 1;
+  }
+}
+
 // The triangles read, over the vertices they use (unused vertices would otherwise count in the
 // model's extent).
 TriangleMesh triangle_soup(const SoupImporter& read, bool with_file_normals) {
@@ -311,6 +509,10 @@ LoadedMesh load_mesh_unguarded(const std::filesystem::path& file, const LoadOpti
   // STL stores only facet normals, which OpenMesh would smear onto shared vertices.
   if (loaded.format != "stl") read_options += OpenMesh::IO::Options::VertexNormal;
   if (loaded.format == "stl" && is_binary_stl(file, bytes)) read_options += OpenMesh::IO::Options::Binary;
+  if (loaded.format == "stl") check_stl_numbers(file, bytes, read_options.check(OpenMesh::IO::Options::Binary));
+  if (loaded.format == "off") check_off_header(file, bytes);
+  if (loaded.format == "ply") check_ply_header(file, bytes);
+  if (loaded.format == "obj") drop_material_libraries(bytes);
   const Promised promised = promised_counts(loaded.format, bytes);
   if (promised.data_found < promised.data_needed)
     fail(file, "truncated: the header promises " + std::to_string(promised.data_needed) +
@@ -331,6 +533,9 @@ LoadedMesh load_mesh_unguarded(const std::filesystem::path& file, const LoadOpti
     fail(file, "truncated or malformed: " + std::to_string(promised.vertices) + " vertices promised, " +
                    std::to_string(read.points.size()) +
                    " readable (a coordinate may be missing or not a finite number)");
+  if (read.out_of_range > 0)
+    fail(file, std::to_string(read.out_of_range) + " faces name a vertex the file does not have (it has " +
+                   std::to_string(read.points.size()) + ")");
   if (read.triangles.empty()) fail(file, "no faces");
 
   loaded.file_normals = read_options.check(OpenMesh::IO::Options::VertexNormal);
@@ -344,6 +549,12 @@ LoadedMesh load_mesh_unguarded(const std::filesystem::path& file, const LoadOpti
     hi = glm::max(hi, p);
   }
   if (lo == hi) fail(file, "model has zero extent (all vertices at one point)");
+  const bool any_area = std::ranges::any_of(loaded.mesh.triangles, [&](const std::array<std::uint32_t, 3>& t) {
+    const glm::dvec3 &a = loaded.mesh.positions[t[0]], &b = loaded.mesh.positions[t[1]], &c = loaded.mesh.positions[t[2]];
+    const glm::dvec3 n = glm::cross(b - a, c - a);
+    return n.x != 0 || n.y != 0 || n.z != 0;
+  });
+  if (!any_area) fail(file, "model has no area (every triangle's corners lie on a line)");
 
   if (loaded.file_normals)
     unit_or_face_normals(loaded.mesh);

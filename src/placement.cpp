@@ -50,7 +50,9 @@ void check_options(const Sheet& sheet, const PlacementOptions& options) {
   if (!(std::isfinite(sheet.width_mm) && std::isfinite(sheet.height_mm) && sheet.width_mm > 0 &&
         sheet.height_mm > 0))
     throw InputError("--card: the sheet must have a positive, finite width and height");
-  if (!std::isfinite(options.rotate_deg)) throw InputError("--rotate: must be a finite angle in degrees");
+  // Beyond any cutter's bed or printer's page (a wide plotter takes 1.6 m).
+  if (sheet.width_mm > 5000 || sheet.height_mm > 5000) throw InputError("--card: a side longer than 5000 mm is no card");
+  if (!(std::abs(options.rotate_deg) <= 360)) throw InputError("--rotate: must be an angle from -360 to 360 degrees");
   if (options.scale && !(std::isfinite(*options.scale) && *options.scale > 0))
     throw InputError("--scale: must be a positive, finite number");
   if (options.offset_mm && !(std::isfinite(options.offset_mm->x) && std::isfinite(options.offset_mm->y) &&

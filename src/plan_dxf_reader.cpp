@@ -6,6 +6,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
+#include <climits>
+#include <cstdint>
+#include <cstdlib>
+#include <string_view>
+#include <vector>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -23,32 +29,81 @@ std::string upper(std::string text) {
   return text;
 }
 
-std::string trimmed(const std::string& text) {
-  const auto first = text.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos) return "";
-  return text.substr(first, text.find_last_not_of(" \t\r\n") - first + 1);
+// dxflib reads lines into a 1,024-byte buffer and loops forever on a longer one; no DXF writer
+// writes lines near this long (text is split into 250-character groups).
+constexpr std::size_t kLongestLine = 1000;
+
+bool is_real_code(int code) {
+  return (code >= 10 && code <= 59) || (code >= 110 && code <= 149) || (code >= 210 && code <= 239) ||
+         (code >= 460 && code <= 469) || (code >= 1010 && code <= 1059);
+}
+bool is_integer_code(int code) {
+  return (code >= 60 && code <= 99) || (code >= 170 && code <= 179) || (code >= 270 && code <= 289) ||
+         (code >= 370 && code <= 389) || (code >= 400 && code <= 409) || (code >= 420 && code <= 429) ||
+         (code >= 440 && code <= 459) || (code >= 1060 && code <= 1071);
 }
 
 // The file's group pairs must start with `0 SECTION` (after comments) and end with `0 EOF`: dxflib
-// reads anything without complaint, so a text file or a truncated download is caught here.
+// reads anything without complaint, so a text file or a truncated download is caught here. Every
+// pair is checked before dxflib sees it, which trusts them: its code a number, a real a finite number
+// (dxflib reads "nan" as 0), an integer one that fits 32 bits, and a count of an entity's vertices or
+// other parts no more than the groups left in the file (dxflib allocates what a count says).
 void check_structure(const std::string& bytes, const std::string& name) {
   if (bytes.empty()) throw InputError(name + ": empty file");
   if (bytes.rfind("AutoCAD Binary DXF", 0) == 0)
     throw InputError(name + ": binary DXF is not supported; save it as ASCII DXF");
-  std::istringstream in(bytes);
-  std::string code, value;
-  bool started = false;
-  std::string last_code, last_value;
-  while (std::getline(in, code)) {
-    if (!std::getline(in, value)) break;
-    code = trimmed(code), value = trimmed(value);
+  std::vector<std::string_view> lines;
+  for (std::size_t at = 0; at < bytes.size();) {
+    std::size_t end = bytes.find('\n', at);
+    if (end == std::string::npos) end = bytes.size();
+    if (end - at > kLongestLine)
+      throw InputError(name + ": line " + std::to_string(lines.size() + 1) + " is longer than " +
+                       std::to_string(kLongestLine) + " characters; no DXF line is");
+    lines.emplace_back(bytes.data() + at, end - at);
+    at = end + 1;
+  }
+  const auto trim = [](std::string_view text) {
+    const auto first = text.find_first_not_of(" \t\r");
+    if (first == std::string_view::npos) return std::string_view{};
+    return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
+  };
+  const auto at_line = [&](std::size_t i) { return name + ": line " + std::to_string(i + 1) + ": "; };
+  bool started = false, in_entities = false;
+  std::string_view last_code, last_value;
+  bool next_is_section_name = false;
+  for (std::size_t i = 0; i + 1 < lines.size(); i += 2) {
+    const std::string_view code_text = trim(lines[i]), value = trim(lines[i + 1]);
+    if (code_text.empty() && value.empty()) continue;
+    int code = 0;
+    if (const auto [end, error] = std::from_chars(code_text.data(), code_text.data() + code_text.size(), code);
+        error != std::errc() || end != code_text.data() + code_text.size() || code < 0 || code > 1071)
+      throw InputError(at_line(i) + "a group code must be a number from 0 to 1071");
     if (!started) {
-      if (code == "999") continue;
-      if (code != "0" || value != "SECTION")
-        throw InputError(name + ": not a DXF file (it does not start with a SECTION)");
+      if (code == 999) continue;
+      if (code != 0 || value != "SECTION") throw InputError(name + ": not a DXF file (it does not start with a SECTION)");
       started = true;
     }
-    if (!code.empty() || !value.empty()) last_code = code, last_value = value;
+    if (is_real_code(code)) {
+      const std::string text(value);
+      char* end = nullptr;
+      const double number = std::strtod(text.c_str(), &end);
+      if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(number))
+        throw InputError(at_line(i + 1) + "group " + std::to_string(code) + " must hold a finite number");
+    } else if (is_integer_code(code)) {
+      long long number = 0;
+      if (const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), number);
+          error != std::errc() || end != value.data() + value.size() || number < INT32_MIN || number > INT32_MAX)
+        throw InputError(at_line(i + 1) + "group " + std::to_string(code) + " must hold a 32-bit whole number");
+      const bool count = (code >= 71 && code <= 79) || (code >= 90 && code <= 99);
+      const auto pairs_left = static_cast<long long>((lines.size() - i) / 2);
+      if (in_entities && count && (number < 0 || number > pairs_left))
+        throw InputError(at_line(i + 1) + "group " + std::to_string(code) + " counts " + std::to_string(number) +
+                         " parts where the file has " + std::to_string(pairs_left) + " groups left");
+    }
+    if (next_is_section_name) in_entities = code == 2 && value == "ENTITIES", next_is_section_name = false;
+    if (code == 0 && value == "SECTION") next_is_section_name = true;
+    if (code == 0 && value == "ENDSEC") in_entities = false;
+    last_code = code_text, last_value = value;
   }
   if (!started) throw InputError(name + ": not a DXF file (it does not start with a SECTION)");
   if (last_code != "0" || last_value != "EOF") throw InputError(name + ": truncated DXF (no EOF at its end)");
@@ -204,10 +259,13 @@ class Reader : public DL_CreationAdapter {
                      "; curves are not supported: flatten them into straight segments");
   }
 
-  void check_finite(std::initializer_list<double> values, const char* entity) const {
+  // A card is well under a metre; a coordinate beyond 10 km in any unit is no plan (and would take
+  // the validator's arithmetic far from the sheet).
+  void check_finite(std::initializer_list<double> values, const char* entity) {
     for (const double v : values)
-      if (!std::isfinite(v))
-        throw InputError(name_ + ": a " + std::string(entity) + " has a coordinate that is not finite");
+      if (!std::isfinite(v) || std::abs(v) > 1e7)
+        throw InputError(name_ + ": a " + std::string(entity) + " on layer " + getAttributes().getLayer() +
+                         " has a coordinate beyond 10,000,000 drawing units");
   }
 
   void finish_polyline() {

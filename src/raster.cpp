@@ -4,6 +4,7 @@
 #include <embree3/rtcore.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -128,9 +129,12 @@ void check_options(const Sheet& sheet, const RasterOptions& options) {
   const double pixels = cols * rows;
   constexpr double max_pixels = 64e6;  // the maps take about 45 bytes a pixel: 3 GB at most
   if (!(pixels <= max_pixels))
-    throw InputError("--px-per-mm: " + std::to_string(options.px_per_mm) + " gives " +
-                     std::to_string(static_cast<long long>(pixels / 1e6)) +
-                     " Mpx on this sheet; at most 64 Mpx are allowed");
+  {
+    char text[160];
+    std::snprintf(text, sizeof text, "--px-per-mm: %g gives %.3g Mpx on this sheet; at most 64 Mpx are allowed",
+                  options.px_per_mm, pixels / 1e6);
+    throw InputError(text);
+  }
 }
 
 }  // namespace

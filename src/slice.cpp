@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -419,6 +420,14 @@ SliceResult slice(const RasterMaps& maps, const Segmentation& seg, const SliceOp
   if (!(std::isfinite(W) && W * maps.grid.px_per_mm >= 1))
     throw InputError("--min-strip: must be a finite width of at least one pixel (" +
                      std::to_string(1 / maps.grid.px_per_mm) + " mm at this resolution)");
+  // A pop-up needs a few strips across each half of the card.
+  const double widest = std::min(maps.grid.cols, maps.grid.rows_above_fold) / maps.grid.px_per_mm / 4;
+  if (!(W <= widest)) {
+    char text[128];
+    std::snprintf(text, sizeof text,
+                  "--min-strip: at most a quarter of the card's width and of each half's height (%.1f mm here)", widest);
+    throw InputError(text);
+  }
   SliceResult result;
   result.min_strip_mm = W;
   result.block_px = static_cast<int>(std::ceil(W * maps.grid.px_per_mm - 1e-9));

@@ -207,6 +207,24 @@ TEST(Cli, AbsurdOptionsExitWithStatusTwo) {
   expect_rejected(house + " --bogus", "--bogus", "");
   expect_rejected(house + " --renders --render-size 4x4", "--render-size", "8 to 8192");
   expect_rejected(house + " --fold-model --thickness -1", "--thickness", "between 0 and 10");
+  expect_rejected(house + " --card 1e308x1e308", "--card", "longer than 5000 mm");
+  expect_rejected(house + " --px-per-mm 1e308", "--px-per-mm", "inf Mpx");
+  expect_rejected(house + " --min-strip 1e9", "--min-strip", "a quarter of the card");
+  expect_rejected(house + " --rotate 1e308", "--rotate", "from -360 to 360");
+  expect_rejected(house + " --scale 1e-308", "house.obj", "leaves no face on the card");
+}
+
+// Out of memory is a clean failure: one line, exit 2, nothing written (mimalloc's own operator new
+// aborted the process instead).
+TEST(Cli, RunningOutOfMemoryExitsTwoWithOneLine) {
+  const test::TempDir dir;
+  const test::CommandResult r =
+      test::shell("ulimit -v 600000; " + std::string(ORIGAMIC_EXE) + " design " +
+                  quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") + " --px-per-mm 30 --out " +
+                  quoted(dir / "out") + " 2>&1");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_EQ(r.output, "origamic: out of memory\n");
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "house.dxf"));
 }
 
 TEST(Cli, FoldModelAndRendersNeedAnOutputFolder) {

@@ -201,6 +201,46 @@ TEST(CliValidate, BadFilesAndOptionsExitTwoWithOneLineNamingThem) {
   }
 }
 
+// Plans dxflib trusted: a line of 1,024 characters or more made it loop forever, a "nan" it read as
+// 0, a vertex count it allocated as it said, and a coordinate near 1e18 crashed `fold`. Each is now
+// one line naming the file and the problem, from validate and from fold, and fold writes nothing.
+TEST(CliValidate, MalformedPlansAreRefusedByValidateAndFold) {
+  const test::TempDir dir;
+  const std::string box = test::dxf_text(test::box_plan(kD, kH, kX0, kX1));
+  const auto lwpolyline = [](const std::string& layer, const std::string& count, const std::string& y) {
+    return "0\nLWPOLYLINE\n8\n" + layer + "\n90\n" + count + "\n10\n0\n20\n" + y + "\n10\n5\n20\n3\n";
+  };
+  const auto plan = [](const std::string& entities) { return "0\nSECTION\n2\nENTITIES\n" + entities + "0\nENDSEC\n0\nEOF\n"; };
+  std::string nan = box;
+  nan.replace(nan.find("\n10\n") + 4, nan.find('\n', nan.find("\n10\n") + 4) - nan.find("\n10\n") - 4, "nan");
+  test::write_text(dir / "long.dxf", "999\n" + std::string(1500, 'x') + "\n" + box);
+  test::write_text(dir / "nan.dxf", nan);
+  test::write_text(dir / "count.dxf", plan(lwpolyline("MOUNTAIN", "2147483647", "1") + lwpolyline("CUT", "2", "0")));
+  test::write_text(dir / "far.dxf",
+                   plan(lwpolyline("MOUNTAIN", "2", "-1078321467489004135") + lwpolyline("CUT", "2", "0")));
+  test::write_text(dir / "layer.dxf", plan("0\nLINE\n8\nA\x0b" "B\n10\n0\n20\n0\n11\n1\n21\n1\n"));
+  const struct {
+    std::string file, problem;
+  } cases[] = {{"long.dxf", "line 2 is longer than 1000 characters"},
+               {"nan.dxf", "must hold a finite number"},
+               {"count.dxf", "group 90 counts 2147483647 parts"},
+               {"far.dxf", "beyond 10,000,000 drawing units"},
+               {"layer.dxf", "A\\x0b"}};
+  for (const auto& c : cases) {
+    for (const std::string command : {"validate ", "fold "}) {
+      SCOPED_TRACE(command + c.file);
+      const std::filesystem::path out = dir / (c.file + ".obj");
+      const test::CommandRun r = test::run_origamic(
+          command + test::quoted(dir / c.file) + (command == "fold " ? " --out " + test::quoted(out) : ""));
+      EXPECT_EQ(r.status, 2) << r.output;
+      EXPECT_EQ(std::ranges::count(r.output, '\n'), 1) << r.output;
+      EXPECT_NE(r.output.find(c.file), std::string::npos) << r.output;
+      EXPECT_NE(r.output.find(c.problem), std::string::npos) << r.output;
+      EXPECT_FALSE(std::filesystem::exists(out));
+    }
+  }
+}
+
 TEST(CliValidate, HelpListsTheOptions) {
   const test::CommandRun help = test::run_origamic("validate --help");
   EXPECT_EQ(help.status, 0);

@@ -5,6 +5,7 @@
 
 #include <fstream>
 #include <functional>
+#include <limits>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -164,11 +165,56 @@ TEST(MeshIo, BadInputsAreReportedWithFileAndProblem) {
   expect_input_error(dir / "cut.off", "truncated");
   expect_input_error(dir / "cut.ply", "truncated");
   expect_input_error(dir / "cut.off.gz", "truncated or corrupt gzip");
-  expect_input_error(dir / "garbage.ply", "cannot parse");
+  expect_input_error(dir / "garbage.ply", "not a PLY file");
   expect_input_error(dir / "points.obj", "no faces");
   expect_input_error(dir / "nan.obj", "not a finite number");
   expect_input_error(dir / "huge.obj", "not a finite number");
   expect_input_error(dir / "point.obj", "zero extent");
+}
+
+// Headers OpenMesh trusted: each of these crashed it, looped, printed without end or allocated
+// without bound (issue 24's fuzzing); now each is one line naming the file and what is wrong.
+TEST(MeshIo, MalformedHeadersAreRefusedBeforeTheReaderSeesThem) {
+  const TempDir dir;
+  test::write_text(dir / "property_first.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n");
+  test::write_text(dir / "no_end.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n");
+  test::write_text(dir / "odd_type.ply",
+                   "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty fancy w\nend_header\n"
+                   "0 0\n1 0\n0 1\n");
+  test::write_text(dir / "huge_count.ply",
+                   "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\nproperty float x\n"
+                   "property float y\nproperty float z\nend_header\n0123456789ab");
+  test::write_text(dir / "o.off", "O");
+  test::write_text(dir / "negative.off", "OFF\n-1 2 0\n");
+  test::write_text(dir / "huge.off", "OFF\n100000000000000000000 1 0\n0 0 0\n");
+  test::write_text(dir / "out_of_range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\nf 1 2 3\n");
+  test::write_text(dir / "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+  test::write_text(dir / "nan.stl",
+                   "solid x\nfacet normal 0 0 1\nouter loop\nvertex nan 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+                   "endloop\nendfacet\nendsolid x\n");
+  TriangleMesh box = test::box({0, 0, 0}, {1, 2, 3});
+  box.positions[0].x = std::numeric_limits<double>::infinity();
+  test::write_stl_binary(dir / "inf.stl", box);
+
+  expect_input_error(dir / "property_first.ply", "a property before any element");
+  expect_input_error(dir / "no_end.ply", "no end_header");
+  expect_input_error(dir / "odd_type.ply", "unsupported property type 'fancy'");
+  expect_input_error(dir / "huge_count.ply", "truncated");
+  expect_input_error(dir / "o.off", "not an OFF file");
+  expect_input_error(dir / "negative.off", "counts -1 vertices");
+  expect_input_error(dir / "huge.off", "no vertex and face counts");
+  expect_input_error(dir / "out_of_range.obj", "1 faces name a vertex the file does not have");
+  expect_input_error(dir / "flat.obj", "no area");
+  expect_input_error(dir / "nan.stl", "line 4: a vertex needs three finite numbers");
+  expect_input_error(dir / "inf.stl", "not finite");
+}
+
+// A material library is never opened: here one that would never end.
+TEST(MeshIo, MaterialLibrariesAreNotRead) {
+  const TempDir dir;
+  test::write_text(dir / "zero.obj", "mtllib /dev/zero\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const LoadedMesh loaded = load_mesh(dir / "zero.obj");
+  EXPECT_EQ(loaded.mesh.triangles.size(), 1u);
 }
 
 TEST(MeshIo, FormatIsTakenFromTheNameCaseInsensitively) {

@@ -408,6 +408,32 @@ int run_fold(const FoldArgs& args) {
 
 }  // namespace
 
+namespace {
+
+// An error as one line of plain text: a name or layer read from a file may hold a newline, a tab or
+// a terminal escape, which are shown as \xNN instead.
+std::string one_line(std::string_view message) {
+  std::string line;
+  for (const char c : message) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+      line += escaped;
+    } else {
+      line += c;
+    }
+  }
+  return line;
+}
+
+void print_error(std::string_view prefix, std::string_view message, std::string_view suffix = "") {
+  std::fprintf(stderr, "origamic: %s%s%s\n", std::string(prefix).c_str(), one_line(message).c_str(),
+               std::string(suffix).c_str());
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"origamic: Origamic Architecture pop-up plans from 3D models", "origamic"};
   app.set_version_flag("--version", std::string("origamic ") + origamic::version);
@@ -436,7 +462,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "origamic: %s (see origamic --help)\n", e.what());
+    print_error("", e.what(), " (see origamic --help)");
     return 2;
   }
 
@@ -446,19 +472,19 @@ int main(int argc, char** argv) {
     if (*design) return run_design(design_args, fabrication_args, popup_args);
     return 2;  // CLI11 requires one subcommand
   } catch (const origamic::InputError& e) {
-    std::fprintf(stderr, "origamic: %s\n", e.what());
+    print_error("", e.what());
     return 2;
   } catch (const origamic::OutputError& e) {
-    std::fprintf(stderr, "origamic: %s\n", e.what());
+    print_error("", e.what());
     return 2;
   } catch (const std::filesystem::filesystem_error& e) {
-    std::fprintf(stderr, "origamic: %s\n", e.what());
+    print_error("", e.what());
     return 2;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "origamic: out of memory\n");
     return 2;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "origamic: internal error: %s\n", e.what());
+    print_error("internal error: ", e.what());
     return 2;
   }
 }
