@@ -29,6 +29,7 @@
 #include <system_error>
 
 #include "fold_gltf.hpp"
+#include "number_text.hpp"
 #include "origamic/error.hpp"
 #include "origamic/plan.hpp"
 #include "quiet_openmesh.hpp"
@@ -58,11 +59,11 @@ using OmMesh = OpenMesh::TriMesh_ArrayKernelT<OmTraits>;
 void check_options(const FoldOptions& options) {
   if (!(options.angle_deg >= 0 && options.angle_deg <= 180))
     throw InputError("--angle: the opening angle must be between 0 and 180 degrees, not " +
-                     std::to_string(options.angle_deg));
+                     number_text(options.angle_deg));
   // Card is at most a millimetre or so; 10 mm is a slab, not paper.
   if (!(options.thickness_mm >= 0 && options.thickness_mm <= 10))
     throw InputError("--thickness: the paper thickness must be between 0 and 10 mm, not " +
-                     std::to_string(options.thickness_mm));
+                     number_text(options.thickness_mm));
 }
 
 // Marks every face of the triangulation with how many rings separate it from the outside: a flood

@@ -7,6 +7,7 @@
 #include <optional>
 #include <utility>
 
+#include "number_text.hpp"
 #include "origamic/error.hpp"
 
 namespace origamic {
@@ -143,11 +144,7 @@ Layer layer_of(LineKind kind, FoldStyle style) {
   return Layer::Cut;
 }
 
-std::string mm_text(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
+std::string mm_text(double value) { return number_text(value); }
 
 struct RunStats {
   double length_mm = 0;  // of the runs left outside the insets

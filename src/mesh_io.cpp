@@ -423,6 +423,50 @@ void check_stl_numbers(const std::filesystem::path& file, const std::string& byt
   }
 }
 
+// OpenMesh's OBJ reader asserts (aborts) on a face whose corners it cannot read, such as
+// "14/11/14/8": every face line must be three or more corners v, v/t, v//n or v/t/n, each a
+// whole number, before it reads.
+void check_obj_faces(const std::filesystem::path& file, const std::string& bytes) {
+  const auto whole = [](std::string_view text, bool may_be_empty) {
+    if (!text.empty() && text.front() == '-') text.remove_prefix(1);
+    if (text.empty()) return may_be_empty;
+    return std::ranges::all_of(text, [](char c) { return c >= '0' && c <= '9'; });
+  };
+  std::size_t line_number = 0;
+  for (std::size_t at = 0; at < bytes.size();) {
+    std::size_t end = bytes.find('\n', at);
+    if (end == std::string::npos) end = bytes.size();
+    ++line_number;
+    std::string_view line(bytes.data() + at, end - at);
+    at = end + 1;
+    if (line.size() < 2 || line[0] != 'f' || (line[1] != ' ' && line[1] != '\t')) continue;
+    if (const auto comment = line.find('#'); comment != std::string_view::npos) line = line.substr(0, comment);
+    int corners = 0;
+    bool readable = true;
+    for (std::size_t i = 1; i < line.size() && readable;) {
+      i = line.find_first_not_of(" \t\r\\", i);
+      if (i == std::string_view::npos) break;
+      const std::size_t stop = std::min(line.find_first_of(" \t\r\\", i), line.size());
+      const std::string_view corner = line.substr(i, stop - i);
+      i = stop;
+      // v, v/t or v/t/n with t possibly empty: one to three parts, all whole numbers but an empty t.
+      std::vector<std::string_view> parts;
+      for (std::size_t from = 0;;) {
+        const std::size_t slash = corner.find('/', from);
+        parts.push_back(corner.substr(from, slash == std::string_view::npos ? slash : slash - from));
+        if (slash == std::string_view::npos) break;
+        from = slash + 1;
+      }
+      readable = parts.size() <= 3;
+      for (std::size_t k = 0; k < parts.size() && readable; ++k) readable = whole(parts[k], k == 1 && parts.size() == 3);
+      ++corners;
+    }
+    if (!readable || corners < 3)
+      fail(file, "line " + std::to_string(line_number) +
+                     ": a face needs three or more corners, each v, v/t, v//n or v/t/n in whole numbers");
+  }
+}
+
 // OpenMesh's OBJ reader opens the material libraries a file names, any path (/dev/zero, a FIFO): the
 // plan needs no materials, so `mtllib` lines are made comments before it reads.
 void drop_material_libraries(std::string& bytes) {
@@ -512,7 +556,7 @@ LoadedMesh load_mesh_unguarded(const std::filesystem::path& file, const LoadOpti
   if (loaded.format == "stl") check_stl_numbers(file, bytes, read_options.check(OpenMesh::IO::Options::Binary));
   if (loaded.format == "off") check_off_header(file, bytes);
   if (loaded.format == "ply") check_ply_header(file, bytes);
-  if (loaded.format == "obj") drop_material_libraries(bytes);
+  if (loaded.format == "obj") check_obj_faces(file, bytes), drop_material_libraries(bytes);
   const Promised promised = promised_counts(loaded.format, bytes);
   if (promised.data_found < promised.data_needed)
     fail(file, "truncated: the header promises " + std::to_string(promised.data_needed) +

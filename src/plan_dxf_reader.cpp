@@ -76,8 +76,10 @@ void check_structure(const std::string& bytes, const std::string& name) {
     if (code_text.empty() && value.empty()) continue;
     int code = 0;
     if (const auto [end, error] = std::from_chars(code_text.data(), code_text.data() + code_text.size(), code);
-        error != std::errc() || end != code_text.data() + code_text.size() || code < 0 || code > 1071)
+        error != std::errc() || end != code_text.data() + code_text.size() || code < 0 || code > 1071) {
+      if (!started) throw InputError(name + ": not a DXF file (it does not start with a SECTION)");
       throw InputError(at_line(i) + "a group code must be a number from 0 to 1071");
+    }
     if (!started) {
       if (code == 999) continue;
       if (code != 0 || value != "SECTION") throw InputError(name + ": not a DXF file (it does not start with a SECTION)");

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "number_text.hpp"
 #include "origamic/error.hpp"
 #include "origamic/plan_export.hpp"
 #include "origamic/version.hpp"
@@ -43,11 +44,7 @@ Rgb rgb_of(const char* hex) {
   return {r / 255.0, g / 255.0, b / 255.0};
 }
 
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
+std::string number(double value) { return number_text(value); }
 
 // Where the sheet sits on the page: page x = x0 + X, page y = y0 + (top - Y).
 struct Frame {

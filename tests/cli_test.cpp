@@ -57,6 +57,31 @@ TEST(Cli, HelpAndVersion) {
   const CommandRun version = run("--version");
   EXPECT_EQ(version.status, 0);
   EXPECT_EQ(version.output.rfind("origamic ", 0), 0u) << version.output;
+  EXPECT_EQ(run("-V").output, version.output);
+  const CommandRun help_word = run("help");
+  EXPECT_EQ(help_word.status, 0);
+  EXPECT_EQ(help_word.output, help.output);
+}
+
+// What a user mistyped is named, with the nearest right word and the help that lists it.
+TEST(Cli, MistakesAreNamedWithTheNearestRightWord) {
+  const std::string house = quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj");
+  const struct {
+    std::string arguments, message;
+  } cases[] = {
+      {"desgin " + house, "origamic: unknown command 'desgin'; did you mean design? (the commands are design, "
+                          "validate and fold; see origamic --help)\n"},
+      {"design " + house + " --colour craft",
+       "origamic: --colour: no such option of origamic design; did you mean --colours? (see origamic design "
+       "--help)\n"},
+      {"fold plan.dxf --out a.obj --angle abc", "origamic: --angle: 'abc' is not a number (see origamic fold --help)\n"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.arguments);
+    const CommandRun r = run(c.arguments);
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.output, c.message);
+  }
 }
 
 TEST(Cli, DesignWritesTheReportAndTheMaps) {

@@ -189,6 +189,9 @@ TEST(MeshIo, MalformedHeadersAreRefusedBeforeTheReaderSeesThem) {
   test::write_text(dir / "huge.off", "OFF\n100000000000000000000 1 0\n0 0 0\n");
   test::write_text(dir / "out_of_range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\nf 1 2 3\n");
   test::write_text(dir / "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+  // Found by tools/fuzz.py in a mutated arch_church.obj: OpenMesh's reader aborted on the corner.
+  test::write_text(dir / "four_parts.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1/1 2/2/2/8 3/3/3\n");
+  test::write_text(dir / "two_corners.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\nf 1 2 3\n");
   test::write_text(dir / "nan.stl",
                    "solid x\nfacet normal 0 0 1\nouter loop\nvertex nan 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
                    "endloop\nendfacet\nendsolid x\n");
@@ -205,6 +208,8 @@ TEST(MeshIo, MalformedHeadersAreRefusedBeforeTheReaderSeesThem) {
   expect_input_error(dir / "huge.off", "no vertex and face counts");
   expect_input_error(dir / "out_of_range.obj", "1 faces name a vertex the file does not have");
   expect_input_error(dir / "flat.obj", "no area");
+  expect_input_error(dir / "four_parts.obj", "line 4: a face needs three or more corners");
+  expect_input_error(dir / "two_corners.obj", "line 4: a face needs three or more corners");
   expect_input_error(dir / "nan.stl", "line 4: a vertex needs three finite numbers");
   expect_input_error(dir / "inf.stl", "not finite");
 }

@@ -10,6 +10,8 @@
 #include <exception>
 #include <map>
 #include <optional>
+#include <numeric>
+#include <vector>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -432,11 +434,62 @@ void print_error(std::string_view prefix, std::string_view message, std::string_
                std::string(suffix).c_str());
 }
 
+// Edits (insertions, deletions, substitutions) between two words: the nearest name is suggested.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  std::iota(row.begin(), row.end(), std::size_t{0});
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0]++;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// "; did you mean X?" for the nearest of `names` within a third of the word's length, or "".
+std::string suggestion(std::string_view word, const std::vector<std::string>& names) {
+  const std::string* best = nullptr;
+  std::size_t fewest = word.size() / 3 + 1;
+  for (const std::string& name : names)
+    if (const std::size_t d = edit_distance(word, name); d < fewest) fewest = d, best = &name;
+  return best ? "; did you mean " + *best + "?" : "";
+}
+
+// A parse error in words a user can act on, naming the option and the help that lists it.
+std::string parse_problem(const CLI::ParseError& e, const CLI::App& app, int argc, char** argv) {
+  const CLI::App* used = nullptr;
+  for (const CLI::App* sub : app.get_subcommands({})) if (sub->parsed()) used = sub;
+  const std::string help = used ? " (see origamic " + used->get_name() + " --help)" : " (see origamic --help)";
+  const std::string message = e.what();
+  if (dynamic_cast<const CLI::ExtrasError*>(&e) && used) {
+    std::vector<std::string> names;
+    for (const CLI::Option* option : used->get_options())
+      if (!option->get_lnames().empty()) names.push_back("--" + option->get_lnames().front());
+    for (int i = 2; i < argc; ++i) {
+      const std::string_view word = argv[i];
+      if (word.rfind("--", 0) != 0) continue;
+      const std::string name(word.substr(0, word.find('=')));
+      if (std::ranges::find(names, name) == names.end())
+        return name + ": no such option of origamic " + used->get_name() + suggestion(name, names) + help;
+    }
+  }
+  // CLI11 says "Could not convert: --angle = abc".
+  if (const auto at = message.find("Could not convert: "); at != std::string::npos) {
+    const std::string rest = message.substr(at + 19);
+    if (const auto equals = rest.find(" = "); equals != std::string::npos)
+      return rest.substr(0, equals) + ": '" + rest.substr(equals + 3) + "' is not a number" + help;
+  }
+  return message + help;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"origamic: Origamic Architecture pop-up plans from 3D models", "origamic"};
-  app.set_version_flag("--version", std::string("origamic ") + origamic::version);
+  app.set_version_flag("--version,-V", std::string("origamic ") + origamic::version);
   app.require_subcommand(1);
   DesignArgs design_args;
   CLI::App* design = app.add_subcommand("design", "design a pop-up plan for a 3D model");
@@ -453,6 +506,20 @@ int main(int argc, char** argv) {
   CLI::App* fold = app.add_subcommand("fold", "fold a plan (DXF) into its 3D pop-up at an opening angle: a mesh");
   add_fold_options(*fold, fold_args);
 
+  // The first word names a command; `help` asks for the help, as --help does.
+  if (argc >= 2 && argv[1][0] != '-') {
+    const std::string word = argv[1];
+    const std::vector<std::string> commands = {"design", "validate", "fold"};
+    if (word == "help") {
+      std::fputs(app.help().c_str(), stdout);
+      return 0;
+    }
+    if (std::ranges::find(commands, word) == commands.end()) {
+      print_error("", "unknown command '" + word + "'" + suggestion(word, commands),
+                  " (the commands are design, validate and fold; see origamic --help)");
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -462,7 +529,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    print_error("", e.what(), " (see origamic --help)");
+    print_error("", parse_problem(e, app, argc, argv));
     return 2;
   }
 
