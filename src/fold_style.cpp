@@ -172,7 +172,14 @@ std::vector<DrawnLine> perforate(const PlanPolyline& fold, const std::vector<dou
   }
   const double cut = options.perf_cut_mm, gap = options.perf_gap_mm;
   std::vector<DrawnLine> lines;
-  for (const auto& [from, to] : complement(std::move(blocked), s.back())) {
+  std::vector<Interval> runs = complement(std::move(blocked), s.back());
+  // A fold shorter than two insets is blocked whole: it keeps one perforation, its middle third, or
+  // it would vanish from the plan and its two faces read as one (0.5 mm folds on the capitol).
+  if (runs.empty() && s.back() > kNegligible_mm) {
+    stats.runs += 1;
+    return {{layer, piece(fold.points, s, s.back() / 3, 2 * s.back() / 3), {}}};
+  }
+  for (const auto& [from, to] : runs) {
     const double L = to - from;
     stats.length_mm += L;
     stats.runs += 1;

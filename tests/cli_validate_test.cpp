@@ -179,6 +179,23 @@ TEST(CliValidate, EveryFoldStyleValidatesAsTheScoredPlanAndFolds) {
   }
 }
 
+// The capitol's plan has folds 0.5 mm long between two cuts: perforated, each must still be read as
+// a fold, so that validate finds the faces the design drew.
+TEST(CliValidate, APerforatedPlanWithFoldsShorterThanTheInsetsValidatesAsDesigned) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  const test::TempDir dir;
+  const test::CommandRun designed = test::run_origamic(
+      "design " + test::quoted(test::models_dir() / "seedlike/capitol.stl") +
+      " --up z --strict --fold-style perforated --out " + test::quoted(dir.path));
+  ASSERT_EQ(designed.status, 0) << designed.output;
+  const auto report = nlohmann::json::parse(std::ifstream(dir / "capitol.json"));
+  const test::CommandRun r = test::run_origamic("validate --json " + test::quoted(dir / "capitol.dxf"), true);
+  EXPECT_EQ(r.status, 0) << r.output.substr(0, 2000);
+  const auto read = nlohmann::json::parse(r.output);
+  EXPECT_EQ(read["counts"]["errors"], 0);
+  EXPECT_EQ(read["counts"]["faces"], report["plan"]["counts"]["faces"]);
+}
+
 TEST(CliValidate, BadFilesAndOptionsExitTwoWithOneLineNamingThem) {
   const test::TempDir dir;
   test::write_text(dir / "notes.dxf", "these are my notes, not a drawing\n");

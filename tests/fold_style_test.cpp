@@ -92,6 +92,20 @@ TEST(FoldStyle, PerforationOfARunShorterThanACutIsTheWholeRun) {
   EXPECT_NEAR(spans[0].to, 11.0, 1e-12);
 }
 
+// A fold shorter than its two insets (0.5 mm between two cuts, as the capitol has) keeps its middle
+// third: with no perforation at all it vanished, and validate read its two faces as one.
+TEST(FoldStyle, AFoldShorterThanTwoInsetsKeepsItsMiddleThird) {
+  const PlanPolyline fold{LineKind::Valley, {{100.25, 0}, {100.75, 0}}};
+  const std::vector<PlanPolyline> cuts = {{LineKind::Cut, {{100.25, 0}, {100.25, 5}}},
+                                          {LineKind::Cut, {{100.75, 0}, {100.75, -5}}}};
+  FoldStyleOptions options;
+  options.style = FoldStyle::Perforated;
+  const std::vector<Span> spans = spans_of(draw_fold(fold, cuts, options));
+  ASSERT_EQ(spans.size(), 1u);
+  EXPECT_NEAR(spans[0].from, 100.25 + 0.5 / 3, 1e-12);
+  EXPECT_NEAR(spans[0].to, 100.25 + 1.0 / 3, 1e-12);
+}
+
 TEST(FoldStyle, DashedFoldsStartAndEndWithAWholeDashAndShowTheirKind) {
   FoldStyleOptions options;
   options.style = FoldStyle::Dashed;
