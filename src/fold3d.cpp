@@ -300,6 +300,7 @@ FoldedPopup fold_popup(const std::vector<PlanRegion>& regions, const Sheet& shee
   for (std::size_t i = 0; i < regions.size(); ++i) {
     const PlanRegion& region = regions[i];
     popup.regions.push_back({region.orientation, region.depth_mm, region.status});
+    if (region.status == FaceStatus::Removed) continue;  // cut out of the sheet: a hole, as the DXF has it
     if (!region.placed) {
       ++popup.unplaced_regions;
       continue;
@@ -363,7 +364,15 @@ std::vector<OutputFile> folded_mesh_files(const FoldedPopup& popup, const std::f
   };
   std::vector<OutputFile> files = {{path, slurp(staged)}};
   const bool has_materials = std::filesystem::exists(staged_mat);  // none without a face
-  if (has_materials) files.push_back({mat, slurp(staged_mat)});
+  if (has_materials) {
+    // OBJ readers look for materials in a .mtl file: OpenMesh's .mat is published under that name.
+    const std::filesystem::path mtl = std::filesystem::path(path).replace_extension(".mtl");
+    std::string& obj = files[0].bytes;
+    const std::string written_line = "mtllib " + mat.filename().string() + "\n";
+    if (const auto at = obj.find(written_line); at != std::string::npos)
+      obj.replace(at, written_line.size(), "mtllib " + mtl.filename().string() + "\n");
+    files.push_back({mtl, slurp(staged_mat)});
+  }
   std::error_code ignored;
   std::filesystem::remove_all(folder, ignored);
   if (!written || files[0].bytes.empty() || (has_materials != !popup.triangles.empty()))

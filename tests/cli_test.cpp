@@ -288,8 +288,8 @@ TEST(Cli, DesignWritesTheFoldedModelAndItsPictures) {
   std::ifstream in(dir / "house.json");
   const auto report = nlohmann::json::parse(in);
   EXPECT_GE(faces, report["plan"]["faces"].size());
-  EXPECT_EQ(mtllib, "house_popup.mat");
-  EXPECT_TRUE(std::filesystem::exists(dir / "house_popup.mat"));
+  EXPECT_EQ(mtllib, "house_popup.mtl");
+  EXPECT_TRUE(std::filesystem::exists(dir / "house_popup.mtl"));
 }
 
 TEST(Cli, BadFabricationOptionsExitWithStatusTwo) {
@@ -397,6 +397,29 @@ TEST(Cli, FoldTurnsAnyPlanIntoItsPopUpFlatAt180AndStandingAt90) {
   const CommandRun angle = run("fold " + quoted(dir / "plan" / "box.dxf") + " --angle 200 -o " + quoted(dir / "a.obj"));
   EXPECT_EQ(angle.status, 2) << angle.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "a.obj"));
+}
+
+// One plan, one pop-up: the design's --fold-model and `fold` of its DXF give the same mesh, faces cut
+// out of the sheet left out of both (they were pink panels floating in the design's). The sphere
+// has faces cut out.
+TEST(Cli, TheDesignsPopUpIsTheFoldOfItsPlan) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  const test::TempDir dir;
+  const CommandRun designed = run("design " + quoted(test::models_dir() / "seedlike/sphere.stl") +
+                                  " --up z --fold-model --out " + quoted(dir.path));
+  ASSERT_EQ(designed.status, 0) << designed.output;
+  const auto report = nlohmann::json::parse(std::ifstream(dir / "sphere.json"));
+  ASSERT_GT(report["plan"]["counts"]["removed"].get<int>(), 0) << "the case needs faces cut out";
+  const CommandRun folded = run("fold " + quoted(dir / "sphere.dxf") + " --out " + quoted(dir / "folded.obj"));
+  ASSERT_EQ(folded.status, 0) << folded.output;
+  const auto faces_of = [](const std::filesystem::path& obj) {
+    std::ifstream in(obj);
+    int faces = 0;
+    for (std::string line; std::getline(in, line);) faces += line.rfind("f ", 0) == 0;
+    return faces;
+  };
+  EXPECT_GT(faces_of(dir / "folded.obj"), 0);
+  EXPECT_EQ(faces_of(dir / "sphere_popup.obj"), faces_of(dir / "folded.obj"));
 }
 
 }  // namespace

@@ -334,7 +334,7 @@ TEST(Fold3d, MeshFilesReadBackWithTheSameVerticesFacesAndColours) {
     }
     const std::vector<OutputFile> obj = folded_mesh_files(popup, dir / "box.obj", MeshFormat::Obj);
     ASSERT_EQ(obj.size(), 2u);
-    EXPECT_EQ(obj[1].path, dir / "box.mat");
+    EXPECT_EQ(obj[1].path, dir / "box.mtl");
     const std::vector<OutputFile> ply = folded_mesh_files(popup, dir / "box.ply", MeshFormat::Ply);
     ASSERT_EQ(ply.size(), 1u);
     write_files({obj[0], obj[1], ply[0]});
@@ -369,9 +369,9 @@ TEST(Fold3d, MeshFilesReadBackWithTheSameVerticesFacesAndColours) {
     }
     EXPECT_EQ(v, popup.positions.size());
     EXPECT_EQ(f, popup.triangles.size());
-    EXPECT_EQ(mtllib, "box.mat");
+    EXPECT_EQ(mtllib, "box.mtl");
     EXPECT_EQ(used.size(), colours.size());
-    const std::string materials = slurp(dir / "box.mat");
+    const std::string materials = slurp(dir / "box.mtl");
     for (const std::string& m : used) EXPECT_NE(materials.find("newmtl " + m + "\n"), std::string::npos) << m;
 
     const std::string bytes = slurp(dir / "box.ply");

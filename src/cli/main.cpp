@@ -180,7 +180,7 @@ struct PopupArgs {
 
 void add_popup_options(CLI::App& design, PopupArgs& args) {
   design.add_flag("--fold-model", args.fold_model,
-                  "also write the pop-up folded at 90 degrees as a mesh: MODEL_popup.obj and its materials MODEL_popup.mat");
+                  "also write the pop-up folded at 90 degrees as a mesh: MODEL_popup.obj and its materials MODEL_popup.mtl");
   design.add_flag("--renders", args.renders,
                   "also write pictures: the pop-up (MODEL_popup.png), the model from the same viewpoint "
                   "(MODEL_model.png) and the card opening (MODEL_opening.gif)");
@@ -375,7 +375,7 @@ void add_fold_options(CLI::App& fold, FoldArgs& args) {
       ->capture_default_str();
   fold.add_option("--thickness", args.thickness_mm, "paper thickness in mm (0: zero-thickness sheets)")
       ->capture_default_str();
-  fold.add_option("-o,--out", args.out, "the folded pop-up as a mesh: .obj (with its .mat), .ply, .gltf or .glb")
+  fold.add_option("-o,--out", args.out, "the folded pop-up as a mesh: .obj (with its .mtl), .ply, .gltf or .glb")
       ->required();
   fold.add_option("--cut-layer", args.layers.cut, "layer of the cuts")->capture_default_str();
   fold.add_option("--mountain-layer", args.layers.mountain, "layer of the mountain folds")->capture_default_str();
