@@ -422,5 +422,38 @@ TEST(Cli, TheDesignsPopUpIsTheFoldOfItsPlan) {
   EXPECT_EQ(faces_of(dir / "sphere_popup.obj"), faces_of(dir / "folded.obj"));
 }
 
+// A run killed while it wrote left NAME.partPID files: the next run into the folder removes those
+// of processes that are gone, and keeps another live run's.
+TEST(Cli, TemporaryFilesOfAKilledRunAreRemovedByTheNext) {
+  const test::TempDir dir;
+  std::filesystem::create_directories(dir / "out");
+  const std::filesystem::path stale = dir / "out" / "house.dxf.part999999999", live = dir / "out" / "house.svg.part1";
+  test::write_text(stale, "half a plan");
+  test::write_text(live, "another run's");
+  const CommandRun r = run("design " + quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") +
+                           " --out " + quoted(dir / "out"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(stale));
+  EXPECT_TRUE(std::filesystem::exists(live)) << "process 1 is alive";
+}
+
+// A full disk says so, and leaves nothing. Needs a small tmpfs: skipped where mounting is not allowed.
+TEST(Cli, AFullDiskIsNamedAndLeavesNoFile) {
+  const test::TempDir dir;
+  std::filesystem::create_directories(dir / "small");
+  if (test::shell("mount -t tmpfs -o size=64k tmpfs " + quoted(dir / "small") + " 2>/dev/null").status != 0)
+    GTEST_SKIP() << "cannot mount a tmpfs here";
+  const CommandRun r = run("design " + quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") +
+                           " --out " + quoted(dir / "small" / "out"));
+  std::size_t left = 0;
+  std::error_code none;
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "small" / "out", none)) left += !entry.path().empty();
+  test::shell("umount " + quoted(dir / "small"));
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_EQ(std::ranges::count(r.output, '\n'), 1) << r.output;
+  EXPECT_NE(r.output.find("No space left on device"), std::string::npos) << r.output;
+  EXPECT_EQ(left, 0u);
+}
+
 }  // namespace
 }  // namespace origamic
