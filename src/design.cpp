@@ -28,7 +28,11 @@ DesignResult design(const std::filesystem::path& model_file, const DesignOptions
   DesignResult result;
   result.model_file = model_file;
   StageClock clock(result.times);
+  const auto starting = [&](std::string_view stage) {
+    if (options.on_stage) options.on_stage(stage);
+  };
 
+  starting("reading the model");
   LoadedMesh loaded = load_mesh(model_file, options.load);
   result.format = loaded.format;
   result.triangles = loaded.mesh.triangles.size();
@@ -40,11 +44,14 @@ DesignResult design(const std::filesystem::path& model_file, const DesignOptions
   const RayScene scene(apply(result.placement, std::move(loaded.mesh)));
   clock.lap("place+bvh");
 
+  starting("45-degree depth maps");
   result.maps = raster(scene, options.sheet, options.raster);
   clock.lap("raster");
 
+  starting("segmenting");
   result.segmentation = segment(result.maps, options.segment);
   clock.lap("segment");
+  starting("slicing");
   result.slices = slice(result.maps, result.segmentation, options.slice);
   if (std::none_of(result.slices.faces.begin() + 2, result.slices.faces.end(),
                    [](const RasterFace& f) { return !f.hole && f.pixels > 0; }))
@@ -58,6 +65,7 @@ DesignResult design(const std::filesystem::path& model_file, const DesignOptions
   result.sliced_likeness =
       likeness(result.maps, card_view(result.maps.grid, result.slices.face, result.slices.faces), W);
   result.allow_dangling = options.supports.allow_dangling;
+  starting(options.supports.enabled ? "supports and the exact plan" : "the exact plan");
   if (!options.supports.enabled) {
     result.plan = build_plan(result.maps, result.slices, options.sheet, options.plan);
     clock.lap("plan");
@@ -70,6 +78,7 @@ DesignResult design(const std::filesystem::path& model_file, const DesignOptions
   }
   // Seed §4.4: no strip narrower than W. Supports are chosen W wide and slices W deep, but what the
   // plan's folds and cuts leave between them is measured on the plan itself, exactly, both ways.
+  starting("strip widths and likeness");
   const auto drawn = [](const PlanPolyline& line) { return line.kind != LineKind::Outline; };
   if (std::ranges::any_of(result.plan.lines, drawn))
     for (PlanProblem& problem : analyze_plan(result.plan.lines, {.min_strip_mm = options.slice.min_strip_mm}).problems)

@@ -3,7 +3,9 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "origamic/likeness.hpp"
@@ -28,6 +30,8 @@ struct DesignOptions {
   SliceOptions slice;
   PlanOptions plan;
   SupportOptions supports;
+  // Told as each stage begins, in words ("slicing"): a terminal shows the run's progress with it.
+  std::function<void(std::string_view stage)> on_stage;
 };
 
 struct StageTime {

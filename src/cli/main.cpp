@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The origamic command: parses options, calls the library, reports. No algorithm lives here.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <charconv>
@@ -9,12 +11,12 @@
 #include <cstdlib>
 #include <exception>
 #include <map>
-#include <optional>
 #include <numeric>
-#include <vector>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <vector>
 
 #include "origamic/design.hpp"
 #include "origamic/error.hpp"
@@ -251,6 +253,31 @@ void add_design_options(CLI::App& design, DesignArgs& args) {
   design.add_option("--dump-maps", args.maps_dir, "write the maps (D, F, T, N, hit kind, segments S, subsegments SS, faces) and a plan preview as PNGs here");
 }
 
+std::string one_line(std::string_view message);
+
+// The stage a run is in, on one line of a terminal (stderr, and only when it is a terminal: a
+// script or a log gets the summary alone); the line is cleared when the run ends, however it ends.
+class Progress {
+ public:
+  Progress() : shown_(::isatty(STDERR_FILENO) == 1) {}
+  ~Progress() { clear(); }
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+  void show(std::string_view stage) {
+    if (!shown_) return;
+    std::fprintf(stderr, "\r\033[Korigamic: %s...", one_line(stage).c_str());
+    on_screen_ = true;
+  }
+  void clear() {
+    if (on_screen_) std::fputs("\r\033[K", stderr);
+    on_screen_ = false;
+  }
+
+ private:
+  bool shown_;
+  bool on_screen_ = false;
+};
+
 int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const PopupArgs& popup_args) {
   const origamic::PopupFileOptions popup_options = popup_file_options(popup_args, args.out_dir);
   origamic::DesignOptions options;
@@ -273,7 +300,10 @@ int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const
     if (!dir.empty() && std::filesystem::exists(dir) && !std::filesystem::is_directory(dir))
       throw origamic::OutputError(dir + ": cannot create folder (a file is in the way)");
 
+  Progress progress;
+  options.on_stage = [&](std::string_view stage) { progress.show(stage); };
   const origamic::DesignResult result = origamic::design(args.model, options);
+  progress.show("writing the files");
   // Every file is rendered first, then all are written together: a failure leaves none behind.
   std::vector<origamic::OutputFile> files;
   std::string written;
