@@ -455,5 +455,22 @@ TEST(Cli, AFullDiskIsNamedAndLeavesNoFile) {
   EXPECT_EQ(left, 0u);
 }
 
+// On a terminal the stage is shown on one line of stderr and cleared at the end; through a pipe
+// (every other test here) nothing but the summary. `script` gives the run a terminal.
+TEST(Cli, ATerminalShowsTheStageAndTheLineIsClearedAtTheEnd) {
+  if (test::shell("command -v script >/dev/null").status != 0) GTEST_SKIP() << "no script(1) here";
+  const test::TempDir dir;
+  const std::string design = std::string(ORIGAMIC_EXE) + " design " +
+                             quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") + " --out " +
+                             quoted(dir / "out") + " >/dev/null";
+  const test::CommandResult r = test::shell("script -qec \"" + design + "\" /dev/null");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("\r\033[Korigamic: slicing..."), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.substr(r.output.size() - 4), "\r\033[K") << r.output;
+  const CommandRun piped = run("design " + quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") +
+                               " --out " + quoted(dir / "piped"));
+  EXPECT_EQ(piped.output.find("slicing"), std::string::npos) << piped.output;
+}
+
 }  // namespace
 }  // namespace origamic
