@@ -122,7 +122,13 @@ class CandidateFinder {
       }
     }
     face_pieces_.resize(faces_.size());
-    for (std::size_t f = 2; f < faces_.size(); ++f) face_pieces_[f] = pieces(face_runs_[f], 0, 0, 0, 0);
+    face_box_.resize(faces_.size());
+    for (std::size_t f = 2; f < faces_.size(); ++f) {
+      face_pieces_[f] = pieces(face_runs_[f], 0, 0, 0, 0);
+      Box& box = face_box_[f];
+      for (const Run& run : face_runs_[f])
+        box = {std::min(box.c0, run.c0), std::max(box.c1, run.c1), std::min(box.r0, run.row), std::max(box.r1, run.row + 1)};
+    }
   }
 
   // Whether support s, as it is now (widened), cuts face x in two.
@@ -230,15 +236,16 @@ class CandidateFinder {
   bool splits(std::int32_t x, const Candidate& s, SplitMemo* memo = nullptr) const {
     if (x == kBackFace || x == kFloorFace) return false;
     const auto i = static_cast<std::size_t>(x);
-    if (joined_around(x, s.c0, s.c1, s.r0, s.r1)) return false;
-    // Rows of the support outside x's own rows change nothing of x: the walks of one edge cross a
-    // face between the same columns at many lengths, and count its pieces once.
-    const std::vector<Run>& runs = face_runs_[i];
-    const int r0 = std::max(s.r0, runs.front().row), r1 = std::min(s.r1, runs.back().row + 1);
-    const SplitMemo::Key key = SplitMemo::key(x, s.c0, s.c1, r0, r1);
+    // The support's pixels outside x's bounding box take nothing of x: the walks of one edge cross a
+    // face between the same columns at many lengths, and look at it once.
+    const Box& box = face_box_[i];
+    const int c0 = std::max(s.c0, box.c0), c1 = std::min(s.c1, box.c1), r0 = std::max(s.r0, box.r0),
+              r1 = std::min(s.r1, box.r1);
+    if (c0 >= c1 || r0 >= r1) return false;
+    const SplitMemo::Key key = SplitMemo::key(x, c0, c1, r0, r1);
     if (memo)
       if (const auto known = memo->known.find(key); known != memo->known.end()) return known->second;
-    const bool split = pieces(runs, s.c0, s.c1, r0, r1) > face_pieces_[i];
+    const bool split = !joined_around(x, c0, c1, r0, r1) && pieces(face_runs_[i], c0, c1, r0, r1) > face_pieces_[i];
     if (memo) memo->known.emplace(key, split);
     return split;
   }
@@ -409,7 +416,7 @@ class CandidateFinder {
         std::vector<std::int32_t> crossed;
         for (int between = edge + step; between != r; between += step)
           for (const std::int32_t x : column.faces(column.row(*this, between)))
-            if (crossed.empty() || crossed.back() != x) crossed.push_back(x);  // f too: taking its rows may cut it
+            if (std::ranges::find(crossed, x) == crossed.end()) crossed.push_back(x);  // f too: taking its rows may cut it
         found.push_back(candidate(f, row.centre, column, edge, r, up, h, d, std::move(crossed), memo));
         break;
       }
@@ -439,8 +446,7 @@ class CandidateFinder {
     const double length = (s.r1 - s.r0) * px_mm_;
     s.picture_mm = std::max(0.0, picture_.added_error(s.orientation, s.depth_mm, s.c0, s.c1, s.r0, s.r1)) / (W_ * W_);
     s.cost = kCostPerLength * length + s.picture_mm;
-    std::ranges::sort(crossed);
-    crossed.erase(std::unique(crossed.begin(), crossed.end()), crossed.end());
+    std::ranges::sort(crossed);  // each face once already
     for (const std::int32_t x : crossed)
       if (x != g && splits(x, s, &memo)) s.cuts.push_back(x);
     return s;
@@ -462,6 +468,10 @@ class CandidateFinder {
   std::vector<std::vector<Changed>> changed_;  // per column
   std::vector<std::vector<Run>> face_runs_;    // per face, its runs of pixels in row-major order
   std::vector<int> face_pieces_;               // per face, the 4-connected pieces of them
+  struct Box {
+    int c0 = INT_MAX, c1 = INT_MIN, r0 = INT_MAX, r1 = INT_MIN;  // pixels [c0, c1) x [r0, r1)
+  };
+  std::vector<Box> face_box_;  // per face, its bounding box
   std::vector<int> plane_now_, plane_then_;    // per face of the raster plan and of the exact plan
 };
 
