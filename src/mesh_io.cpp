@@ -134,14 +134,16 @@ std::string lower(std::string s) {
 
 bool ends_with_gz(const std::filesystem::path& file) { return lower(file.extension().string()) == ".gz"; }
 
-// Larger than any model a card can show (res_dragon_full, 871,414 triangles, is 17 MB unpacked):
-// beyond it, a file is refused before it is read, and a gzip stream once it unpacks to this much.
-constexpr std::uintmax_t kLargestMeshBytes = std::uintmax_t{1} << 30;
+// Larger than any model a card can show (res_dragon_full, 871,414 triangles, is 17 MB unpacked; this
+// holds some 5 million triangles of ASCII): beyond it, a file is refused before it is read, and a
+// gzip stream once it unpacks to this much (a 5 MB bomb: 0.8 s and 0.55 GB, where 1 GiB took 10 s
+// and 2.1 GB).
+constexpr std::uintmax_t kLargestMeshBytes = std::uintmax_t{256} << 20;
 
 std::string read_plain(const std::filesystem::path& file) {
   std::error_code error;
   if (const std::uintmax_t size = std::filesystem::file_size(file, error); !error && size > kLargestMeshBytes)
-    fail(file, "larger than 1 GiB; no model for a card needs that many triangles");
+    fail(file, "larger than 256 MiB; no model for a card needs that many triangles");
   std::ifstream in(file, std::ios::binary);
   if (!in) fail(file, "cannot open file");
   std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -159,7 +161,7 @@ std::string read_gzipped(const std::filesystem::path& file) {
     bytes.append(buffer, static_cast<std::size_t>(n));
     if (bytes.size() > kLargestMeshBytes) {
       gzclose(gz);
-      fail(file, "unpacks to more than 1 GiB; no model for a card needs that many triangles");
+      fail(file, "unpacks to more than 256 MiB; no model for a card needs that many triangles");
     }
   }
   int code = Z_OK;
