@@ -214,6 +214,21 @@ TEST(MeshIo, MalformedHeadersAreRefusedBeforeTheReaderSeesThem) {
   expect_input_error(dir / "inf.stl", "not finite");
 }
 
+// A gzip stream is read only up to 256 MiB: a small file that unpacks to more is refused there.
+TEST(MeshIo, AGzipStreamUnpackingPast256MiBIsRefused) {
+  const TempDir dir;
+  {
+    std::ofstream out(dir / "bomb.obj", std::ios::binary);
+    out << "v 0 0 0\n";
+    const std::string spaces(1 << 20, ' ');
+    for (int i = 0; i < 257; ++i) out << spaces;
+  }
+  test::gzip_file(dir / "bomb.obj", dir / "bomb.obj.gz");
+  std::filesystem::remove(dir / "bomb.obj");
+  EXPECT_LT(std::filesystem::file_size(dir / "bomb.obj.gz"), 2u << 20);
+  expect_input_error(dir / "bomb.obj.gz", "unpacks to more than 256 MiB");
+}
+
 // A material library is never opened: here one that would never end.
 TEST(MeshIo, MaterialLibrariesAreNotRead) {
   const TempDir dir;
