@@ -41,17 +41,20 @@ class FolderLock {
   int fd_;
 };
 
-// Files a run killed while it wrote them left: NAME.partPID of a process that is gone.
-void remove_stale_parts(const fs::path& dir) {
+// What a run killed while it wrote `file` left: FILE.partPID of a process that is gone. (Only the
+// names this run writes: another program's files are not ours to judge.)
+void remove_stale_parts(const fs::path& file) {
+  const std::string prefix = file.filename().string() + kPart;
   std::error_code error;
-  for (fs::directory_iterator it(dir, error), end; !error && it != end; it.increment(error)) {
+  for (fs::directory_iterator it(file.parent_path().empty() ? fs::path(".") : file.parent_path(), error), end;
+       !error && it != end; it.increment(error)) {
     const std::string name = it->path().filename().string();
-    const auto at = name.rfind(kPart);
-    if (at == std::string::npos || at + std::strlen(kPart) == name.size()) continue;
-    const std::string digits = name.substr(at + std::strlen(kPart));
-    if (!std::ranges::all_of(digits, [](char c) { return c >= '0' && c <= '9'; }) || digits.size() > 9) continue;
+    if (name.size() <= prefix.size() || name.size() > prefix.size() + 9 || name.rfind(prefix, 0) != 0) continue;
+    const std::string digits = name.substr(prefix.size());
+    if (!std::ranges::all_of(digits, [](char c) { return c >= '0' && c <= '9'; })) continue;
     const auto pid = static_cast<pid_t>(std::stol(digits));
-    if (::kill(pid, 0) != 0 && errno == ESRCH) fs::remove(it->path(), error);
+    std::error_code ignored;
+    if (::kill(pid, 0) != 0 && errno == ESRCH) fs::remove(it->path(), ignored);
   }
 }
 
@@ -82,17 +85,19 @@ void write_files(const std::vector<OutputFile>& files) {
     std::error_code ignored;
     for (const fs::path& temp : staged) fs::remove(temp, ignored);
   };
-  std::set<fs::path> dirs;  // in order: two runs lock the folders they share in the same order
+  // Each folder once, however it is spelled (flock waits on a second open of the same folder), and
+  // in order: two runs lock the folders they share in the same order.
+  std::set<fs::path> dirs;
   for (const OutputFile& file : files) {
     const fs::path dir = file.path.parent_path().empty() ? fs::path(".") : file.path.parent_path();
     make_directory(dir);
-    dirs.insert(dir);
+    std::error_code error;
+    const fs::path real = fs::canonical(dir, error);
+    dirs.insert(error ? dir : real);
   }
   std::vector<std::unique_ptr<FolderLock>> locks;
-  for (const fs::path& dir : dirs) {
-    locks.push_back(std::make_unique<FolderLock>(dir));
-    remove_stale_parts(dir);
-  }
+  for (const fs::path& dir : dirs) locks.push_back(std::make_unique<FolderLock>(dir));
+  for (const OutputFile& file : files) remove_stale_parts(file.path);
   for (const OutputFile& file : files) {
     std::error_code error;
     if (fs::is_directory(file.path, error)) {

@@ -369,8 +369,9 @@ std::vector<OutputFile> folded_mesh_files(const FoldedPopup& popup, const std::f
     const std::filesystem::path mtl = std::filesystem::path(path).replace_extension(".mtl");
     std::string& obj = files[0].bytes;
     const std::string written_line = "mtllib " + mat.filename().string() + "\n";
-    if (const auto at = obj.find(written_line); at != std::string::npos)
-      obj.replace(at, written_line.size(), "mtllib " + mtl.filename().string() + "\n");
+    const auto at = obj.find(written_line);
+    if (at == std::string::npos) throw std::logic_error("folded_mesh_files: OpenMesh's OBJ names no " + mat.string());
+    obj.replace(at, written_line.size(), "mtllib " + mtl.filename().string() + "\n");
     files.push_back({mtl, slurp(staged_mat)});
   }
   std::error_code ignored;

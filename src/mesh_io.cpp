@@ -441,6 +441,7 @@ void check_obj_faces(const std::filesystem::path& file, const std::string& bytes
     ++line_number;
     std::string_view line(bytes.data() + at, end - at);
     at = end + 1;
+    if (const auto first = line.find_first_not_of(" \t"); first != std::string_view::npos) line.remove_prefix(first);
     if (line.size() < 2 || line[0] != 'f' || (line[1] != ' ' && line[1] != '\t')) continue;
     if (const auto comment = line.find('#'); comment != std::string_view::npos) line = line.substr(0, comment);
     int corners = 0;

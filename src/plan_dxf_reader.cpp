@@ -43,6 +43,19 @@ bool is_integer_code(int code) {
          (code >= 440 && code <= 459) || (code >= 1060 && code <= 1071);
 }
 
+// The groups dxflib reads as counts of an entity's parts and allocates as many for, in the ENTITIES
+// and BLOCKS sections alike: vertices of an LWPOLYLINE, knots and points of a SPLINE, vertices of a
+// LEADER, vertices and elements of an MLINE, paths and edges of a HATCH. (Other groups of these
+// codes are flags, indices or colours, which may be large or negative.)
+bool counts_parts(std::string_view entity, int code) {
+  if (entity == "LWPOLYLINE") return code == 90;
+  if (entity == "SPLINE") return code >= 72 && code <= 74;
+  if (entity == "LEADER") return code == 76;
+  if (entity == "MLINE") return code == 72 || code == 73;
+  if (entity == "HATCH") return code == 91 || code == 93;
+  return false;
+}
+
 // The file's group pairs must start with `0 SECTION` (after comments) and end with `0 EOF`: dxflib
 // reads anything without complaint, so a text file or a truncated download is caught here. Every
 // pair is checked before dxflib sees it, which trusts them: its code a number, a real a finite number
@@ -68,9 +81,8 @@ void check_structure(const std::string& bytes, const std::string& name) {
     return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
   };
   const auto at_line = [&](std::size_t i) { return name + ": line " + std::to_string(i + 1) + ": "; };
-  bool started = false, in_entities = false;
-  std::string_view last_code, last_value;
-  bool next_is_section_name = false;
+  bool started = false;
+  std::string_view last_code, last_value, entity;
   for (std::size_t i = 0; i + 1 < lines.size(); i += 2) {
     const std::string_view code_text = trim(lines[i]), value = trim(lines[i + 1]);
     if (code_text.empty() && value.empty()) continue;
@@ -96,15 +108,12 @@ void check_structure(const std::string& bytes, const std::string& name) {
       if (const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), number);
           error != std::errc() || end != value.data() + value.size() || number < INT32_MIN || number > INT32_MAX)
         throw InputError(at_line(i + 1) + "group " + std::to_string(code) + " must hold a 32-bit whole number");
-      const bool count = (code >= 71 && code <= 79) || (code >= 90 && code <= 99);
       const auto pairs_left = static_cast<long long>((lines.size() - i) / 2);
-      if (in_entities && count && (number < 0 || number > pairs_left))
+      if (counts_parts(entity, code) && (number < 0 || number > pairs_left))
         throw InputError(at_line(i + 1) + "group " + std::to_string(code) + " counts " + std::to_string(number) +
                          " parts where the file has " + std::to_string(pairs_left) + " groups left");
     }
-    if (next_is_section_name) in_entities = code == 2 && value == "ENTITIES", next_is_section_name = false;
-    if (code == 0 && value == "SECTION") next_is_section_name = true;
-    if (code == 0 && value == "ENDSEC") in_entities = false;
+    if (code == 0) entity = value;
     last_code = code_text, last_value = value;
   }
   if (!started) throw InputError(name + ": not a DXF file (it does not start with a SECTION)");
@@ -265,7 +274,10 @@ class Reader : public DL_CreationAdapter {
   // the validator's arithmetic far from the sheet).
   void check_finite(std::initializer_list<double> values, const char* entity) {
     for (const double v : values)
-      if (!std::isfinite(v) || std::abs(v) > 1e7)
+      if (!std::isfinite(v))
+        throw InputError(name_ + ": a " + std::string(entity) + " on layer " + getAttributes().getLayer() +
+                         " has a coordinate that is not a finite number");
+      else if (std::abs(v) > 1e7)
         throw InputError(name_ + ": a " + std::string(entity) + " on layer " + getAttributes().getLayer() +
                          " has a coordinate beyond 10,000,000 drawing units");
   }

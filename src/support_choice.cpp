@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <climits>
 #include <cmath>
 #include <numeric>
@@ -40,6 +41,7 @@ class CandidateFinder {
   struct SplitMemo {
     using Key = std::pair<std::uint64_t, std::uint64_t>;
     static Key key(std::int32_t x, int c0, int c1, int r0, int r1) {  // each under 2^21
+      assert(c1 < (1 << 21) && r1 < (1 << 21));
       return {static_cast<std::uint64_t>(x) << 21 | static_cast<std::uint64_t>(c0),
               static_cast<std::uint64_t>(c1) << 42 | static_cast<std::uint64_t>(r0) << 21 | static_cast<std::uint64_t>(r1)};
     }

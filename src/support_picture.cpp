@@ -70,10 +70,10 @@ double SupportPicture::added_error(Orientation orientation, double depth_mm, int
   for (int row = r0; row < r1; ++row) {
     const double Y = grid_.Y(row);
     const auto key = static_cast<float>(orientation == Orientation::V ? Y + 2 * depth_mm : 2 * depth_mm - Y);
-    const float* model = &model_key_.values[model_key_.index(0, row - r0_)] - c0_;
-    const float* now = &error_.values[error_.index(0, row - r0_)] - c0_;
-    for (int col = c0; col < c1; ++col)
-      if (!std::isnan(model[col])) sum += std::min(cap_mm_, std::abs(key - model[col])) - now[col];
+    const float* model = &model_key_.values[model_key_.index(0, row - r0_)];
+    const float* now = &error_.values[error_.index(0, row - r0_)];
+    for (int k = c0 - c0_; k < c1 - c0_; ++k)
+      if (!std::isnan(model[k])) sum += std::min(cap_mm_, std::abs(key - model[k])) - now[k];
   }
   return sum / (grid_.px_per_mm * grid_.px_per_mm);
 }

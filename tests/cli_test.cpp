@@ -467,6 +467,12 @@ TEST(Cli, ATerminalShowsTheStageAndTheLineIsClearedAtTheEnd) {
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("\r\033[Korigamic: slicing..."), std::string::npos) << r.output;
   EXPECT_EQ(r.output.substr(r.output.size() - 4), "\r\033[K") << r.output;
+  // With stdout on the terminal too, the line is cleared before the summary is printed.
+  const std::string both = std::string(ORIGAMIC_EXE) + " design " +
+                           quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") + " --out " +
+                           quoted(dir / "both");
+  const test::CommandResult shown = test::shell("script -qec \"" + both + "\" /dev/null");
+  EXPECT_NE(shown.output.find("\r\033[Khouse.obj: "), std::string::npos) << shown.output;
   const CommandRun piped = run("design " + quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") +
                                " --out " + quoted(dir / "piped"));
   EXPECT_EQ(piped.output.find("slicing"), std::string::npos) << piped.output;

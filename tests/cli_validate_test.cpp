@@ -243,6 +243,12 @@ TEST(CliValidate, MalformedPlansAreRefusedByValidateAndFold) {
                {"count.dxf", "group 90 counts 2147483647 parts"},
                {"far.dxf", "beyond 10,000,000 drawing units"},
                {"layer.dxf", "A\\x0b"}};
+  // Groups of these codes that are no counts stay readable: an MLEADER's true colour is negative.
+  std::string colour = box;
+  colour.insert(colour.rfind("0\nENDSEC"), "0\nMLEADER\n8\nNOTES\n91\n-1056964608\n");
+  test::write_text(dir / "colour.dxf", colour);
+  const test::CommandRun read = test::run_origamic("validate " + test::quoted(dir / "colour.dxf"));
+  EXPECT_EQ(read.status, 0) << read.output;
   for (const auto& c : cases) {
     for (const std::string command : {"validate ", "fold "}) {
       SCOPED_TRACE(command + c.file);

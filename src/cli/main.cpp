@@ -324,6 +324,7 @@ int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const
     written += "maps: " + args.maps_dir + "/{D,F,T,N,kind,S,SS,faces,E,plan_preview}.png\n";
   }
   origamic::write_files(files);
+  progress.clear();
   std::printf("%s\n%s", origamic::summary_line(result).c_str(), written.c_str());
   return args.strict && !origamic::plan_stands(result.plan.validity, args.allow_dangling) ? 3 : 0;
 }
@@ -497,7 +498,7 @@ std::string parse_problem(const CLI::ParseError& e, const CLI::App& app, int arg
   if (dynamic_cast<const CLI::ExtrasError*>(&e) && used) {
     std::vector<std::string> names;
     for (const CLI::Option* option : used->get_options())
-      if (!option->get_lnames().empty()) names.push_back("--" + option->get_lnames().front());
+      for (const std::string& long_name : option->get_lnames()) names.push_back("--" + long_name);
     for (int i = 2; i < argc; ++i) {
       const std::string_view word = argv[i];
       if (word.rfind("--", 0) != 0) continue;
