@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <string_view>
@@ -98,6 +99,52 @@ std::string plan_description(const Plan& plan, const ExportOptions& options) {
   if (!options.settings.empty()) text += "; " + options.settings;
   return one_line(text + "; " + fold_style_summary(options.folds));
 }
+
+namespace {
+
+// dxflib writes the R2000 OBJECTS section without owners: every object gets its owner handle (330)
+// after its own (5), the dictionary that lists it, or 0 for the root dictionary, as AutoCAD writes
+// them (ezdxf's audit fixed 13 of them in each plan).
+std::string with_object_owners(const std::string& dxf) {
+  std::vector<std::string> lines;
+  for (std::size_t at = 0; at < dxf.size();) {
+    const std::size_t end = std::min(dxf.find('\n', at), dxf.size());
+    lines.push_back(dxf.substr(at, end - at));
+    at = end + 1;
+  }
+  const auto trim = [](const std::string& text) {
+    const auto first = text.find_first_not_of(' ');
+    return first == std::string::npos ? std::string() : text.substr(first);
+  };
+  std::size_t begin = lines.size();
+  for (std::size_t i = 0; i + 1 < lines.size(); i += 2)
+    if (trim(lines[i]) == "2" && lines[i + 1] == "OBJECTS") begin = i + 2;
+  std::map<std::string, std::string> owner;
+  std::string type, handle;
+  for (std::size_t i = begin; i + 1 < lines.size(); i += 2) {
+    const std::string code = trim(lines[i]), &value = lines[i + 1];
+    if (code == "0") type = value, handle.clear();
+    if (code == "5") handle = value;
+    if ((code == "350" || code == "360") && (type == "DICTIONARY" || type == "ACDBDICTIONARYWDFLT"))
+      owner.emplace(value, handle);
+  }
+  std::string out;
+  out.reserve(dxf.size() + 16 * owner.size());
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    out += lines[i];
+    out += '\n';
+    const bool owned_here = i >= begin && (i - begin) % 2 == 1 && trim(lines[i - 1]) == "5" &&
+                            (i + 1 >= lines.size() || trim(lines[i + 1]) != "330");
+    if (owned_here) {
+      const auto found = owner.find(lines[i]);
+      out += "330\n" + (found == owner.end() ? std::string("0") : found->second) + "\n";
+    }
+  }
+  if (!dxf.empty() && dxf.back() != '\n') out.pop_back();
+  return out;
+}
+
+}  // namespace
 
 std::string plan_dxf(const Plan& plan, const ExportOptions& options) {
   const DrawnPlan drawn = draw_plan(plan, options.folds);
@@ -212,7 +259,7 @@ std::string plan_dxf(const Plan& plan, const ExportOptions& options) {
   if (!in.good() && !in.eof()) throw OutputError("DXF: cannot read back the temporary file " + temp);
   if (bytes.size() < 4 || bytes.compare(bytes.size() - 4, 4, "EOF\n") != 0)
     throw OutputError("DXF: dxflib wrote an incomplete file (disk full?)");
-  return bytes;
+  return options.dxf_version == DxfVersion::R2000 ? with_object_owners(bytes) : bytes;
 }
 
 std::string plan_svg(const Plan& plan, const ExportOptions& options) {

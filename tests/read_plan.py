@@ -4,7 +4,7 @@
 usage: /usr/bin/python3 read_plan.py PLAN.dxf PLAN.svg
 prints JSON: {"insunits", "measurement", "dxf": {layer: [[x1, y1, x2, y2], ...]},
 "svg": {layer: [...]}, "dxf_colours": {layer: aci}, "dxf_types": {layer: {entity type: count}},
-"dxf_comments": [999 comment strings], "svg_lines": {layer: [{"points": [[x, y], ...],
+"dxf_comments": [999 comment strings], "dxf_audit": [what ezdxf's audit fixed or found wrong], "svg_lines": {layer: [{"points": [[x, y], ...],
 "dash": [numbers] or null}]}, "svg_title", "svg_desc", "svg_metadata" (its text)} with SVG converted
 back to plan Y (up)."""
 import json
@@ -68,9 +68,14 @@ def svg_segments(path):
     return layers, {"width": root.get("width"), "height": root.get("height"), "viewBox": view}, lines, text
 
 
+def dxf_audit(path):
+    auditor = ezdxf.readfile(path).audit()
+    return [entry.message for entry in list(auditor.fixes) + list(auditor.errors)]
+
+
 dxf, insunits, measurement, colours, types, dxf_comments = dxf_segments(sys.argv[1])
 svg, size, svg_lines, svg_text = svg_segments(sys.argv[2])
 print(json.dumps({"insunits": insunits, "measurement": measurement, "dxf": dxf, "dxf_colours": colours,
-                  "dxf_types": types, "dxf_comments": dxf_comments, "svg": svg, "svg_size": size,
+                  "dxf_types": types, "dxf_comments": dxf_comments, "dxf_audit": dxf_audit(sys.argv[1]), "svg": svg, "svg_size": size,
                   "svg_lines": svg_lines, "svg_title": svg_text["title"], "svg_desc": svg_text["desc"],
                   "svg_metadata": svg_text["metadata"]}))
