@@ -111,6 +111,11 @@ class Builder {
   }
 
   void add_triangle(std::array<std::uint32_t, 3> t, std::int32_t region, PaperSurface surface) {
+    // A paper edge where the sheet's two sides meet (a mitre of zero at a fold's end) has no area:
+    // it is left out, as a mesh checker would flag it (the capitol's pop-up had two). An area under
+    // 1e-12 mm² counts as none: the files keep 9 digits, which make such a sliver exactly flat.
+    const glm::dvec3 &a = popup_.positions[t[0]], &b = popup_.positions[t[1]], &c = popup_.positions[t[2]];
+    if (glm::length(glm::cross(b - a, c - a)) < 2e-12) return;
     auto handles = [&] {
       return std::array{mesh_.vertex_handle(t[0]), mesh_.vertex_handle(t[1]), mesh_.vertex_handle(t[2])};
     };

@@ -4,10 +4,11 @@
 #include <sys/wait.h>
 
 #include <array>
-#include <sstream>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "helpers.hpp"
@@ -476,6 +477,38 @@ TEST(Cli, ATerminalShowsTheStageAndTheLineIsClearedAtTheEnd) {
   const CommandRun piped = run("design " + quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") +
                                " --out " + quoted(dir / "piped"));
   EXPECT_EQ(piped.output.find("slicing"), std::string::npos) << piped.output;
+}
+
+// No triangle of the pop-up's mesh, as written, has zero area (the capitol's had two: paper edges
+// where the sheet's two sides meet).
+TEST(Cli, ThePopUpMeshHasNoTriangleWithoutArea) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  const test::TempDir dir;
+  const CommandRun designed = run("design " + quoted(test::models_dir() / "seedlike/capitol.stl") +
+                                  " --up z --fold-model --out " + quoted(dir.path));
+  ASSERT_EQ(designed.status, 0) << designed.output;
+  std::ifstream in(dir / "capitol_popup.obj");
+  std::vector<glm::dvec3> vertices;
+  int triangles = 0, flat = 0;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line.substr(std::min<std::size_t>(2, line.size())));
+    if (line.rfind("v ", 0) == 0) {
+      glm::dvec3 v;
+      words >> v.x >> v.y >> v.z;
+      vertices.push_back(v);
+    } else if (line.rfind("f ", 0) == 0) {
+      std::array<glm::dvec3, 3> corner;
+      for (glm::dvec3& c : corner) {
+        std::string token;
+        words >> token;
+        c = vertices.at(std::stoul(token.substr(0, token.find('/'))) - 1);
+      }
+      ++triangles;
+      flat += glm::cross(corner[1] - corner[0], corner[2] - corner[0]) == glm::dvec3(0);
+    }
+  }
+  EXPECT_GT(triangles, 1000);
+  EXPECT_EQ(flat, 0);
 }
 
 }  // namespace
