@@ -38,6 +38,7 @@ DesignResult design(const std::filesystem::path& model_file, const DesignOptions
   result.triangles = loaded.mesh.triangles.size();
   result.vertices = loaded.mesh.positions.size();
   result.file_normals = loaded.file_normals;
+  result.faces_dropped = loaded.faces_dropped;
   clock.lap("load");
 
   result.placement = place(loaded.mesh, options.sheet, options.placement);

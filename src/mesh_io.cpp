@@ -35,7 +35,8 @@ class SoupImporter final : public OpenMesh::IO::BaseImporter {
   std::vector<OpenMesh::Vec3d> points;
   std::vector<OpenMesh::Vec3f> normals;  // per point; zero where the file gave none
   std::vector<std::array<std::uint32_t, 3>> triangles;
-  std::size_t out_of_range = 0;  // faces refused for naming a vertex the file does not have
+  std::size_t out_of_range = 0;     // faces refused for naming a vertex the file does not have
+  std::size_t repeated_corner = 0;  // faces passed over for a corner repeated (no area)
 
   using VertexHandle = OpenMesh::VertexHandle;
   using FaceHandle = OpenMesh::FaceHandle;
@@ -60,14 +61,20 @@ class SoupImporter final : public OpenMesh::IO::BaseImporter {
   // Like OpenMesh's own importer: a face with a vertex index out of range or a repeated vertex is
   // refused; a polygon becomes a fan of triangles around its first vertex.
   FaceHandle add_face(const VHandles& corners) override {
-    if (corners.size() < 3) return FaceHandle();
+    if (corners.size() < 3) {  // OpenMesh's OBJ reader passes "f 1 2 2" on as two corners
+      ++repeated_corner;
+      return FaceHandle();
+    }
     for (std::size_t i = 0; i < corners.size(); ++i) {
       if (!holds(corners[i])) {
         ++out_of_range;
         return FaceHandle();
       }
       for (std::size_t j = i + 1; j < corners.size(); ++j)
-        if (corners[i] == corners[j]) return FaceHandle();
+        if (corners[i] == corners[j]) {
+          ++repeated_corner;
+          return FaceHandle();
+        }
     }
     const auto index = [&](std::size_t i) { return static_cast<std::uint32_t>(corners[i].idx()); };
     for (std::size_t i = 2; i < corners.size(); ++i) triangles.push_back({index(0), index(i - 1), index(i)});
@@ -198,6 +205,7 @@ struct Promised {
   long vertices = -1;      // vertex count of an OFF or PLY header, or "v" lines of an OBJ
   long data_needed = -1;   // lines an ASCII OFF or PLY must have after its header: vertices + faces
   long data_found = -1;    // lines it has
+  long faces = -1;         // face count of an OFF or PLY header, or "f" lines of an OBJ
 };
 
 bool is_blank_or_comment(std::string_view line) {
@@ -220,11 +228,13 @@ long count_data_lines(const std::string& bytes, std::size_t offset) {
 Promised promised_counts(const std::string& format, const std::string& bytes) {
   Promised promised;
   if (format == "obj") {
-    promised.vertices = 0;
+    promised.vertices = 0, promised.faces = 0;
     for (std::size_t at = 0; at < bytes.size();) {
       std::size_t end = bytes.find('\n', at);
       if (end == std::string::npos) end = bytes.size();
       promised.vertices += end - at > 2 && bytes[at] == 'v' && (bytes[at + 1] == ' ' || bytes[at + 1] == '\t');
+      const std::size_t first = std::min(bytes.find_first_not_of(" \t", at), end);
+      promised.faces += end - first > 2 && bytes[first] == 'f' && (bytes[first + 1] == ' ' || bytes[first + 1] == '\t');
       at = end + 1;
     }
   } else if (format == "off") {
@@ -237,6 +247,7 @@ Promised promised_counts(const std::string& format, const std::string& bytes) {
     if (!(in >> promised.vertices >> faces)) return {};
     std::getline(in, line);
     promised.data_needed = promised.vertices + faces;
+    promised.faces = faces;
     promised.data_found = count_data_lines(bytes, static_cast<std::size_t>(in.tellg()));
   } else if (format == "ply") {
     const std::size_t header_end = bytes.find("end_header");
@@ -256,6 +267,7 @@ Promised promised_counts(const std::string& format, const std::string& bytes) {
         if (word == "face") faces = count;
       }
     }
+    promised.faces = faces;
     if (ascii) {
       promised.data_needed = promised.vertices + faces;
       promised.data_found = count_data_lines(bytes, bytes.find('\n', header_end) + 1);
@@ -586,6 +598,11 @@ LoadedMesh load_mesh_unguarded(const std::filesystem::path& file, const LoadOpti
   if (read.triangles.empty()) fail(file, "no faces");
 
   loaded.file_normals = read_options.check(OpenMesh::IO::Options::VertexNormal);
+  // Faces the file has that were not kept: OpenMesh's readers pass over some (a corner repeated)
+  // without a word.
+  loaded.faces_dropped = promised.faces >= 0 ? static_cast<std::size_t>(std::max<long>(
+                                                   0, promised.faces - static_cast<long>(read.n_faces())))
+                                             : read.repeated_corner;
   loaded.mesh = triangle_soup(read, loaded.file_normals);
 
   glm::dvec3 lo(INFINITY), hi(-INFINITY);

@@ -151,6 +151,7 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
         {"format", result.format},
         {"triangles", result.triangles},
         {"vertices", result.vertices},
+        {"faces_dropped", result.faces_dropped},
         {"normals", result.file_normals ? "file" : "computed"}}},
       {"sheet", {{"width_mm", options.sheet.width_mm}, {"height_mm", options.sheet.height_mm}}},
       {"placement", placement_json(result.placement, options.placement)},

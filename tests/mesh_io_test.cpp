@@ -229,6 +229,15 @@ TEST(MeshIo, AGzipStreamUnpackingPast256MiBIsRefused) {
   expect_input_error(dir / "bomb.obj.gz", "unpacks to more than 256 MiB");
 }
 
+// A face with a corner repeated has no area: it is passed over, and counted.
+TEST(MeshIo, FacesWithARepeatedCornerAreCountedAsDropped) {
+  const TempDir dir;
+  test::write_text(dir / "repeat.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2\nf 1 2 3\nf 3 3 1\n");
+  const LoadedMesh loaded = load_mesh(dir / "repeat.obj");
+  EXPECT_EQ(loaded.mesh.triangles.size(), 1u);
+  EXPECT_EQ(loaded.faces_dropped, 2u);
+}
+
 // A material library is never opened: here one that would never end.
 TEST(MeshIo, MaterialLibrariesAreNotRead) {
   const TempDir dir;

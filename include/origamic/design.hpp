@@ -45,6 +45,7 @@ struct DesignResult {
   std::size_t triangles = 0;
   std::size_t vertices = 0;
   bool file_normals = false;
+  std::size_t faces_dropped = 0;  // faces of the file passed over for a corner repeated
   Placement placement;
   RasterMaps maps;
   Segmentation segmentation;

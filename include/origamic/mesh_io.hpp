@@ -34,6 +34,7 @@ struct LoadedMesh {
   std::string format;            // "obj", "stl", "ply" or "off"
   bool gzipped = false;
   bool file_normals = false;     // normals came from the file rather than being computed
+  std::size_t faces_dropped = 0;  // faces with a corner repeated (no area): read past, counted here
 };
 
 /// Reads a mesh; polygons are triangulated, many-part, open and non-manifold meshes are kept whole.
