@@ -12,6 +12,12 @@ Failing inputs are kept in OUT/failures with what went wrong.
 
   tools/fuzz.py --minutes 60                 # an hour, as a developer runs it
   tools/fuzz.py --runs 40 --seed 1 --quick   # the ctest smoke run: small seeds only
+
+With AddressSanitizer and UBSan (the Debug build; a sanitizer's report exits 1, a failure here):
+  cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DORIGAMIC_BUILD_TESTS=OFF \
+        -DORIGAMIC_BUILD_TOOLS=OFF && cmake --build build-asan
+  tools/fuzz.py --exe build-asan/origamic --memory-gib 0 --timeout 300 --minutes 60
+(--memory-gib 0: no address-space limit, which AddressSanitizer's shadow memory exceeds.)
 """
 import argparse
 import gzip
@@ -67,8 +73,9 @@ def mutate(data: bytes, rng: random.Random) -> bytes:
 
 def limit_memory(gib: float):
     def set_limit():
-        size = int(gib * (1 << 30))
-        resource.setrlimit(resource.RLIMIT_AS, (size, size))
+        if gib > 0:
+            size = int(gib * (1 << 30))
+            resource.setrlimit(resource.RLIMIT_AS, (size, size))
     return set_limit
 
 
@@ -128,7 +135,7 @@ def main():
     parser.add_argument("--runs", type=int, default=200)
     parser.add_argument("--seed", type=int, default=int(time.time()))
     parser.add_argument("--timeout", type=float, default=60, help="seconds a run may take")
-    parser.add_argument("--memory-gib", type=float, default=4, help="address space a run may take")
+    parser.add_argument("--memory-gib", type=float, default=4, help="address space a run may take (0: no limit)")
     parser.add_argument("--quick", action="store_true", help="small seeds only (the fixture and its plan)")
     parser.add_argument("--out", type=Path, default=None, help="where failing inputs are kept")
     args = parser.parse_args()
