@@ -213,15 +213,27 @@ bool is_blank_or_comment(std::string_view line) {
   return first == std::string_view::npos || line[first] == '#';
 }
 
+// Calls visit(line, number) for each line of bytes from offset on, without its newline, numbered
+// from 1 there.
+template <class Visit>
+void for_each_line(std::string_view bytes, std::size_t offset, Visit&& visit) {
+  for (std::size_t at = offset, number = 1; at < bytes.size(); ++number) {
+    const std::size_t end = std::min(bytes.find('\n', at), bytes.size());
+    visit(bytes.substr(at, end - at), number);
+    at = end + 1;
+  }
+}
+
+// Whether the line, past leading blanks, starts with the keyword and a blank ("v 1 2 3", "f 1 2 3").
+bool is_statement(std::string_view line, char keyword) {
+  line.remove_prefix(std::min(line.find_first_not_of(" \t"), line.size()));
+  return line.size() > 2 && line[0] == keyword && (line[1] == ' ' || line[1] == '\t');
+}
+
 // Non-blank, non-comment lines from offset on.
 long count_data_lines(const std::string& bytes, std::size_t offset) {
   long count = 0;
-  while (offset < bytes.size()) {
-    std::size_t end = bytes.find('\n', offset);
-    if (end == std::string::npos) end = bytes.size();
-    count += !is_blank_or_comment(std::string_view(bytes).substr(offset, end - offset));
-    offset = end + 1;
-  }
+  for_each_line(bytes, offset, [&](std::string_view line, std::size_t) { count += !is_blank_or_comment(line); });
   return count;
 }
 
@@ -229,14 +241,10 @@ Promised promised_counts(const std::string& format, const std::string& bytes) {
   Promised promised;
   if (format == "obj") {
     promised.vertices = 0, promised.faces = 0;
-    for (std::size_t at = 0; at < bytes.size();) {
-      std::size_t end = bytes.find('\n', at);
-      if (end == std::string::npos) end = bytes.size();
-      promised.vertices += end - at > 2 && bytes[at] == 'v' && (bytes[at + 1] == ' ' || bytes[at + 1] == '\t');
-      const std::size_t first = std::min(bytes.find_first_not_of(" \t", at), end);
-      promised.faces += end - first > 2 && bytes[first] == 'f' && (bytes[first + 1] == ' ' || bytes[first + 1] == '\t');
-      at = end + 1;
-    }
+    for_each_line(bytes, 0, [&](std::string_view line, std::size_t) {
+      promised.vertices += is_statement(line, 'v');
+      promised.faces += is_statement(line, 'f');
+    });
   } else if (format == "off") {
     std::istringstream in(bytes.substr(0, std::min<std::size_t>(bytes.size(), 4096)));
     std::string keyword, line;
@@ -416,25 +424,20 @@ void check_stl_numbers(const std::filesystem::path& file, const std::string& byt
       }
     return;
   }
-  std::size_t line_number = 0;
-  for (std::size_t at = 0; at < bytes.size();) {
-    std::size_t end = bytes.find('\n', at);
-    if (end == std::string::npos) end = bytes.size();
-    ++line_number;
-    std::istringstream words(bytes.substr(at, end - at));
-    at = end + 1;
+  for_each_line(bytes, 0, [&](std::string_view line, std::size_t number) {
+    std::istringstream words{std::string(line)};
     std::string keyword;
     words >> keyword;
-    if (keyword != "vertex") continue;
+    if (keyword != "vertex") return;
     for (int k = 0; k < 3; ++k) {
       std::string word;
       words >> word;
       char* stop = nullptr;
       const double value = std::strtod(word.c_str(), &stop);
       if (word.empty() || *stop != '\0' || !std::isfinite(value))
-        fail(file, "line " + std::to_string(line_number) + ": a vertex needs three finite numbers");
+        fail(file, "line " + std::to_string(number) + ": a vertex needs three finite numbers");
     }
-  }
+  });
 }
 
 // OpenMesh's OBJ reader asserts (aborts) on a face whose corners it cannot read, such as
@@ -446,19 +449,13 @@ void check_obj_faces(const std::filesystem::path& file, const std::string& bytes
     if (text.empty()) return may_be_empty;
     return std::ranges::all_of(text, [](char c) { return c >= '0' && c <= '9'; });
   };
-  std::size_t line_number = 0;
-  for (std::size_t at = 0; at < bytes.size();) {
-    std::size_t end = bytes.find('\n', at);
-    if (end == std::string::npos) end = bytes.size();
-    ++line_number;
-    std::string_view line(bytes.data() + at, end - at);
-    at = end + 1;
-    if (const auto first = line.find_first_not_of(" \t"); first != std::string_view::npos) line.remove_prefix(first);
-    if (line.size() < 2 || line[0] != 'f' || (line[1] != ' ' && line[1] != '\t')) continue;
+  for_each_line(bytes, 0, [&](std::string_view line, std::size_t line_number) {
+    if (!is_statement(line, 'f')) return;
+    line.remove_prefix(line.find('f') + 1);
     if (const auto comment = line.find('#'); comment != std::string_view::npos) line = line.substr(0, comment);
     int corners = 0;
     bool readable = true;
-    for (std::size_t i = 1; i < line.size() && readable;) {
+    for (std::size_t i = 0; i < line.size() && readable;) {
       i = line.find_first_not_of(" \t\r\\", i);
       if (i == std::string_view::npos) break;
       const std::size_t stop = std::min(line.find_first_of(" \t\r\\", i), line.size());
@@ -479,7 +476,7 @@ void check_obj_faces(const std::filesystem::path& file, const std::string& bytes
     if (!readable || corners < 3)
       fail(file, "line " + std::to_string(line_number) +
                      ": a face needs three or more corners, each v, v/t, v//n or v/t/n in whole numbers");
-  }
+  });
 }
 
 // OpenMesh's OBJ reader opens the material libraries a file names, any path (/dev/zero, a FIFO): the
