@@ -87,6 +87,7 @@ struct Analyzer {
     Input in = collect(lines, options);
     result.sheet = {nearest_double(in.min_X), nearest_double(in.min_Y), nearest_double(in.max_X),
                     nearest_double(in.max_Y)};
+    result.main_fold_Y = nearest_double(in.main_fold_Y);
     result.problems = std::move(in.warnings);
     kind = std::move(in.kind);
     CGAL::insert(arr, in.curves.begin(), in.curves.end());

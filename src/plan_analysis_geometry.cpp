@@ -158,11 +158,20 @@ Input collect(const std::vector<PlanPolyline>& lines, const AnalysisOptions& opt
       first = false;
     }
   }
-  if (!(in.min_X < in.max_X) || !(in.min_Y < FT(0)) || !(FT(0) < in.max_Y))
+  if (!(in.min_X < in.max_X) || !(in.min_Y < in.max_Y))
     throw InputError("plan: the sheet (X " + num(nearest_double(in.min_X)) + " to " + num(nearest_double(in.max_X)) +
                      ", Y " + num(nearest_double(in.min_Y)) + " to " + num(nearest_double(in.max_Y)) +
-                     " mm) does not straddle the main fold Y = 0: origamic plans have the back plane above Y = 0 "
-                     "and the floor below");
+                     " mm) has no area");
+  // The main fold: Y = 0 where the sheet straddles it (drawn from the main fold), else halfway up
+  // the sheet (drawn from its lower-left corner, as origamic writes DXF and cutters expect). Every
+  // point moves by it exactly, so the analysis works in plan coordinates either way.
+  if (!(in.min_Y < FT(0) && FT(0) < in.max_Y)) {
+    in.main_fold_Y = (in.min_Y + in.max_Y) / 2;
+    for (auto& line : points)
+      for (Point& p : line) p = Point(p.x(), p.y() - in.main_fold_Y);
+    in.min_Y -= in.main_fold_Y;
+    in.max_Y -= in.main_fold_Y;
+  }
 
   const Kernel::Iso_rectangle_2 sheet(Point(in.min_X, in.min_Y), Point(in.max_X, in.max_Y));
   std::vector<FoldPiece> fold_pieces;

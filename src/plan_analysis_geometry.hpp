@@ -31,15 +31,18 @@ PlanPoint plan_point(const exact::Point& p);
 struct Input {
   std::vector<exact::Traits::Curve_2> curves;
   std::vector<LineKind> kind;  // per data index
-  exact::FT min_X, min_Y, max_X, max_Y;
+  exact::FT min_X, min_Y, max_X, max_Y;  // the sheet, in plan coordinates
+  exact::FT main_fold_Y = 0;             // where the drawing has the main fold: subtracted from every Y
   std::vector<PlanProblem> warnings;
 };
 
 /// The plan's lines in exact plan mm as curves for the arrangement: the sheet's outline (the
 /// bounding box of the OUTLINE lines if any, else of every line) and every line clipped to it, with
 /// an OutsideSheet warning per line that leaves it; horizontal folds drawn in pieces joined.
+/// A sheet that straddles Y = 0 has its main fold there; any other is drawn from its lower-left
+/// corner (or elsewhere), and its main fold is halfway up it: every Y is moved by that, exactly.
 /// \throws InputError if a coordinate is not finite, there is no cut or fold line, or the sheet
-///         does not straddle Y = 0.
+///         has no area.
 Input collect(const std::vector<PlanPolyline>& lines, const AnalysisOptions& options);
 
 // ---------------------------------------------------------------------------------------------

@@ -121,6 +121,7 @@ std::string analysis_json(const PlanAnalysis& analysis, const std::string& file_
         {"min_Y", analysis.sheet.min_Y},
         {"max_X", analysis.sheet.max_X},
         {"max_Y", analysis.sheet.max_Y}}},
+      {"main_fold_Y", analysis.main_fold_Y},
       {"counts",
        {{"faces", analysis.faces},
         {"regions", analysis.regions.size()},

@@ -149,6 +149,10 @@ std::string with_object_owners(const std::string& dxf) {
 std::string plan_dxf(const Plan& plan, const ExportOptions& options) {
   const DrawnPlan drawn = draw_plan(plan, options.folds);
   const std::vector<Layer> layers = used_layers(drawn);
+  // Cutter beds and CAD pages start at the lower-left corner, so the file does too (Inkscape's DXF
+  // import put the floor half below the page). Adding half the sheet rounds a fold's Y by at most
+  // half an ulp of the sum (1.4e-14 mm on A4), far inside validate's 1e-6 mm fold tolerance.
+  const auto to_file_Y = [&](double Y) { return Y + plan.sheet.half_height_mm(); };
   // dxflib writes to a named file only: a private temporary one, read back and removed.
   std::string temp = (std::filesystem::temp_directory_path() / "origamic-dxf-XXXXXX").string();
   const int fd = ::mkstemp(temp.data());
@@ -165,8 +169,9 @@ std::string plan_dxf(const Plan& plan, const ExportOptions& options) {
     if (!dw || dw->openFailed()) throw OutputError("DXF: cannot write the temporary file " + temp);
     // 999 comments: readers skip them (AutoCAD's OPEN ignores them), people and scripts read them.
     dw->dxfString(999, "origamic plan of " + one_line(options.model.empty() ? "a model" : options.model));
-    dw->dxfString(999, "units: mm ($INSUNITS 4, $MEASUREMENT 1), scale 1:1; X along the main fold from the sheet's "
-                       "left edge, Y up from the main fold");
+    dw->dxfString(999, "units: mm ($INSUNITS 4, $MEASUREMENT 1), scale 1:1; origin at the sheet's lower-left corner: X "
+                       "along the main fold from the left edge, Y up from the bottom edge; the main fold at Y = " +
+                           mm_text(to_file_Y(0)));
     dw->dxfString(999, "sheet " + mm_text(plan.sheet.width_mm) + " x " + mm_text(plan.sheet.height_mm) + " mm");
     if (!options.settings.empty()) dw->dxfString(999, "settings: " + one_line(options.settings));
     dw->dxfString(999, fold_style_summary(options.folds));
@@ -180,10 +185,10 @@ std::string plan_dxf(const Plan& plan, const ExportOptions& options) {
     dw->dxfInt(70, 1);  // metric
     dw->dxfString(9, "$EXTMIN");
     dw->dxfReal(10, 0.0);
-    dw->dxfReal(20, plan.sheet.min_Y());
+    dw->dxfReal(20, 0.0);
     dw->dxfString(9, "$EXTMAX");
     dw->dxfReal(10, plan.sheet.width_mm);
-    dw->dxfReal(20, plan.sheet.max_Y());
+    dw->dxfReal(20, plan.sheet.height_mm);
     dw->sectionEnd();
     dw->sectionTables();
     dxf.writeVPort(*dw);
@@ -228,7 +233,7 @@ std::string plan_dxf(const Plan& plan, const ExportOptions& options) {
       const bool closed = is_closed(points);
       const std::size_t count = points.size() - (closed ? 1 : 0);
       dxf.writePolyline(*dw, DL_PolylineData(static_cast<int>(count), 0, 0, closed ? 1 : 0), attributes);
-      for (std::size_t i = 0; i < count; ++i) dxf.writeVertex(*dw, DL_VertexData(points[i].X, points[i].Y, 0.0, 0.0));
+      for (std::size_t i = 0; i < count; ++i) dxf.writeVertex(*dw, DL_VertexData(points[i].X, to_file_Y(points[i].Y), 0.0, 0.0));
       dxf.writePolylineEnd(*dw);
     };
     for (const Layer layer : layers) {
@@ -241,7 +246,7 @@ std::string plan_dxf(const Plan& plan, const ExportOptions& options) {
           continue;
         }
         for (const std::vector<PlanPoint>& p : dash_pieces(line)) {
-          if (p.size() == 2) dxf.writeLine(*dw, DL_LineData(p[0].X, p[0].Y, 0.0, p[1].X, p[1].Y, 0.0), attributes);
+          if (p.size() == 2) dxf.writeLine(*dw, DL_LineData(p[0].X, to_file_Y(p[0].Y), 0.0, p[1].X, to_file_Y(p[1].Y), 0.0), attributes);
           else write_polyline(p, attributes);
         }
       }

@@ -122,7 +122,8 @@ TEST(CliValidate, DesignedPlanValidatesWithTheDesignsCounts) {
 }
 
 // The design reports every place its plan is narrower than W, as validate finds them in the DXF it
-// wrote, read back: the same places, widths and ends, in the same order.
+// wrote, read back: the same places, widths and ends, in the same order (to the rounding of the
+// DXF's Y, which starts at the sheet's bottom edge: plan Y + 148.5 as a double, within 3e-14 mm).
 TEST(CliValidate, TheDesignReportsThePlacesValidateFindsNarrowerThanW) {
   const test::TempDir dir;
   const test::CommandRun designed =
@@ -140,10 +141,13 @@ TEST(CliValidate, TheDesignReportsThePlacesValidateFindsNarrowerThanW) {
   ASSERT_FALSE(found.empty()) << "the house's roof steps leave strips under 3 mm";
   ASSERT_EQ(narrow.size(), found.size());
   for (std::size_t i = 0; i < found.size(); ++i) {
-    EXPECT_EQ(narrow[i]["width_mm"], found[i]["value_mm"]) << i;
+    constexpr double rounding = 1e-12;
+    EXPECT_NEAR(narrow[i]["width_mm"].get<double>(), found[i]["value_mm"].get<double>(), rounding) << i;
     EXPECT_LT(narrow[i]["width_mm"].get<double>(), 3.0) << i;
-    EXPECT_EQ(narrow[i]["from_XY"], found[i]["from"]) << i;
-    EXPECT_EQ(narrow[i]["to_XY"], found[i]["to"]) << i;
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_NEAR(narrow[i]["from_XY"][k].get<double>(), found[i]["from"][k].get<double>(), rounding) << i;
+      EXPECT_NEAR(narrow[i]["to_XY"][k].get<double>(), found[i]["to"][k].get<double>(), rounding) << i;
+    }
   }
   EXPECT_NE(designed.output.find(std::to_string(found.size()) + " places narrower than W"), std::string::npos)
       << designed.output;

@@ -424,12 +424,50 @@ TEST(PlanAnalysis, PlanWithoutMainFoldOrAcrossIt) {
   EXPECT_EQ(problems_of(a, PlanProblemKind::SheetNotSplit).size(), 1u) << listing(a);
   EXPECT_FALSE(a.valid());
 
-  std::vector<PlanPolyline> shifted = box_plan(Box{});
-  for (PlanPolyline& line : shifted)
-    for (PlanPoint& p : line.points) p.Y += 200;
-  EXPECT_THROW(analyze_plan(shifted, {}), InputError);
+  std::vector<PlanPolyline> flat = box_plan(Box{});
+  for (PlanPolyline& line : flat)
+    for (PlanPoint& p : line.points) p.Y = 7;
+  EXPECT_THROW(analyze_plan(flat, {}), InputError) << "a sheet with no area";
   EXPECT_THROW(analyze_plan({box_plan(Box{})[0]}, {}), InputError) << "an outline alone is no plan";
   EXPECT_THROW(analyze_plan(box_plan(Box{}), {.min_strip_mm = -1}), InputError);
+}
+
+// A plan drawn from the sheet's lower-left corner (as origamic writes DXF and cutters expect), or
+// anywhere else off its main fold, has its main fold halfway up the sheet: the same faces, folds
+// and verdict, at the same plan places, and the drawing's main fold reported.
+TEST(PlanAnalysis, APlanDrawnFromItsLowerLeftCornerFoldsAboutItsMiddle) {
+  const PlanAnalysis original = analyze_plan(box_plan(Box{}), {});
+  ASSERT_TRUE(original.valid()) << listing(original);
+  EXPECT_EQ(original.main_fold_Y, 0);
+  for (const double shift : {kHalf, 200.0, -500.25}) {
+    std::vector<PlanPolyline> moved = box_plan(Box{});
+    for (PlanPolyline& line : moved)
+      for (PlanPoint& p : line.points) p.Y += shift;
+    const PlanAnalysis a = analyze_plan(moved, {});
+    EXPECT_EQ(a.main_fold_Y, shift);
+    EXPECT_TRUE(a.valid()) << listing(a);
+    EXPECT_EQ(a.sheet.min_Y, -kHalf);
+    EXPECT_EQ(a.sheet.max_Y, kHalf);
+    ASSERT_EQ(a.regions.size(), original.regions.size());
+    // The same, to the rounding of each Y + shift to a double (under 2^-44 mm here).
+    constexpr double rounding = 1e-12;
+    for (std::size_t i = 0; i < a.regions.size(); ++i) {
+      EXPECT_EQ(a.regions[i].orientation, original.regions[i].orientation) << i;
+      EXPECT_NEAR(a.regions[i].depth_mm, original.regions[i].depth_mm, rounding) << i;
+      EXPECT_EQ(a.regions[i].status, original.regions[i].status) << i;
+      ASSERT_EQ(a.regions[i].rings.size(), original.regions[i].rings.size()) << i;
+      for (std::size_t k = 0; k < a.regions[i].rings.size(); ++k) {
+        const auto &ring = a.regions[i].rings[k], &was = original.regions[i].rings[k];
+        ASSERT_EQ(ring.size(), was.size()) << i;
+        for (std::size_t j = 0; j < ring.size(); ++j) {
+          EXPECT_EQ(ring[j].X, was[j].X);
+          EXPECT_NEAR(ring[j].Y, was[j].Y, rounding);
+        }
+      }
+    }
+    EXPECT_NEAR(a.mountain_mm, original.mountain_mm, rounding);
+    EXPECT_NEAR(a.valley_mm, original.valley_mm, rounding);
+  }
 }
 
 TEST(PlanAnalysis, MirroredPlanHasTheMirroredFaces) {

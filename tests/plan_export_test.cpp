@@ -168,10 +168,12 @@ double segment_distance(const Seg& a, const Seg& b) {
                    point_to_segment(b.x2, b.y2, a)});
 }
 
-std::vector<Seg> segs(const nlohmann::json& list) {
+// Segments as read back, in plan coordinates: a DXF's Y starts at the sheet's bottom edge, `Y_shift`
+// (half the sheet) below the main fold.
+std::vector<Seg> segs(const nlohmann::json& list, double Y_shift = 0) {
   std::vector<Seg> out;
   for (const auto& s : list)
-    out.push_back({s[0].get<double>(), s[1].get<double>(), s[2].get<double>(), s[3].get<double>()});
+    out.push_back({s[0].get<double>(), s[1].get<double>() - Y_shift, s[2].get<double>(), s[3].get<double>() - Y_shift});
   return out;
 }
 
@@ -409,7 +411,7 @@ TEST_F(HousePlan, PerforationsKeepClearOfEveryCutAndCutTheirShareOfEachFold) {
       ASSERT_TRUE(back["dxf"].contains(layer)) << layer;
       EXPECT_EQ(back["dxf_types"][layer], nlohmann::json({{"LINE", back["dxf"][layer].size()}})) << "separate segments";
       EXPECT_EQ(back["svg"][layer].size(), back["dxf"][layer].size()) << layer << " in the SVG";
-      for (const Seg& s : segs(back["dxf"][layer])) {
+      for (const Seg& s : segs(back["dxf"][layer], house().sheet.half_height_mm())) {
         // On a fold of its kind, exactly CUT long unless its whole run is shorter.
         EXPECT_TRUE(std::ranges::any_of(folds,
                                         [&](const Fold& f) {
@@ -474,7 +476,7 @@ TEST_F(HousePlan, DashedFoldsCarryTheirPatternInTheDxfAndTheSvg) {
     const double full = mountain ? 2 + 0.75 + 0.5 + 0.75 + 2 : 2 + 1 + 2;  // a period and a dash, mm
     // DXF: each fold as separate LINE dashes from its start to its end, dash (dot dash)*.
     EXPECT_EQ(back["dxf_types"][layer], nlohmann::json({{"LINE", back["dxf"][layer].size()}}));
-    const std::vector<Seg> dashes = segs(back["dxf"][layer]);
+    const std::vector<Seg> dashes = segs(back["dxf"][layer], house().sheet.half_height_mm());
     std::size_t matched = 0;
     for (const Fold& f : folds) {
       if (f.kind != kind) continue;

@@ -15,6 +15,7 @@
 #include "origamic/design.hpp"
 #include "origamic/output.hpp"
 #include "origamic/plan_analysis.hpp"
+#include "origamic/plan_dxf_reader.hpp"
 #include "origamic/plan_export.hpp"
 
 namespace origamic {
@@ -328,11 +329,12 @@ nlohmann::json read_back(const std::filesystem::path& dxf, const std::filesystem
 
 using SegmentKey = std::array<long long, 4>;  // endpoints in nanometres, smaller end first
 
-std::multiset<SegmentKey> keys_of(const nlohmann::json& segments) {
+// `Y_shift`: how far below the main fold the file's Y starts (a DXF's, at the sheet's bottom edge).
+std::multiset<SegmentKey> keys_of(const nlohmann::json& segments, double Y_shift = 0) {
   std::multiset<SegmentKey> keys;
   for (const auto& s : segments) {
     std::array<long long, 4> k;
-    for (int i = 0; i < 4; ++i) k[i] = std::llround(s[i].get<double>() * 1e6);
+    for (int i = 0; i < 4; ++i) k[i] = std::llround((s[i].get<double>() - (i % 2 ? Y_shift : 0)) * 1e6);
     if (std::pair(k[2], k[3]) < std::pair(k[0], k[1])) k = {k[2], k[3], k[0], k[1]};
     keys.insert(k);
   }
@@ -363,10 +365,28 @@ TEST(Plan, R2000DxfWithCraftColoursReadsBackTheSame) {
   EXPECT_EQ(back["dxf_audit"], nlohmann::json::array()) << back["dxf_audit"].dump();
   for (const LineKind kind : {LineKind::Cut, LineKind::Mountain, LineKind::Valley, LineKind::Outline}) {
     const LayerStyle style = layer_style(kind, ColourPreset::Craft);
-    EXPECT_EQ(keys_of(back["dxf"][style.name]), keys_of(plan, kind)) << style.name;
+    EXPECT_EQ(keys_of(back["dxf"][style.name], plan.sheet.half_height_mm()), keys_of(plan, kind)) << style.name;
     EXPECT_EQ(keys_of(back["svg"][style.name]), keys_of(plan, kind)) << style.name;
     EXPECT_EQ(back["dxf_colours"][style.name], nlohmann::json::array({style.aci})) << style.name;
   }
+  // The origin is the sheet's lower-left corner, as cutter beds and CAD pages have it: the outline
+  // is exactly (0, 0) to (W, H), every line inside it, and the main fold halfway up.
+  const LayerStyle outline = layer_style(LineKind::Outline, ColourPreset::Craft);
+  std::set<std::pair<double, double>> corners;
+  for (const auto& s : back["dxf"][outline.name])
+    for (int i = 0; i < 4; i += 2) corners.insert({s[i].get<double>(), s[i + 1].get<double>()});
+  EXPECT_EQ(corners, (std::set<std::pair<double, double>>{{0, 0}, {210, 0}, {0, 297}, {210, 297}}));
+  for (const auto& [layer, segments] : back["dxf"].items())
+    for (const auto& s : segments)
+      for (int i = 0; i < 4; ++i) {
+        EXPECT_GE(s[i].get<double>(), 0) << layer;
+        EXPECT_LE(s[i].get<double>(), i % 2 ? 297 : 210) << layer;
+      }
+  // origamic's own reader finds the main fold there and the plan's verdict.
+  const PlanAnalysis read = analyze_plan(read_plan_dxf(dir / "plan.dxf", {}), {});
+  EXPECT_EQ(read.main_fold_Y, 148.5);
+  EXPECT_TRUE(read.valid());
+  EXPECT_EQ(read.faces, plan.validity.valid + plan.validity.indirect) << "every face of the box, as designed";
 }
 
 TEST(Plan, EverySeedlikeModelGivesAnExactPlanAndItsFilesCarryTheSameSegments) {
@@ -399,7 +419,8 @@ TEST(Plan, EverySeedlikeModelGivesAnExactPlanAndItsFilesCarryTheSameSegments) {
     for (const LineKind kind : {LineKind::Cut, LineKind::Mountain, LineKind::Valley, LineKind::Outline, LineKind::CutOut}) {
       const std::string layer = layer_style(kind, ColourPreset::Laser).name;
       const std::multiset<SegmentKey> expected = keys_of(plan, kind);
-      EXPECT_EQ(keys_of(back["dxf"].value(layer, nlohmann::json::array())), expected) << layer << " in the DXF";
+      EXPECT_EQ(keys_of(back["dxf"].value(layer, nlohmann::json::array()), plan.sheet.half_height_mm()), expected)
+          << layer << " in the DXF";
       EXPECT_EQ(keys_of(back["svg"].value(layer, nlohmann::json::array())), expected) << layer << " in the SVG";
       if (!expected.empty()) {
         EXPECT_EQ(back["dxf_colours"][layer], nlohmann::json::array({layer_style(kind, ColourPreset::Laser).aci}));

@@ -71,7 +71,9 @@ struct PlanBox {
 };
 
 struct PlanAnalysis {
-  PlanBox sheet;
+  PlanBox sheet;           // in plan coordinates, as everything here: Y up from the main fold
+  double main_fold_Y = 0;  // where the drawing has the main fold: 0, or half the sheet's height when
+                           // it is drawn from its lower-left corner; a drawing's Y is plan Y + this
   // Every face of the plan: rings in plan mm (outer counter-clockwise first, holes clockwise), its
   // place in OA space when folds reach it, and its validity status. Faces touching the sheet's top
   // edge are the back plane V(0), those touching its bottom edge the floor H(0).
@@ -91,11 +93,12 @@ struct PlanAnalysis {
 };
 
 /// Builds the exact arrangement of the lines (doubles taken exactly, scaled to mm exactly), clipped
-/// to the sheet, and analyses it. Y = 0 must be the main fold: the sheet must reach both sides of it.
+/// to the sheet, and analyses it. The main fold is Y = 0 where the sheet reaches both sides of it,
+/// else halfway up the sheet (a drawing from the sheet's lower-left corner): see main_fold_Y.
 /// Deterministic. Not reentrant: the exact numbers are built without thread safety (see
 /// plan_analysis.cpp), so one call at a time per process, and not alongside build_plan.
 /// \throws InputError if there is no cut or fold line, a coordinate is not finite, an option is
-/// absurd, or the sheet does not straddle Y = 0.
+/// absurd, or the sheet has no area.
 PlanAnalysis analyze_plan(const std::vector<PlanPolyline>& lines, const AnalysisOptions& options);
 
 /// "plan VALID: N faces" or "plan INVALID: N faces; k floating, ..." (errors counted by kind).

@@ -383,6 +383,9 @@ int run_validate(const ValidateArgs& args) {
     std::fputs(origamic::analysis_json(analysis, args.plan).c_str(), stdout);
   } else {
     std::printf("%s\n", origamic::analysis_summary_line(analysis).c_str());
+    if (analysis.main_fold_Y != 0 && !analysis.problems.empty())
+      std::printf("note: places are given with Y up from the main fold, which the drawing has at Y = %g\n",
+                  analysis.main_fold_Y);
     for (const origamic::PlanProblem& p : analysis.problems)
       std::printf("%s: %s: %s\n", origamic::is_error(p.kind) ? "error" : "warning",
                   std::string(origamic::to_string(p.kind)).c_str(), p.message.c_str());
