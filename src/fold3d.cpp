@@ -102,6 +102,14 @@ class Builder {
  public:
   explicit Builder(FoldedPopup& popup) : popup_(popup) {}
 
+  // The vertex at plan point `plan` of a fold between V(d) and H(h): made by the first of the two
+  // faces to reach it, the same vertex for the other, so the mesh is joined along its folds.
+  std::uint32_t fold_vertex(const glm::dvec3& position, PlanPoint plan, std::int32_t region, double d, double h) {
+    const auto [it, fresh] = fold_vertices_.try_emplace({plan.X, plan.Y, d, h}, 0);
+    if (fresh) it->second = add_vertex(position, plan, region);
+    return it->second;
+  }
+
   std::uint32_t add_vertex(const glm::dvec3& position, PlanPoint plan, std::int32_t region) {
     popup_.positions.push_back(position);
     popup_.plan_points.push_back(plan);
@@ -135,6 +143,7 @@ class Builder {
 
  private:
   FoldedPopup& popup_;
+  std::map<std::array<double, 4>, std::uint32_t> fold_vertices_;  // (X, Y, d, h) -> vertex
   OmMesh mesh_;
   QuietOpenMesh quiet_;
 };
@@ -152,8 +161,9 @@ void check_finite(const PlanRegion& region, std::size_t index) {
 // a cut, and the faces do not meet there in 3D).
 struct FoldEdge {
   double Y, X_low, X_high;
-  bool region_above;  // the region lies on the +Y side of its fold
-  Orientation other;  // the face across the fold
+  bool region_above;     // the region lies on the +Y side of its fold
+  Orientation other;     // the face across the fold
+  double other_depth_mm;  // its depth (d of a V face, h of an H face)
 };
 
 std::vector<std::vector<FoldEdge>> fold_edges(const std::vector<PlanRegion>& regions) {
@@ -178,7 +188,8 @@ std::vector<std::vector<FoldEdge>> fold_edges(const std::vector<PlanRegion>& reg
                      &h = regions[r].orientation == Orientation::H ? regions[r] : regions[across->second];
     if (!(std::abs(a.Y - (h.depth_mm - v.depth_mm)) <= kFoldLineTolerance_mm)) return;
     // With the region on the left of its ring's edges, an edge running to +X has it above.
-    folds[r].push_back({a.Y, std::min(a.X, b.X), std::max(a.X, b.X), b.X > a.X, regions[across->second].orientation});
+    folds[r].push_back({a.Y, std::min(a.X, b.X), std::max(a.X, b.X), b.X > a.X, regions[across->second].orientation,
+                        regions[across->second].depth_mm});
   });
   return folds;
 }
@@ -221,10 +232,23 @@ void fold_region(const PlanRegion& region, std::int32_t index, const CardFrame& 
   for (Cdt::Vertex_handle v : cdt.finite_vertex_handles()) v->info() = kUnused;
 
   std::vector<std::uint32_t> front;  // the region's printed-side vertices, in order of first use
+  // Zero-thickness paper is one sheet: a vertex on a fold is shared with the face across it. (Slabs
+  // meet on their mitre planes instead, each closed on its own.)
+  auto fold_at = [&](PlanPoint p) -> const FoldEdge* {
+    if (thickness_mm > 0) return nullptr;
+    for (const FoldEdge& fold : folds)
+      if (fold.Y == p.Y && fold.X_low <= p.X && p.X <= fold.X_high) return &fold;
+    return nullptr;
+  };
   auto vertex = [&](Cdt::Vertex_handle v) {
     if (v->info() == kUnused) {
       const PlanPoint p{v->point().x(), v->point().y()};
-      v->info() = builder.add_vertex(fold_point(frame, p, region.orientation, region.depth_mm), p, index);
+      const glm::dvec3 position = fold_point(frame, p, region.orientation, region.depth_mm);
+      const FoldEdge* fold = fold_at(p);
+      const bool is_v = region.orientation == Orientation::V;
+      v->info() = fold ? builder.fold_vertex(position, p, index, is_v ? region.depth_mm : fold->other_depth_mm,
+                                             is_v ? fold->other_depth_mm : region.depth_mm)
+                       : builder.add_vertex(position, p, index);
       front.push_back(v->info());
     }
     return v->info();
@@ -299,8 +323,7 @@ FoldedPopup fold_popup(const std::vector<PlanRegion>& regions, const Sheet& shee
   popup.sheet = sheet;
   popup.options = options;
   const CardFrame frame = card_frame(options.angle_deg);
-  const std::vector<std::vector<FoldEdge>> folds =
-      options.thickness_mm > 0 ? fold_edges(regions) : std::vector<std::vector<FoldEdge>>(regions.size());
+  const std::vector<std::vector<FoldEdge>> folds = fold_edges(regions);
   Builder builder(popup);
   for (std::size_t i = 0; i < regions.size(); ++i) {
     const PlanRegion& region = regions[i];

@@ -66,30 +66,33 @@ TEST(Fold3d, At90VFacesKeepTheirDepthAndHFacesTheirHeight) {
   const std::vector<PlanRegion> regions = box_regions();
   const FoldedPopup popup = fold_popup(regions, Sheet{}, {});
   std::set<std::int32_t> seen;
-  for (std::size_t i = 0; i < popup.positions.size(); ++i) {
-    const PlanRegion& r = regions[static_cast<std::size_t>(popup.position_region[i])];
-    const glm::dvec3 q = popup.positions[i];
-    const PlanPoint p = popup.plan_points[i];
-    EXPECT_EQ(q.x, p.X);
-    if (r.orientation == Orientation::V) {  // parallel to the back plane, at its depth
-      EXPECT_NEAR(q.z, r.depth_mm, 1e-9);
-      EXPECT_NEAR(q.y, p.Y + r.depth_mm, 1e-9);
-    } else {  // parallel to the floor, at its height
-      EXPECT_NEAR(q.y, r.depth_mm, 1e-9);
-      EXPECT_NEAR(q.z, r.depth_mm - p.Y, 1e-9);
+  for (std::size_t t = 0; t < popup.triangles.size(); ++t)
+    for (const std::uint32_t i : popup.triangles[t]) {  // each vertex as each face that uses it places it
+      const PlanRegion& r = regions[static_cast<std::size_t>(popup.triangle_region[t])];
+      const glm::dvec3 q = popup.positions[i];
+      const PlanPoint p = popup.plan_points[i];
+      EXPECT_EQ(q.x, p.X);
+      if (r.orientation == Orientation::V) {  // parallel to the back plane, at its depth
+        EXPECT_NEAR(q.z, r.depth_mm, 1e-9);
+        EXPECT_NEAR(q.y, p.Y + r.depth_mm, 1e-9);
+      } else {  // parallel to the floor, at its height
+        EXPECT_NEAR(q.y, r.depth_mm, 1e-9);
+        EXPECT_NEAR(q.z, r.depth_mm - p.Y, 1e-9);
+      }
+      EXPECT_GE(q.y, -1e-9) << "nothing below the floor";
+      EXPECT_GE(q.z, -1e-9) << "nothing behind the back plane";
+      seen.insert(popup.triangle_region[t]);
     }
-    EXPECT_GE(q.y, -1e-9) << "nothing below the floor";
-    EXPECT_GE(q.z, -1e-9) << "nothing behind the back plane";
-    seen.insert(popup.position_region[i]);
-  }
   EXPECT_EQ(seen.size(), regions.size());
   // The box itself: front and top span exactly the box.
-  for (std::size_t i = 0; i < popup.positions.size(); ++i) {
-    if (popup.position_region[i] < 2) continue;
-    const glm::dvec3 q = popup.positions[i];
-    EXPECT_TRUE(q.x == kX0 || q.x == kX1);
-    EXPECT_TRUE(std::abs(q.y) < 1e-9 || std::abs(q.y - kH) < 1e-9);
-    EXPECT_TRUE(std::abs(q.z) < 1e-9 || std::abs(q.z - kD) < 1e-9);
+  for (std::size_t t = 0; t < popup.triangles.size(); ++t) {
+    if (popup.triangle_region[t] < 2) continue;
+    for (const std::uint32_t i : popup.triangles[t]) {
+      const glm::dvec3 q = popup.positions[i];
+      EXPECT_TRUE(q.x == kX0 || q.x == kX1);
+      EXPECT_TRUE(std::abs(q.y) < 1e-9 || std::abs(q.y - kH) < 1e-9);
+      EXPECT_TRUE(std::abs(q.z) < 1e-9 || std::abs(q.z - kD) < 1e-9);
+    }
   }
 }
 
@@ -119,26 +122,65 @@ TEST(Fold3d, EveryEdgeKeepsItsPlanLengthAtEveryAngle) {
     }
 }
 
-TEST(Fold3d, FacesStayJoinedAlongTheirFoldsAndOnlyThere) {
+// Zero-thickness card is one sheet: the two faces of each fold share its vertices (the mesh is
+// joined along it, as the paper is), and faces share no vertex anywhere else.
+TEST(Fold3d, FacesShareTheVerticesOfTheirFoldsAndNoOthers) {
   const std::vector<PlanRegion> regions = box_regions();
   for (const double angle : kAngles) {
     const FoldedPopup popup = fold_popup(regions, Sheet{}, {.angle_deg = angle});
-    int joined = 0;
-    for (std::size_t i = 0; i < popup.positions.size(); ++i)
-      for (std::size_t j = i + 1; j < popup.positions.size(); ++j) {
-        const PlanRegion& a = regions[static_cast<std::size_t>(popup.position_region[i])];
-        const PlanRegion& b = regions[static_cast<std::size_t>(popup.position_region[j])];
-        const PlanPoint p = popup.plan_points[i], q = popup.plan_points[j];
-        if (&a == &b || p.X != q.X || p.Y != q.Y || a.orientation == b.orientation) continue;
-        const PlanRegion& v = a.orientation == Orientation::V ? a : b;
-        const PlanRegion& h = a.orientation == Orientation::H ? a : b;
-        ASSERT_EQ(p.Y, h.depth_mm - v.depth_mm) << "the box plan shares points only on folds";
-        expect_near3(popup.positions[i], popup.positions[j], 1e-9, "fold point at angle " + std::to_string(angle));
-        ++joined;
-      }
+    std::vector<std::set<std::int32_t>> users(popup.positions.size());
+    for (std::size_t t = 0; t < popup.triangles.size(); ++t)
+      for (const std::uint32_t i : popup.triangles[t]) users[i].insert(popup.triangle_region[t]);
+    int shared = 0;
+    for (std::size_t i = 0; i < users.size(); ++i) {
+      if (users[i].size() < 2) continue;
+      ASSERT_EQ(users[i].size(), 2u) << "a fold's end joins two faces";
+      const PlanRegion& a = regions[static_cast<std::size_t>(*users[i].begin())];
+      const PlanRegion& b = regions[static_cast<std::size_t>(*users[i].rbegin())];
+      ASSERT_NE(a.orientation, b.orientation);
+      const PlanRegion& v = a.orientation == Orientation::V ? a : b;
+      const PlanRegion& h = a.orientation == Orientation::H ? a : b;
+      const PlanPoint p = popup.plan_points[i];
+      ASSERT_EQ(p.Y, h.depth_mm - v.depth_mm) << "the box plan's faces meet on folds only there";
+      const CardFrame frame = card_frame(angle);
+      expect_near3(popup.positions[i], fold_point(frame, p, Orientation::V, v.depth_mm), 1e-9, "as the V face has it");
+      expect_near3(popup.positions[i], fold_point(frame, p, Orientation::H, h.depth_mm), 1e-9, "as the H face has it");
+      ++shared;
+    }
     // Main fold (0, a, b, W), floor-front, front-top and top-back fold ends (2 each).
-    EXPECT_EQ(joined, 10) << "angle " << angle;
+    EXPECT_EQ(shared, 10) << "angle " << angle;
+    // No fold point made twice: vertices at one plan point belong to faces that meet there on no fold.
+    for (std::size_t i = 0; i < users.size(); ++i)
+      for (std::size_t j = i + 1; j < users.size(); ++j) {
+        const PlanPoint p = popup.plan_points[i], q = popup.plan_points[j];
+        if (p.X != q.X || p.Y != q.Y) continue;
+        for (const std::int32_t ri : users[i])
+          for (const std::int32_t rj : users[j]) {
+            const PlanRegion &a = regions[static_cast<std::size_t>(ri)], &b = regions[static_cast<std::size_t>(rj)];
+            if (a.orientation == b.orientation) continue;
+            const PlanRegion& v = a.orientation == Orientation::V ? a : b;
+            EXPECT_NE(p.Y, (a.orientation == Orientation::H ? a : b).depth_mm - v.depth_mm)
+                << "a fold point at (" << p.X << ", " << p.Y << ") made twice";
+          }
+      }
+    // So the card is one piece: every triangle reaches every other through shared vertices.
+    std::vector<std::uint32_t> parent(popup.positions.size());
+    for (std::uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
+    auto root = [&](std::uint32_t i) {
+      while (parent[i] != i) i = parent[i] = parent[parent[i]];
+      return i;
+    };
+    for (const auto& t : popup.triangles) parent[root(t[1])] = root(t[0]), parent[root(t[2])] = root(t[0]);
+    std::set<std::uint32_t> pieces;
+    for (const auto& t : popup.triangles) pieces.insert(root(t[0]));
+    EXPECT_EQ(pieces.size(), 1u) << "angle " << angle;
   }
+  // Slabs of thick card meet on their mitre planes, each closed on its own.
+  const FoldedPopup thick = fold_popup(regions, Sheet{}, {.thickness_mm = 0.5});
+  std::vector<std::set<std::int32_t>> users(thick.positions.size());
+  for (std::size_t t = 0; t < thick.triangles.size(); ++t)
+    for (const std::uint32_t i : thick.triangles[t]) users[i].insert(thick.triangle_region[t]);
+  EXPECT_TRUE(std::ranges::all_of(users, [](const auto& u) { return u.size() <= 1; }));
   // Across a cut the faces part: plan point (x0, 0) lies on the front's side (a cut) and on the
   // floor's cut-out; at 90 degrees the front holds it at (x0, d, d), the floor at (x0, 0, 0).
   const CardFrame frame = card_frame(90);

@@ -70,13 +70,15 @@ struct FoldedRegion {
   FaceStatus status = FaceStatus::Valid;
 };
 
-/// The folded card: one triangulated patch per region (regions share no vertices), in world mm.
+/// The folded card: one triangulated patch per region, in world mm. Without thickness the patches
+/// are one sheet: the two faces of a fold share its vertices; elsewhere (cuts) they share none.
 struct FoldedPopup {
   Sheet sheet;
   FoldOptions options;
   std::vector<glm::dvec3> positions;
   std::vector<PlanPoint> plan_points;                    // per position: the plan point it comes from
-  std::vector<std::int32_t> position_region;             // per position: the region it belongs to
+  std::vector<std::int32_t> position_region;             // per position: the region that made it (a
+                                                         // vertex on a fold serves the face across it too)
   std::vector<std::array<std::uint32_t, 3>> triangles;   // counter-clockwise seen from outside the paper
   std::vector<std::int32_t> triangle_region;             // per triangle: index into `regions`
   std::vector<PaperSurface> triangle_surface;            // per triangle
@@ -89,7 +91,8 @@ struct FoldedPopup {
 /// Folds the regions into the card opened to options.angle_deg. Regions not `placed` are left out
 /// (they have no triangles; the count says how many). Each region's rings are
 /// triangulated in the plan (a constrained Delaunay triangulation, inside by nesting depth: even-odd
-/// over the rings, so holes may come in either direction) and every vertex is mapped by fold_point.
+/// over the rings, so holes may come in either direction) and every vertex is mapped by fold_point;
+/// without thickness, a vertex on a fold is made once, by the first of its two faces.
 /// Printed-side triangles keep the plan's counter-clockwise order, so their normals point to the
 /// printed side (n_back for V, n_floor for H). With thickness_mm > 0 each region is also copied
 /// thickness_mm behind its printed side (reversed) and closed by edge quads along its boundary. At a
