@@ -6,6 +6,8 @@
 // Exact numbers here are never shared between threads (see exact_kernel.hpp).
 #define CGAL_HAS_NO_THREADS 1
 
+#include <CGAL/Arr_observer.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -260,6 +262,75 @@ void build_arrangement(const std::vector<Chain>& chains, const std::vector<Fallb
   }
 }
 
+// Paper stays on the card: an H(h) face holds plan points up to Y = h (depth h - Y >= 0), a V(d)
+// face down to Y = -d (height Y + d >= 0). A face may reach past that line where a fold snapped
+// onto it and a slanted cut still leaves the pixel row the fold moved from (capitol: 0.08 mm
+// behind the back plane). Each such face is cut along its line across its width, and the part
+// beyond goes to the back plane (behind an H face) or the floor (below a V face): the face that
+// folds with it on exactly that line. Other faces the cut line crosses keep their label on both
+// sides (no line of the plan). Returns how many faces were trimmed.
+int keep_faces_on_the_card(const std::vector<RasterFace>& faces, Built& built) {
+  Arrangement& arr = built.arrangement;
+  auto limit_of = [](const RasterFace& face) {
+    return face.orientation == Orientation::H ? FT(face.depth_mm) : -FT(face.depth_mm);
+  };
+  auto beyond = [](const RasterFace& face, const Point& p, const FT& limit) {
+    return face.orientation == Orientation::H ? p.y() > limit : p.y() < limit;
+  };
+  auto each_vertex = [](Arrangement::Face_const_handle f, auto&& visit) {
+    for (auto ccb = f->outer_ccbs_begin(); ccb != f->outer_ccbs_end(); ++ccb) {
+      auto he = *ccb, first = he;
+      do visit(he->source()->point());
+      while (++he != first);
+    }
+    for (auto ccb = f->inner_ccbs_begin(); ccb != f->inner_ccbs_end(); ++ccb) {
+      auto he = *ccb, first = he;
+      do visit(he->source()->point());
+      while (++he != first);
+    }
+  };
+  std::vector<Kernel::Segment_2> cuts;
+  for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
+    if (f->is_unbounded() || f->data() < 0) continue;
+    const RasterFace& face = faces[static_cast<std::size_t>(f->data())];
+    if (face.hole) continue;
+    const FT limit = limit_of(face);
+    bool past = false, first = true;
+    FT x_lo, x_hi;
+    each_vertex(f, [&](const Point& p) {
+      past = past || beyond(face, p, limit);
+      if (first || p.x() < x_lo) x_lo = p.x();
+      if (first || p.x() > x_hi) x_hi = p.x();
+      first = false;
+    });
+    if (past) cuts.emplace_back(Point(x_lo, limit), Point(x_hi, limit));
+  }
+  if (cuts.empty()) return 0;
+
+  struct KeepLabels : CGAL::Arr_observer<Arrangement> {
+    using CGAL::Arr_observer<Arrangement>::Arr_observer;
+    void after_split_face(Face_handle f, Face_handle new_f, bool) override { new_f->set_data(f->data()); }
+  } keep_labels(arr);
+  for (const Kernel::Segment_2& cut : cuts) {
+    const auto data = static_cast<std::int32_t>(built.sides.size());
+    built.sides.push_back(Sides{});  // names no face: its sides are read off the faces
+    CGAL::insert(arr, Traits::Curve_2(cut, data));
+  }
+  int trimmed = 0;
+  for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
+    if (f->is_unbounded() || f->data() < 0) continue;
+    const RasterFace& face = faces[static_cast<std::size_t>(f->data())];
+    if (face.hole) continue;
+    const FT limit = limit_of(face);
+    bool past = false;
+    each_vertex(f, [&](const Point& p) { past = past || beyond(face, p, limit); });
+    if (!past) continue;
+    f->set_data(face.orientation == Orientation::H ? 0 : 1);  // the back plane V(0), the floor H(0)
+    ++trimmed;
+  }
+  return trimmed;
+}
+
 }  // namespace
 
 PlanBuild::PlanBuild(const RasterMaps& maps, const SliceResult& sliced, const Sheet& sheet, const PlanOptions& options)
@@ -309,6 +380,7 @@ PlanBuild::PlanBuild(const RasterMaps& maps, const SliceResult& sliced, const Sh
   plan.raw_chains = static_cast<int>(std::ranges::count(fallback, Fallback::Unsimplified));
   plan.unsnapped_chains = static_cast<int>(std::ranges::count(fallback, Fallback::PixelContour));
   plan.simplified = plan.raw_chains + plan.unsnapped_chains == 0;
+  plan.trimmed_to_card = keep_faces_on_the_card(slices.faces, built);
   const Arrangement& arr = built.arrangement;
   plan.arrangement_valid = arr.is_valid();
   plan.label_conflicts = built.conflicts;

@@ -93,6 +93,12 @@ PieceVerdict face_validity(const Validity& by_node, const Pieces& pieces, const 
       verdict.cut_out[p] = 1;
       continue;
     }
+    // So does a crumb of the back plane or the floor hanging by one fold line: a flap too small to
+    // fold (what a face trimmed to the card leaves where the card's own piece is not beside it).
+    if (f < 2 && piece_area[p] < crumb && by_node.status[k] == FaceStatus::Dangling) {
+      verdict.cut_out[p] = 1;
+      continue;
+    }
     kept[f] = 1;
     if (f < 2) {  // a loose piece of the back plane or the floor
       if (by_node.status[k] == FaceStatus::Valid || by_node.status[k] == FaceStatus::Indirect) continue;

@@ -60,7 +60,8 @@ bool negligible(Arrangement::Halfedge_const_handle he);
 /// The verdict per raster face from the verdict per piece: a face stands when every piece of it does.
 /// A floating crumb (a piece under W x W / 8, cut off where a snapped fold met a slanted cut) falls
 /// out when the card is cut and is no part of the likeness: it is cut out (a hole) and does not count.
-/// So does a floating piece with holes all round it: it falls out with them.
+/// So does a floating piece with holes all round it: it falls out with them, and a crumb of the back
+/// plane or the floor that hangs by one fold line (a flap too small to fold).
 /// Pieces of the back plane and the floor that came loose count as faces of their own.
 struct PieceVerdict {
   Validity validity;                  // per raster face

@@ -414,7 +414,7 @@ struct Analyzer {
 
 }  // namespace
 
-bool is_error(PlanProblemKind kind) { return kind < PlanProblemKind::OutsideCard; }
+bool is_error(PlanProblemKind kind) { return kind < PlanProblemKind::CutInsideFace; }
 
 PlanAnalysis analyze_plan(const std::vector<PlanPolyline>& lines, const AnalysisOptions& options) {
   if (!(std::isfinite(options.min_strip_mm) && options.min_strip_mm >= 0))

@@ -30,6 +30,8 @@ std::string counted(PlanProblemKind kind, int count) {
       return noun("wrong fold kind", "wrong fold kinds");
     case PlanProblemKind::NarrowStrip:
       return noun("narrow strip", "narrow strips");
+    case PlanProblemKind::OutsideCard:
+      return noun("face outside the card", "faces outside the card");
     default:
       return std::to_string(count) + " " + std::string(to_string(kind));  // floating, dangling, invalid
   }

@@ -126,6 +126,7 @@ nlohmann::json plan_json(const Plan& plan, bool allow_dangling) {
             {"arrangement_faces", plan.arrangement_faces},
             {"label_conflicts", plan.label_conflicts},
             {"folds_snapped", plan.folds_snapped},
+            {"trimmed_to_card", plan.trimmed_to_card},
             {"raw_chains", plan.raw_chains},
             {"unsnapped_chains", plan.unsnapped_chains},
             {"unresolved_crossings", plan.unresolved_crossings},

@@ -4,7 +4,7 @@
 # checks each plan: it stands (--strict exit 0); only a model named bad_* (a known defective mesh)
 # may instead be reported invalid with the reason (exit 3 and a stop reason in the report). The exact
 # construction's own checks hold either way, and `origamic validate` reading the DXF back agrees with
-# the design's verdict.
+# the design's verdict and finds no face outside the card.
 # Prints one line per model: faces, supports, removed faces, verdict, time. Exit 77 without models.
 # usage: tools/check_models.sh ORIGAMIC_EXE MODELS_DIR
 set -uo pipefail
@@ -29,10 +29,10 @@ for file in "$models"/seedlike/*.stl "$models"/*.obj "$models"/*.stl "$models"/*
   report=$(ls "$out/$name"/*.json 2>/dev/null | head -1)
   dxf=$(ls "$out/$name"/*.dxf 2>/dev/null | head -1)
   validated=2
-  [ -n "$dxf" ] && { "$exe" validate "$dxf" >"$out/$name.validate" 2>&1; validated=$?; }
-  verdict=$(/usr/bin/python3 - "$report" "$status" "$validated" "$name" <<'PY'
+  [ -n "$dxf" ] && { "$exe" validate --json "$dxf" >"$out/$name.validate" 2>&1; validated=$?; }
+  verdict=$(/usr/bin/python3 - "$report" "$status" "$validated" "$name" "$out/$name.validate" <<'PY'
 import json, sys
-path, status, validated, name = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4]
+path, status, validated, name, read_back = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4], sys.argv[5]
 if not path:
     print("FAIL no report"); sys.exit()
 r = json.load(open(path))
@@ -44,6 +44,11 @@ if status == 0 and c["floating"] + c["dangling"] + c["invalid"] != 0: problems.a
 if status == 3 and not s["stop_reason"]: problems.append("invalid without a reason")
 if status == 3 and not name.startswith("bad_"): problems.append("invalid: only a bad_* model may be")
 if s["cut_out_share"] > 0.25: problems.append("over a quarter of the model cut out")
+try:
+    outside = sum(p["kind"] == "outside_card" for p in json.load(open(read_back))["problems"])
+except (OSError, ValueError, KeyError):
+    outside = 0  # validate refused the file: its exit status says so below
+if outside: problems.append(f"{outside} faces outside the card, read back")
 if status not in (0, 3): problems.append(f"exit {status}")
 elif (status == 0) != (validated == 0): problems.append(f"design exit {status} but validate exit {validated}")
 head = f'{c["faces"]} faces, {s["added"]} supports, {c["removed"]} removed ({100 * s["cut_out_share"]:.1f}% of the model)'

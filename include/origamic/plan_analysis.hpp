@@ -45,9 +45,10 @@ enum class PlanProblemKind : std::uint8_t {
   NarrowStrip,        // narrower than W: the shortest chord of a face along X or along Y through one of
                       // its vertices, longer than zero (a corner's tip is no strip) and shorter than W;
                       // one per face and direction (from/to: the chord, value_mm: its length)
+  OutsideCard,        // part of a face reaches below the floor or behind the back plane, by more than
+                      // the tolerance, when the card is open at 90 degrees (value_mm: how far): paper
+                      // through paper, poking out through the hole it leaves
   // Warnings: reported, the verdict does not change.
-  OutsideCard,    // part of a face reaches below the floor or behind the back plane when the card is
-                  // open at 90 degrees (value_mm: how far): it pokes out through the hole it leaves
   CutInsideFace,  // a cut with one face on both sides: a slit or a loose end
   OutsideSheet,   // a line leaving the sheet (the outline), clipped to it
 };
