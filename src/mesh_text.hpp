@@ -34,10 +34,12 @@ void for_each_line(std::string_view bytes, std::size_t offset, Visit&& visit) {
   }
 }
 
-// Whether the line, past leading blanks, starts with the keyword and a blank ("v 1 2 3", "f 1 2 3").
+// Whether the line, past leading blanks, is a statement of the keyword: the keyword alone or before a
+// blank ("v 1 2 3", "f 1 2 3"; a bare "v" or "v " is one too, cut short: a truncated file).
 inline bool is_statement(std::string_view line, char keyword) {
   line.remove_prefix(std::min(line.find_first_not_of(" \t"), line.size()));
-  return line.size() > 2 && line[0] == keyword && (line[1] == ' ' || line[1] == '\t');
+  return !line.empty() && line[0] == keyword &&
+         (line.size() == 1 || line[1] == ' ' || line[1] == '\t' || line[1] == '\r');
 }
 
 }  // namespace origamic::mesh_input

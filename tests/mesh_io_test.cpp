@@ -153,6 +153,13 @@ TEST(MeshIo, BadInputsAreReportedWithFileAndProblem) {
   test::write_text(dir / "nan.obj", "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n");
   test::write_text(dir / "huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1e999 0\nf 1 2 3\n");
   test::write_text(dir / "point.obj", "v 1 1 1\nv 1 1 1\nv 1 1 1\nf 1 2 3\n");
+  // OBJ cut short in its last statement: a vertex with no coordinates, or with one (it was read as
+  // the whole file before), and a face with none.
+  const std::string faces = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n";
+  test::write_text(dir / "cut_bare_v.obj", faces + "v ");
+  test::write_text(dir / "cut_v.obj", faces + "v");
+  test::write_text(dir / "cut_one_coordinate.obj", faces + "v 0.5");
+  test::write_text(dir / "cut_f.obj", faces + "f");
   test::write_text(dir / "model.xyz", "1 2 3\n");
   std::filesystem::create_directory(dir / "folder.obj");
 
@@ -165,6 +172,9 @@ TEST(MeshIo, BadInputsAreReportedWithFileAndProblem) {
   expect_input_error(dir / "cut.off", "truncated");
   expect_input_error(dir / "cut.ply", "truncated");
   expect_input_error(dir / "cut.off.gz", "truncated or corrupt gzip");
+  for (const char* cut : {"cut_bare_v.obj", "cut_v.obj", "cut_one_coordinate.obj"})
+    expect_input_error(dir / cut, "truncated or malformed");
+  expect_input_error(dir / "cut_f.obj", "a face needs three or more corners");
   expect_input_error(dir / "garbage.ply", "not a PLY file");
   expect_input_error(dir / "points.obj", "no faces");
   expect_input_error(dir / "nan.obj", "not a finite number");
