@@ -118,16 +118,20 @@ TEST(Plan, AFacesPieceApartFromItIsFloatingAndACrumbIsCutOut) {
   ASSERT_TRUE(whole.validity.ok());
   const int col = maps.grid.cols / 2, row = maps.grid.rows_above_fold / 4;  // on the back plane, above the box
   ASSERT_EQ(sliced.face(col, row), kBackFace);
+  // An island of the box's front V(40): a V face may lie anywhere above the floor (one of its top
+  // H(60) up there would lie behind the back plane, and be trimmed to it).
+  const std::int32_t front = sliced.faces[2].orientation == Orientation::V ? 2 : 3;
+  ASSERT_EQ(sliced.faces[static_cast<std::size_t>(front)].orientation, Orientation::V);
   auto with_island = [&](int size) {
     SliceResult s = sliced;
     for (int r = row; r < row + size; ++r)
-      for (int c = col; c < col + size; ++c) s.face(c, r) = 2;
+      for (int c = col; c < col + size; ++c) s.face(c, r) = front;
     return build_plan(maps, s, sheet, PlanOptions{});
   };
   const Plan apart = with_island(20);  // 5 mm square
   expect_exact_construction(apart);
   EXPECT_EQ(apart.pieces, whole.pieces + 1);
-  EXPECT_EQ(apart.faces[2].status, FaceStatus::Floating);
+  EXPECT_EQ(apart.faces[static_cast<std::size_t>(front)].status, FaceStatus::Floating);
   EXPECT_EQ(apart.validity.floating, 1);
   EXPECT_FALSE(analyze_plan(apart.lines, AnalysisOptions{}).valid()) << "its lines say so too";
   const Plan crumb = with_island(3);  // 0.75 mm square: under W x W / 8

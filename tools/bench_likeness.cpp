@@ -10,6 +10,7 @@
 #include <cairo.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -79,6 +80,9 @@ struct Row {
   int faces = 0, folds = 0, supports = 0, removed = 0;
   bool valid = false, read_back_valid = false;
   double design_s = 0;
+  // Where the card is more than 2 W off its model: shares of the model's pixels showing a face of
+  // the model, a support, the back plane or floor, or a hole (the finished card, as designed).
+  std::array<double, 4> far_off{};
   std::string error;  // the design failed
 };
 
@@ -184,6 +188,18 @@ Row measure(const Model& model, const DesignOptions& base, const fs::path& out, 
   row.supports = result.supports.supports;
   row.removed = result.plan.validity.removed;
   row.valid = plan_stands(result.plan.validity, false) && result.plan.loose_card_pieces == 0;
+  const Grid<float> error = likeness_error_map(result.maps, result.card);
+  const double far = 2 * options.slice.min_strip_mm;
+  for (std::size_t i = 0; i < error.values.size(); ++i) {
+    if (!(error.values[i] > far)) continue;
+    const CardSurface at = result.card.surface.values[i];
+    const std::size_t kind = at == CardSurface::Model     ? 0
+                             : at == CardSurface::Support ? 1
+                             : at == CardSurface::Hole    ? 3
+                                                          : 2;
+    row.far_off[kind] += 1;
+  }
+  for (double& share : row.far_off) share /= std::max<std::int64_t>(1, result.likeness.model_pixels);
 
   // The plan as the user gets it: its DXF, read back by the validator's reader.
   const std::string stem = fs::path(row.name).filename().stem().string();
@@ -275,6 +291,11 @@ int main(int argc, char** argv) {
     cells.push_back(cell);
   }
   if (rows.empty()) return 1;
+  std::printf("\nwhere the card is more than 2 W off its model, as shares of the model's pixels:\n");
+  std::printf("%-30s %7s %7s %7s %7s\n", "model", "model", "support", "card", "hole");
+  for (const Row& r : rows)
+    std::printf("%-30s %6.2f%% %6.2f%% %6.2f%% %6.2f%%\n", r.name.c_str(), 100 * r.far_off[0], 100 * r.far_off[1],
+                100 * r.far_off[2], 100 * r.far_off[3]);
   const auto n = static_cast<double>(rows.size());
   const auto mean = [&](auto field) {
     double sum = 0;
