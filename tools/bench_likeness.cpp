@@ -173,6 +173,33 @@ int fold_lines(const Plan& plan) {
       plan.lines, [](const PlanPolyline& l) { return l.kind == LineKind::Mountain || l.kind == LineKind::Valley; }));
 }
 
+bool where_maps = false;  // --where: a picture per model of where the card is more than 2 W off
+
+// Per plan pixel of the model: grey within 2 W; more than 2 W off on a model face red where the
+// sliced plan was within 2 W there (the supports' doing), dark red where it was not; on a support
+// blue, on the back plane or floor green, in a hole yellow. Off the model: white.
+void write_where_map(const Model& model, const DesignOptions& options, const DesignResult& result,
+                     const Grid<float>& error, double far, const fs::path& file) {
+  DesignOptions unsupported = options;
+  unsupported.supports.enabled = false;
+  const DesignResult sliced = design(model.file, unsupported);
+  const Grid<float> sliced_error = likeness_error_map(sliced.maps, sliced.card);
+  Image image{error.cols, error.rows, std::vector<std::uint8_t>(3 * error.values.size(), 255), {}};
+  for (std::size_t i = 0; i < error.values.size(); ++i) {
+    std::array<std::uint8_t, 3> c = {255, 255, 255};
+    if (error.values[i] >= 0 && !(error.values[i] > far)) c = {190, 190, 190};
+    if (error.values[i] > far) switch (result.card.surface.values[i]) {
+        case CardSurface::Model: c = sliced_error.values[i] > far ? std::array<std::uint8_t, 3>{120, 0, 0}
+                                                                   : std::array<std::uint8_t, 3>{255, 0, 0}; break;
+        case CardSurface::Support: c = {0, 60, 255}; break;
+        case CardSurface::Hole: c = {240, 200, 0}; break;
+        default: c = {0, 170, 0}; break;
+      }
+    std::copy(c.begin(), c.end(), image.rgb.begin() + static_cast<std::ptrdiff_t>(3 * i));
+  }
+  write_files({{file, image_png(image, file.stem().string())}});
+}
+
 Row measure(const Model& model, const DesignOptions& base, const fs::path& out, Cell& cell) {
   Row row;
   row.name = name_of(model.file);
@@ -211,6 +238,8 @@ Row measure(const Model& model, const DesignOptions& base, const fs::path& out, 
   row.read_back_valid = analysis.valid();
   row.read_back = likeness(result.maps, card_view(result.maps.grid, analysis.regions, {}), options.slice.min_strip_mm);
 
+  if (where_maps) write_where_map(model, options, result, error, far, out / (stem + "_where.png"));
+
   // Pictures: the model and the pop-up from one viewpoint, and the plan.
   RenderOptions view_options{.width_px = kPictureW, .height_px = kPictureH, .samples = 1};
   const ColouredMesh popup = popup_scene(fold_popup(result.plan.regions, options.sheet, {.angle_deg = 90}), true);
@@ -234,7 +263,7 @@ Row measure(const Model& model, const DesignOptions& base, const fs::path& out, 
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: bench_likeness MODELS_DIR OUT_DIR [--only NAME]... [--seed N] [--min-strip W]\n");
+    std::fprintf(stderr, "usage: bench_likeness MODELS_DIR OUT_DIR [--only NAME]... [--seed N] [--min-strip W] [--where yes]\n");
     return 2;
   }
   const fs::path models_dir = argv[1], out = argv[2];
@@ -245,6 +274,8 @@ int main(int argc, char** argv) {
       only.push_back(argv[i + 1]);
     else if (std::strcmp(argv[i], "--seed") == 0)
       options.supports.seed = static_cast<std::uint32_t>(std::stoul(argv[i + 1]));
+    else if (std::strcmp(argv[i], "--where") == 0 && std::strcmp(argv[i + 1], "yes") == 0)
+      where_maps = true;
     else if (std::strcmp(argv[i], "--min-strip") == 0)
       options.slice.min_strip_mm = std::stod(argv[i + 1]);
     else
