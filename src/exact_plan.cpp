@@ -111,11 +111,9 @@ void add_chain(const Chain& chain, Fallback fallback, const std::vector<RasterFa
   const RasterFace &a = faces[static_cast<std::size_t>(chain.left)], &b = faces[static_cast<std::size_t>(chain.right)];
   if (fallback == Fallback::PixelContour || a.orientation == b.orientation || a.hole || b.hole)
     return add_cut(chain, 0, last, lattice, simplify_mm, curves);
-  const RasterFace& v = a.orientation == Orientation::V ? a : b;
-  const RasterFace& h = a.orientation == Orientation::H ? a : b;
-  const double fold_Y = h.depth_mm - v.depth_mm;
+  const double fold_Y = fold_line_Y(a.orientation, a.depth_mm, b.depth_mm);
   if (!(std::abs(fold_Y) < lattice.half_mm)) return add_cut(chain, 0, last, lattice, simplify_mm, curves);
-  const FT exact_Y = FT(h.depth_mm) - FT(v.depth_mm);
+  const FT exact_Y = fold_line_Y(a.orientation, FT(a.depth_mm), FT(b.depth_mm));
   auto near = [&](std::size_t i) { return std::abs(lattice.Y(chain.corners[i].v) - fold_Y) <= tolerance; };
   std::size_t cut_from = 0, i = 0;
   while (i <= last) {
@@ -271,8 +269,8 @@ void build_arrangement(const std::vector<Chain>& chains, const std::vector<Fallb
 // sides (no line of the plan). Returns how many faces were trimmed.
 int keep_faces_on_the_card(const std::vector<RasterFace>& faces, Built& built) {
   Arrangement& arr = built.arrangement;
-  auto limit_of = [](const RasterFace& face) {
-    return face.orientation == Orientation::H ? FT(face.depth_mm) : -FT(face.depth_mm);
+  auto limit_of = [](const RasterFace& face) {  // its fold line with the back plane (H) or the floor (V)
+    return fold_line_Y(face.orientation, FT(face.depth_mm), FT(0));
   };
   auto beyond = [](const RasterFace& face, const Point& p, const FT& limit) {
     return face.orientation == Orientation::H ? p.y() > limit : p.y() < limit;
@@ -442,9 +440,7 @@ PlanBuild::PlanBuild(const RasterMaps& maps, const SliceResult& sliced, const Sh
     LineKind kind = LineKind::Cut;
     if (CGAL::compare_y(p, q) == CGAL::EQUAL && fu.orientation != fl.orientation && !fu.hole && !fl.hole &&
         !negligible(he)) {
-      const RasterFace& v = fu.orientation == Orientation::V ? fu : fl;
-      const RasterFace& h = fu.orientation == Orientation::H ? fu : fl;
-      if (p.y() == FT(h.depth_mm) - FT(v.depth_mm)) {
+      if (p.y() == fold_line_Y(fu.orientation, FT(fu.depth_mm), FT(fl.depth_mm))) {
         // Going up the plan: V then H is a mountain fold, H then V a valley fold.
         kind = fu.orientation == Orientation::H ? LineKind::Mountain : LineKind::Valley;
         const auto [it, fresh] = fold_line_ids.try_emplace(p.y(), static_cast<std::int32_t>(fold_line_ids.size()));

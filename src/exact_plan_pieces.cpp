@@ -8,10 +8,10 @@
 #include <algorithm>
 #include <cstddef>
 #include <map>
-#include <numeric>
 #include <vector>
 
 #include "exact_plan_state.hpp"
+#include "union_find.hpp"
 
 namespace origamic::exact {
 namespace {
@@ -48,25 +48,18 @@ Pieces pieces_of(const Arrangement& arr) {
   std::map<Arrangement::Face_const_handle, std::int32_t> index;
   for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f)
     if (!f->is_unbounded() && f->data() >= 0) index[f] = static_cast<std::int32_t>(faces.size()), faces.push_back(f);
-  std::vector<std::int32_t> parent(faces.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto root = [&](std::int32_t i) {
-    while (parent[static_cast<std::size_t>(i)] != i)
-      i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
-    return i;
-  };
+  UnionFind<std::int32_t> sets(faces.size());
   for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
     const auto a = e->face(), b = e->twin()->face();
     if (a == b || a->is_unbounded() || b->is_unbounded() || a->data() < 0 || a->data() != b->data() || negligible(e))
       continue;
-    const std::int32_t ra = root(index.at(a)), rb = root(index.at(b));
-    parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
+    sets.join(index.at(a), index.at(b));
   }
   Pieces pieces;
   std::map<std::int32_t, std::int32_t> piece_of_root;
   for (std::size_t i = 0; i < faces.size(); ++i) {
     const auto [it, fresh] =
-        piece_of_root.try_emplace(root(static_cast<std::int32_t>(i)), static_cast<std::int32_t>(pieces.label.size()));
+        piece_of_root.try_emplace(sets.root(static_cast<std::int32_t>(i)), static_cast<std::int32_t>(pieces.label.size()));
     if (fresh) pieces.label.push_back(faces[i]->data());
     pieces.of[faces[i]] = it->second;
   }

@@ -6,13 +6,13 @@
 #include <climits>
 #include <cmath>
 #include <map>
-#include <numeric>
 #include <set>
 #include <utility>
 
 #include "bands.hpp"
 #include "origamic/slice.hpp"
 #include "plane_numbers.hpp"
+#include "union_find.hpp"
 
 namespace origamic {
 namespace {
@@ -23,12 +23,7 @@ constexpr int kStep[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
 
 void merge_coplanar_faces(SliceResult& result) {
   const std::size_t n = result.faces.size();
-  std::vector<std::int32_t> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
-  auto root = [&](std::int32_t f) {
-    while (parent[f] != f) f = parent[f] = parent[parent[f]];
-    return f;
-  };
+  UnionFind<std::int32_t> sets(n);
   Grid<std::int32_t>& face = result.face;
   std::vector<std::int64_t> pixels(n, 0);
   bool merged = false;
@@ -39,10 +34,7 @@ void merge_coplanar_faces(SliceResult& result) {
     PlaneNumbers number;
     for (std::size_t f = 0; f < n; ++f) plane[f] = number(result.faces[f]);
   }
-  auto join = [&](std::int32_t f, std::int32_t g) {
-    const std::int32_t a = root(f), b = root(g);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b), merged = true;
-  };
+  auto join = [&](std::int32_t f, std::int32_t g) { merged = sets.join(f, g) || merged; };
   // Run by run along the rows, in bands in parallel: a run's pixels are counted at once, and a
   // stretch of one face below it is met once. Joining is the same in any order.
   std::array<std::vector<std::int64_t>, kBands> band_pixels;
@@ -85,17 +77,17 @@ void merge_coplanar_faces(SliceResult& result) {
     return;
   }
   for (std::size_t f = 0; f < n; ++f)
-    if (const auto r = static_cast<std::size_t>(root(static_cast<std::int32_t>(f))); r != f)
+    if (const auto r = static_cast<std::size_t>(sets.root(static_cast<std::int32_t>(f))); r != f)
       pixels[r] += std::exchange(pixels[f], 0);
   std::vector<std::int32_t> new_id(n, -1);
   std::vector<RasterFace> faces;
   for (std::size_t f = 0; f < n; ++f)
-    if (root(static_cast<std::int32_t>(f)) == static_cast<std::int32_t>(f) && (f < 2 || pixels[f] > 0)) {
+    if (sets.root(static_cast<std::int32_t>(f)) == static_cast<std::int32_t>(f) && (f < 2 || pixels[f] > 0)) {
       new_id[f] = static_cast<std::int32_t>(faces.size());
       faces.push_back(result.faces[f]);
       faces.back().pixels = pixels[f];
     }
-  for (std::size_t f = 0; f < n; ++f) new_id[f] = new_id[static_cast<std::size_t>(root(static_cast<std::int32_t>(f)))];
+  for (std::size_t f = 0; f < n; ++f) new_id[f] = new_id[static_cast<std::size_t>(sets.root(static_cast<std::int32_t>(f)))];
   for_bands(face.rows, [&](int, int row_begin, int row_end) {
     const std::size_t cols = static_cast<std::size_t>(face.cols);
     for (std::size_t i = row_begin * cols; i < row_end * cols; ++i)
@@ -118,11 +110,7 @@ std::vector<FacePart> split_disconnected_faces(SliceResult& result, const std::v
     std::int32_t face;
   };
   std::vector<Run> runs;
-  std::vector<std::uint32_t> parent;
-  auto root = [&](std::uint32_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
+  UnionFind<std::uint32_t> sets;
   std::size_t previous_row = 0;  // where the runs of the row above begin
   for (int row = 0; row < face.rows; ++row) {
     const std::int32_t* line = &face.values[face.index(0, row)];
@@ -133,17 +121,15 @@ std::vector<FacePart> split_disconnected_faces(SliceResult& result, const std::v
       while (end < face.cols && line[end] == f) ++end;
       if (f >= 0 && wanted[static_cast<std::size_t>(f)]) {
         runs.push_back({row, c, end, f});
-        parent.push_back(static_cast<std::uint32_t>(parent.size()));
+        sets.add();
       }
       c = end;
     }
     // Both rows' runs are sorted by column: one merge-like sweep finds the overlapping pairs.
     for (std::size_t a = previous_row, b = this_row; a < this_row && b < runs.size();) {
       if (runs[a].row == row - 1 && runs[a].face == runs[b].face && runs[a].c0 < runs[b].c1 &&
-          runs[b].c0 < runs[a].c1) {
-        const std::uint32_t ra = root(static_cast<std::uint32_t>(a)), rb = root(static_cast<std::uint32_t>(b));
-        parent[std::max(ra, rb)] = std::min(ra, rb);
-      }
+          runs[b].c0 < runs[a].c1)
+        sets.join(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b));
       (runs[a].c1 < runs[b].c1 ? a : b) += 1;
     }
     previous_row = this_row;
@@ -154,7 +140,7 @@ std::vector<FacePart> split_disconnected_faces(SliceResult& result, const std::v
   std::vector<std::int32_t> part_face;
   std::vector<std::int64_t> part_size;
   for (std::uint32_t i = 0; i < runs.size(); ++i) {
-    std::int32_t& part = part_of_root[root(i)];
+    std::int32_t& part = part_of_root[sets.root(i)];
     if (part < 0) {
       part = static_cast<std::int32_t>(part_runs.size());
       part_runs.emplace_back();
@@ -228,7 +214,7 @@ int fold_row(const SliceResult& result, const PixelGrid& grid, double tolerance_
   if (a == b || a < 0 || b < 0) return -1;
   const RasterFace &fa = result.faces[static_cast<std::size_t>(a)], &fb = result.faces[static_cast<std::size_t>(b)];
   if (fa.orientation == fb.orientation || fa.hole || fb.hole) return -1;
-  const double fold_Y = fa.orientation == Orientation::H ? fa.depth_mm - fb.depth_mm : fb.depth_mm - fa.depth_mm;
+  const double fold_Y = fold_line_Y(fa.orientation, fa.depth_mm, fb.depth_mm);
   const double edge_Y = grid.Y(r) - 0.5 / grid.px_per_mm;
   if (!(std::abs(edge_Y - fold_Y) <= tolerance_mm)) return -1;
   return static_cast<int>(std::lround(grid.rows_above_fold - 1 - fold_Y * grid.px_per_mm));
@@ -326,8 +312,7 @@ void merge_near_coplanar_faces(SliceResult& result, double tolerance_mm) {
                     result.faces[static_cast<std::size_t>(p.second)].depth_mm);
   };
   std::ranges::stable_sort(pairs, {}, gap);
-  std::vector<std::int32_t> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
+  UnionFind<std::int32_t> sets(n);
   std::vector<double> lo(n), hi(n), weighted(n);
   std::vector<std::int64_t> pixels(n);
   for (std::size_t f = 0; f < n; ++f) {
@@ -335,28 +320,23 @@ void merge_near_coplanar_faces(SliceResult& result, double tolerance_mm) {
     pixels[f] = std::max<std::int64_t>(1, result.faces[f].pixels);
     weighted[f] = result.faces[f].depth_mm * static_cast<double>(pixels[f]);
   }
-  const auto root = [&](std::int32_t f) {
-    while (parent[static_cast<std::size_t>(f)] != f)
-      f = parent[static_cast<std::size_t>(f)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(f)])];
-    return f;
-  };
   bool merged = false;
   for (const auto& [f, g] : pairs) {
-    const auto a = static_cast<std::size_t>(root(f)), b = static_cast<std::size_t>(root(g));
+    const auto a = static_cast<std::size_t>(sets.root(f)), b = static_cast<std::size_t>(sets.root(g));
     if (a == b || std::max(hi[a], hi[b]) - std::min(lo[a], lo[b]) > tolerance_mm) continue;
     if (a < 2 && b < 2) continue;
     const std::size_t into = std::min(a, b), from = std::max(a, b);  // the back plane and the floor keep their ids
-    parent[from] = static_cast<std::int32_t>(into);
+    sets.join(static_cast<std::int32_t>(a), static_cast<std::int32_t>(b));
     lo[into] = std::min(lo[a], lo[b]), hi[into] = std::max(hi[a], hi[b]);
     weighted[into] += weighted[from], pixels[into] += pixels[from];
     merged = true;
   }
   if (!merged) return;
   for (std::size_t f = 0; f < n; ++f)
-    if (root(static_cast<std::int32_t>(f)) == static_cast<std::int32_t>(f) && f >= 2)
+    if (sets.root(static_cast<std::int32_t>(f)) == static_cast<std::int32_t>(f) && f >= 2)
       result.faces[f].depth_mm = weighted[f] / static_cast<double>(pixels[f]);
   for (std::int32_t& f : result.face.values)
-    if (f >= 0) f = root(f);
+    if (f >= 0) f = sets.root(f);
   merge_coplanar_faces(result);
 }
 

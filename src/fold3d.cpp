@@ -184,9 +184,8 @@ std::vector<std::vector<FoldEdge>> fold_edges(const std::vector<PlanRegion>& reg
   each_horizontal_edge([&](std::size_t r, PlanPoint a, PlanPoint b) {
     const auto across = horizontal.find({b.X, b.Y, a.X, a.Y});
     if (across == horizontal.end() || regions[across->second].orientation == regions[r].orientation) return;
-    const PlanRegion &v = regions[r].orientation == Orientation::V ? regions[r] : regions[across->second],
-                     &h = regions[r].orientation == Orientation::H ? regions[r] : regions[across->second];
-    if (!(std::abs(a.Y - (h.depth_mm - v.depth_mm)) <= kFoldLineTolerance_mm)) return;
+    const double line = fold_line_Y(regions[r].orientation, regions[r].depth_mm, regions[across->second].depth_mm);
+    if (!(std::abs(a.Y - line) <= kFoldLineTolerance_mm)) return;
     // With the region on the left of its ring's edges, an edge running to +X has it above.
     folds[r].push_back({a.Y, std::min(a.X, b.X), std::max(a.X, b.X), b.X > a.X, regions[across->second].orientation,
                         regions[across->second].depth_mm});

@@ -289,9 +289,7 @@ struct Analyzer {
                  " above (placed along other folds): a fold joins a V and an H face");
         continue;
       }
-      const Place& v = below.orientation == Orientation::V ? below : above;
-      const Place& h = below.orientation == Orientation::H ? below : above;
-      const FT line = h.depth - v.depth, off = fold.Y - line;
+      const FT line = fold_line_Y(below.orientation, below.depth, above.depth), off = fold.Y - line;
       if (CGAL::abs(off) > tolerance)
         note(PlanProblemKind::InconsistentFold, fold, nearest_double(off),
              kind_name + " fold joins " + face_text(below) + " below and " + face_text(above) +

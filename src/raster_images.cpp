@@ -55,9 +55,7 @@ std::vector<std::uint8_t> id_rgb(const Grid<std::int32_t>& ids, bool card_ids) {
 // V(d) and the other H(h) and the boundary lies within a pixel of the fold line Y = h - d.
 bool is_fold(const RasterFace& upper, const RasterFace& lower, double boundary_Y, double pixel_mm) {
   if (upper.orientation == lower.orientation) return false;
-  const RasterFace& v = upper.orientation == Orientation::V ? upper : lower;
-  const RasterFace& h = upper.orientation == Orientation::H ? upper : lower;
-  return std::abs(h.depth_mm - v.depth_mm - boundary_Y) <= pixel_mm;
+  return std::abs(fold_line_Y(upper.orientation, upper.depth_mm, lower.depth_mm) - boundary_Y) <= pixel_mm;
 }
 
 std::vector<std::uint8_t> plan_preview_rgb(const RasterMaps& maps, const SliceResult& slices) {

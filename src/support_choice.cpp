@@ -8,7 +8,6 @@
 #include <cassert>
 #include <climits>
 #include <cmath>
-#include <numeric>
 #include <optional>
 #include <span>
 #include <functional>
@@ -21,6 +20,7 @@
 #include "plane_numbers.hpp"
 #include "support_ears.hpp"
 #include "support_picture.hpp"
+#include "union_find.hpp"
 
 namespace origamic {
 namespace {
@@ -287,7 +287,7 @@ class CandidateFinder {
   // The 4-connected pieces of a face's runs less the pixels [c0, c1) x [r0, r1).
   static int pieces(const std::vector<Run>& runs, int c0, int c1, int r0, int r1) {
     thread_local std::vector<Run> left;
-    thread_local std::vector<std::uint32_t> parent;
+    thread_local UnionFind<std::uint32_t> sets;
     left.clear();
     for (const Run& run : runs) {
       if (run.row < r0 || run.row >= r1 || run.c1 <= c0 || c1 <= run.c0) {
@@ -297,20 +297,14 @@ class CandidateFinder {
       if (run.c0 < c0) left.push_back({run.row, run.c0, c0});
       if (c1 < run.c1) left.push_back({run.row, c1, run.c1});
     }
-    parent.resize(left.size());
-    std::iota(parent.begin(), parent.end(), std::uint32_t{0});
-    const auto root = [&](std::uint32_t i) {
-      while (parent[i] != i) i = parent[i] = parent[parent[i]];
-      return i;
-    };
+    sets.reset(left.size());
     int count = static_cast<int>(left.size());
     // Runs are in row-major order: those of the row above overlapping one are joined to it.
     for (std::size_t b = 0, a_begin = 0; b < left.size(); ++b) {
       while (a_begin < b && left[a_begin].row < left[b].row - 1) ++a_begin;
       for (std::size_t a = a_begin; a < b && left[a].row < left[b].row; ++a)
         if (left[a].row == left[b].row - 1 && left[a].c0 < left[b].c1 && left[b].c0 < left[a].c1)
-          if (const std::uint32_t ra = root(static_cast<std::uint32_t>(a)), rb = root(static_cast<std::uint32_t>(b)); ra != rb)
-            parent[std::max(ra, rb)] = std::min(ra, rb), --count;
+          if (sets.join(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b))) --count;
     }
     return count;
   }

@@ -76,7 +76,7 @@ std::vector<FoldEdge> raster_folds(const PixelGrid& grid, const SliceResult& sli
         const RasterFace &fu = slices.faces[static_cast<std::size_t>(upper)],
                          &fl = slices.faces[static_cast<std::size_t>(lower)];
         if (fu.orientation == fl.orientation || fu.hole || fl.hole) continue;
-        const double fold_Y = fu.orientation == Orientation::H ? fu.depth_mm - fl.depth_mm : fl.depth_mm - fu.depth_mm;
+        const double fold_Y = fold_line_Y(fu.orientation, fu.depth_mm, fl.depth_mm);
         if (std::abs(edge_Y - fold_Y) <= tolerance)
           bands[static_cast<std::size_t>(band)].push_back({upper, lower, fold_Y});
       }

@@ -50,4 +50,12 @@ struct PlanPoint {
 /// The plan point of an OA point (x, h, d): (x, h - d).
 inline PlanPoint plan_of(const glm::dvec3& oa) { return {oa.x, oa.y - oa.z}; }
 
+/// The fold line Y = h - d between a V face and an H face, given either first: face a of orientation
+/// a_is and depth depth_a (d of a V face, h of an H face), face b of the other orientation and
+/// depth_b. Doubles give the IEEE difference (one rounding); exact numbers give it exactly.
+template <typename Depth>
+Depth fold_line_Y(Orientation a_is, const Depth& depth_a, const Depth& depth_b) {
+  return a_is == Orientation::H ? depth_a - depth_b : depth_b - depth_a;
+}
+
 }  // namespace origamic
