@@ -197,6 +197,10 @@ TEST(MeshIo, MalformedHeadersAreRefusedBeforeTheReaderSeesThem) {
   test::write_text(dir / "o.off", "O");
   test::write_text(dir / "negative.off", "OFF\n-1 2 0\n");
   test::write_text(dir / "huge.off", "OFF\n100000000000000000000 1 0\n0 0 0\n");
+  // Found by tools/fuzz.py's hour in a mutated res_armadillo.off ("3 22407 18977 373" lost a blank):
+  // OpenMesh read 3,022,407 corners past the file's end for over a minute.
+  test::write_text(dir / "huge_face.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3022407 1 3\n");
+  test::write_text(dir / "word_face.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\nthree 0 1 2\n");
   test::write_text(dir / "out_of_range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\nf 1 2 3\n");
   test::write_text(dir / "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
   // Found by tools/fuzz.py in a mutated arch_church.obj: OpenMesh's reader aborted on the corner.
@@ -213,6 +217,8 @@ TEST(MeshIo, MalformedHeadersAreRefusedBeforeTheReaderSeesThem) {
   expect_input_error(dir / "no_end.ply", "no end_header");
   expect_input_error(dir / "odd_type.ply", "unsupported property type 'fancy'");
   expect_input_error(dir / "huge_count.ply", "truncated");
+  expect_input_error(dir / "huge_face.off", "line 8: a face of 3022407 corners lists 2 numbers");
+  expect_input_error(dir / "word_face.off", "line 6: a face starts with its corner count");
   expect_input_error(dir / "o.off", "not an OFF file");
   expect_input_error(dir / "negative.off", "counts -1 vertices");
   expect_input_error(dir / "huge.off", "no vertex and face counts");

@@ -70,6 +70,24 @@ void check_off_header(const std::filesystem::path& file, const std::string& byte
   if (counts[0] < 0 || counts[1] < 0 || counts[0] > INT32_MAX || counts[1] > INT32_MAX)
     fail(file, "OFF header counts " + std::to_string(counts[0]) + " vertices and " + std::to_string(counts[1]) +
                    " faces; counts are whole numbers from 0 to 2147483647");
+  // Each face line starts with its corner count, and OpenMesh reads that many numbers whatever the
+  // line holds: a count of 3022407 (a blank lost between "3" and "022407") read past the file's end
+  // for minutes. A face must list its corners on its line.
+  const auto first_line = static_cast<std::size_t>(std::count(bytes.begin(), bytes.begin() + std::min(at, bytes.size()), '\n'));
+  long long data = 0;
+  for_each_line(bytes, std::min(at, bytes.size()), [&](std::string_view line, std::size_t number) {
+    if (is_blank_or_comment(line) || data++ < counts[0] || data > counts[0] + counts[1]) return;
+    std::istringstream words{std::string(line.substr(0, line.find('#')))};
+    long long corners = -1, listed = 0;
+    std::string word;
+    if (!(words >> word) || word.find_first_not_of("0123456789") != std::string::npos || word.size() > 10)
+      fail(file, "line " + std::to_string(first_line + number) + ": a face starts with its corner count, a whole number");
+    corners = std::stoll(word);
+    while (words >> word) ++listed;
+    if (corners > listed)
+      fail(file, "truncated or malformed: line " + std::to_string(first_line + number) + ": a face of " +
+                     std::to_string(corners) + " corners lists " + std::to_string(listed) + " numbers");
+  });
 }
 
 void check_ply_header(const std::filesystem::path& file, const std::string& bytes) {
