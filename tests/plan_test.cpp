@@ -7,7 +7,9 @@
 #include <array>
 #include <cstdio>
 #include <map>
+#include <mutex>
 #include <set>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -457,6 +459,43 @@ TEST(Plan, EverySeedlikeModelGivesAnExactPlanAndItsFilesCarryTheSameSegments) {
     }
     for (const auto& [layer, segments] : back["dxf"].items())
       for (const auto& s : segments) EXPECT_FALSE(s[0] == s[2] && s[1] == s[3]) << "zero-length segment in " << layer;
+  }
+}
+
+// The exact numbers are made without thread safety, so designs run one at a time per process: two
+// threads calling design() at once take turns (their stages do not interleave, as they did without
+// the lock) and each gets the plan it gets alone. The second starts while the first is reading.
+TEST(Plan, TwoDesignsAtOnceTakeTurnsAndGetTheirOwnPlans) {
+  const std::filesystem::path house = std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj";
+  const Plan alone = design(house, DesignOptions{}).plan;
+  std::mutex mutex;
+  std::vector<int> order;  // which design named each stage, in the order they were named
+  std::array<Plan, 2> plans;
+  auto run = [&](int which) {
+    DesignOptions options;
+    options.on_stage = [&, which](std::string_view) {
+      const std::lock_guard hold(mutex);
+      order.push_back(which);
+    };
+    plans[static_cast<std::size_t>(which)] = design(house, options).plan;
+  };
+  std::thread first(run, 0), second(run, 1);
+  first.join();
+  second.join();
+  ASSERT_GE(order.size(), 8u);
+  EXPECT_EQ(std::ranges::count(order, 0), std::ranges::count(order, 1));
+  int turns = 0;
+  for (std::size_t i = 1; i < order.size(); ++i) turns += order[i] != order[i - 1];
+  EXPECT_EQ(turns, 1) << "the two designs' stages interleaved";
+  for (const Plan& plan : plans) {
+    ASSERT_EQ(plan.lines.size(), alone.lines.size());
+    for (std::size_t i = 0; i < plan.lines.size(); ++i) {
+      ASSERT_EQ(plan.lines[i].points.size(), alone.lines[i].points.size()) << i;
+      for (std::size_t k = 0; k < plan.lines[i].points.size(); ++k) {
+        EXPECT_EQ(plan.lines[i].points[k].X, alone.lines[i].points[k].X);
+        EXPECT_EQ(plan.lines[i].points[k].Y, alone.lines[i].points[k].Y);
+      }
+    }
   }
 }
 

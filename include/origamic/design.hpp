@@ -64,7 +64,8 @@ struct DesignResult {
   std::vector<StageTime> times;
 };
 
-/// Runs the pipeline on a model file, up to the exact plan with its validity verdict.
+/// Runs the pipeline on a model file, up to the exact plan with its validity verdict. Designs called
+/// from several threads take turns: one exact run at a time per process.
 /// \throws InputError for a bad file or absurd options.
 DesignResult design(const std::filesystem::path& model_file, const DesignOptions& options);
 

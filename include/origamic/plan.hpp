@@ -98,8 +98,9 @@ inline double fold_snap_tolerance_mm(const PlanOptions& options, const SliceResu
 /// pixel, and a hair for the rounding of Y.
 inline double aligned_fold_tolerance_mm(const PixelGrid& grid) { return 1 / grid.px_per_mm + 1e-9; }
 
-/// Builds the exact plan from the raster plan (sheet in mm). Deterministic. Not reentrant: the exact
-/// numbers are built without thread safety (see exact_plan.cpp), so one call at a time per process.
+/// Builds the exact plan from the raster plan (sheet in mm). Deterministic. The exact numbers are built
+/// without thread safety, so calls from several threads take turns (one exact run at a time per
+/// process, as for PlanBuild, add_supports, design and analyze_plan).
 Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& sheet, const PlanOptions& options);
 
 /// The plan line Y = h - d, taken exactly (the difference of the two doubles, unrounded): where a

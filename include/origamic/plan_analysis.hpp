@@ -96,8 +96,8 @@ struct PlanAnalysis {
 /// Builds the exact arrangement of the lines (doubles taken exactly, scaled to mm exactly), clipped
 /// to the sheet, and analyses it. The main fold is Y = 0 where the sheet reaches both sides of it,
 /// else halfway up the sheet (a drawing from the sheet's lower-left corner): see main_fold_Y.
-/// Deterministic. Not reentrant: the exact numbers are built without thread safety (see
-/// plan_analysis.cpp), so one call at a time per process, and not alongside build_plan.
+/// Deterministic. Calls from several threads take turns with each other and with build_plan (one
+/// exact run at a time per process).
 /// \throws InputError if there is no cut or fold line, a coordinate is not finite, an option is
 /// absurd, or the sheet has no area.
 PlanAnalysis analyze_plan(const std::vector<PlanPolyline>& lines, const AnalysisOptions& options);

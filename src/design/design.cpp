@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "origamic/design.hpp"
 #include "origamic/error.hpp"
+#include "exact_runs.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -25,6 +26,7 @@ class StageClock {
 }  // namespace
 
 DesignResult design(const std::filesystem::path& model_file, const DesignOptions& options) {
+  const auto lock = exact_run_lock();  // one design at a time per process: see exact_runs.hpp
   DesignResult result;
   result.model_file = model_file;
   StageClock clock(result.times);

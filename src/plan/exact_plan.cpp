@@ -16,6 +16,7 @@
 
 #include "boundary_chains.hpp"
 #include "exact_plan_state.hpp"
+#include "exact_runs.hpp"
 #include "origamic/plan.hpp"
 
 namespace origamic {
@@ -333,6 +334,7 @@ int keep_faces_on_the_card(const std::vector<RasterFace>& faces, Built& built) {
 
 PlanBuild::PlanBuild(const RasterMaps& maps, const SliceResult& sliced, const Sheet& sheet, const PlanOptions& options)
     : state_(std::make_unique<State>()) {
+  const auto lock = exact_run_lock();
   State& state = *state_;  // built in place: the handles read off the arrangement stay valid
   state.grid = maps.grid;
   // §4.5 in two steps: the raster boundaries move to the pixel row nearest their fold line where
@@ -493,15 +495,23 @@ PlanBuild::PlanBuild(const RasterMaps& maps, const SliceResult& sliced, const Sh
   state.faces = std::move(slices.faces);
 }
 
-PlanBuild::~PlanBuild() = default;
+PlanBuild::~PlanBuild() {
+  const auto lock = exact_run_lock();  // its exact numbers are freed
+  state_.reset();
+}
 PlanBuild::PlanBuild(PlanBuild&&) noexcept = default;
-PlanBuild& PlanBuild::operator=(PlanBuild&&) noexcept = default;
+PlanBuild& PlanBuild::operator=(PlanBuild&& other) noexcept {
+  const auto lock = exact_run_lock();
+  state_ = std::move(other.state_);
+  return *this;
+}
 
 const Plan& PlanBuild::verdict() const { return state_->plan; }
 const Grid<std::int32_t>& PlanBuild::face_map() const { return state_->labels; }
 const std::vector<RasterFace>& PlanBuild::faces() const { return state_->faces; }
 
 Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& sheet, const PlanOptions& options) {
+  const auto lock = exact_run_lock();
   return PlanBuild(maps, slices, sheet, options).full();
 }
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "exact_plan_state.hpp"
+#include "exact_runs.hpp"
 
 namespace origamic {
 namespace {
@@ -213,6 +214,7 @@ void count_vanished_faces(const Grid<std::int32_t>& labels, const std::vector<Ra
 }  // namespace
 
 Plan PlanBuild::full() const {
+  const auto lock = exact_run_lock();
   const State& state = *state_;
   Plan plan = state.plan;
   auto edges = state.edges;

@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "bands.hpp"
+#include "exact_runs.hpp"
 #include "support_choice.hpp"
 #include "support_picture.hpp"
 
@@ -455,6 +456,7 @@ constexpr double kPoorLikenessShare = 0.15;
 
 Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& sheet, const PlanOptions& plan_options,
                        const SupportOptions& options) {
+  const auto lock = exact_run_lock();
   // The greedy choice depends on the order the faces choose in, and one order can paint itself into
   // a corner that another avoids: the next orders of the same random sequence get their turn.
   std::mt19937 random(options.seed);

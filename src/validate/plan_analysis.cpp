@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The translation unit that validates a plan from its lines on an exact arrangement (CGAL is heavy
 // to compile: keep it here and in plan_analysis_geometry.cpp, which holds the geometry it works on).
-// Not reentrant: see exact_kernel.hpp.
+// One exact run at a time: see exact_runs.hpp.
 #define CGAL_HAS_NO_THREADS 1
 
 #include "origamic/plan_analysis.hpp"
@@ -18,6 +18,7 @@
 #include "exact_kernel.hpp"
 #include "origamic/error.hpp"
 #include "plan_analysis_geometry.hpp"
+#include "exact_runs.hpp"
 
 namespace origamic {
 namespace {
@@ -419,6 +420,7 @@ PlanAnalysis analyze_plan(const std::vector<PlanPolyline>& lines, const Analysis
     throw InputError("--min-strip: W must be zero (no check) or a positive number of mm");
   if (!(std::isfinite(options.tolerance_mm) && options.tolerance_mm >= 0 && options.tolerance_mm <= 0.1))
     throw InputError("--tolerance: must be between 0 and 0.1 mm");
+  const auto lock = exact_run_lock();
   Analyzer analyzer(options);
   analyzer.run(lines);
   return std::move(analyzer.result);

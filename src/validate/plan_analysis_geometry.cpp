@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The exact geometry under a plan's analysis (plan_analysis.cpp): the plan's lines collected onto the
 // sheet, the faces of their arrangement as rings, and the narrowest chords across a face. CGAL is
-// heavy to compile: the analysis has these two translation units and no more. Not reentrant: see
-// exact_kernel.hpp.
+// heavy to compile: the analysis has these two translation units and no more. One exact run at a
+// time: see exact_runs.hpp.
 #define CGAL_HAS_NO_THREADS 1
 
 #include "plan_analysis_geometry.hpp"
