@@ -75,7 +75,7 @@ TEST(Supports, FloatingBoxIsSupportedAtTopAndBottom) {
   const SliceResult slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
   ASSERT_FALSE(plan_stands(build_plan(maps, slices, sheet, PlanOptions{}).validity, false));
   const Supported s = add_supports(maps, slices, sheet, PlanOptions{}, SupportOptions{});
-  EXPECT_TRUE(s.report.converged) << s.report.stop_reason;
+  EXPECT_TRUE(s.report.converged) << stop_reason(s.report);
   EXPECT_EQ(s.report.supports, 2);
   expect_exact_and_standing(s.plan);
   // The front V(50) now reaches down to the floor and the top H(80) back to the back plane: their
@@ -264,7 +264,7 @@ TEST(Supports, SlopesBecomeStaircasesAsWideAsTheSlope) {
     DesignOptions options;
     options.placement.up = UpAxis::Z;
     const DesignResult r = design(test::models_dir() / model, options);
-    EXPECT_TRUE(r.supports.converged) << r.supports.stop_reason;
+    EXPECT_TRUE(r.supports.converged) << stop_reason(r.supports);
     EXPECT_GT(r.supports.supports, 0);
     expect_exact_and_standing(r.plan);
     const auto supports = support_columns(r.slices);
@@ -296,8 +296,8 @@ TEST(Supports, QuarterSphereStandsWithEverySliceSupportedAndSupportsAtLeastWWide
   const PlanAnalysis lines = analyze_plan(r.plan.lines, AnalysisOptions{});
   EXPECT_TRUE(lines.valid()) << "its lines say otherwise";
   for (const PlanProblem& p : lines.problems) EXPECT_NE(p.kind, PlanProblemKind::OutsideCard) << p.message;
-  EXPECT_TRUE(r.supports.converged) << r.supports.stop_reason;
-  EXPECT_TRUE(r.supports.stop_reason.empty());
+  EXPECT_TRUE(r.supports.converged) << stop_reason(r.supports);
+  EXPECT_EQ(r.supports.stop, SupportStop::None);
   EXPECT_EQ(r.supports.cut_out, 0);
   EXPECT_GT(r.supports.supports, 0);
   // Every slice stands: steep ones vertical, flat ones horizontal, each folded to the next.
@@ -353,7 +353,7 @@ TEST(Supports, ShippedHouseStandsAtTheDefaultOptions) {
   DesignOptions options;
   const DesignResult house = design(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj", options);
   expect_exact_and_standing(house.plan);
-  EXPECT_EQ(house.supports.cut_out, 0) << house.supports.stop_reason;
+  EXPECT_EQ(house.supports.cut_out, 0) << stop_reason(house.supports);
   EXPECT_GE(house.supports.orders, 1);
   EXPECT_LE(house.supports.orders, options.supports.orders);
   // One order only: the report says so, and a plan that does not stand says why.
@@ -361,7 +361,8 @@ TEST(Supports, ShippedHouseStandsAtTheDefaultOptions) {
   const DesignResult once = design(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj", options);
   EXPECT_EQ(once.supports.orders, 1);
   if (!plan_stands(once.plan.validity, false)) {
-    EXPECT_FALSE(once.supports.stop_reason.empty());
+    EXPECT_NE(once.supports.stop, SupportStop::None);
+    EXPECT_FALSE(stop_reason(once.supports).empty());
   }
 }
 
@@ -538,6 +539,33 @@ TEST(Supports, ThePlanDoesNotDependOnTheThreads) {
     for (std::size_t k = 0; k < a.size(); ++k)
       EXPECT_TRUE(a[k].X == b[k].X && a[k].Y == b[k].Y) << "line " << i << " point " << k;
   }
+}
+
+}  // namespace
+}  // namespace origamic
+
+namespace origamic {
+namespace {
+
+// Why supports stopped is an enum with its counts; the report says it in words.
+TEST(Supports, TheStopReasonSaysWhyInWords) {
+  SupportReport report;
+  EXPECT_EQ(stop_reason(report), "");
+  report.stop = SupportStop::NoProgress;
+  report.stop_faces = 12;
+  EXPECT_EQ(stop_reason(report), "12 faces still invalid: no progress in 3 rounds");
+  report.stop = SupportStop::RoundBound;
+  report.round_bound = 71;
+  EXPECT_EQ(stop_reason(report), "12 faces still invalid after 71 rounds (the loop's bound)");
+  report.stop = SupportStop::Unreachable;
+  report.stop_loose_pieces = 2;
+  report.stop_at_quota = true;
+  EXPECT_EQ(stop_reason(report),
+            "12 faces invalid and no support reaches them; 2 loose pieces of the back plane or the floor; cutting "
+            "them out would remove over a quarter of the model");
+  report.stop = SupportStop::ExactInvalid;
+  report.stop_loose_pieces = 0, report.stop_at_quota = false;
+  EXPECT_EQ(stop_reason(report), "12 faces invalid in the exact plan");
 }
 
 }  // namespace

@@ -53,6 +53,15 @@ struct CutOutFace {
   std::string reason;
 };
 
+/// Why supports alone did not make every face stand.
+enum class SupportStop : std::uint8_t {
+  None,          // they did, or nothing needed them
+  NoProgress,    // three rounds in a row left as many faces invalid
+  RoundBound,    // the loop's bound (SupportReport::round_bound) was reached
+  Unreachable,   // no support reaches the faces left invalid
+  ExactInvalid,  // the rounds ended, but the exact plan finds faces invalid
+};
+
 struct SupportReport {
   int supports = 0;       // support strips added, before widening merged any
   int rounds = 0;         // rounds of supports chosen
@@ -64,7 +73,10 @@ struct SupportReport {
   int round_bound = 0;  // the loop's bound: one round per W-wide column of the sheet, plus one
   int orders = 0;       // face orders tried (SupportOptions::orders); the rest is of the one kept
   bool converged = false;
-  std::string stop_reason;                // why supports alone did not make every face stand; empty when they did
+  SupportStop stop = SupportStop::None;  // why supports alone did not make every face stand
+  int stop_faces = 0;                    // how many faces were invalid then
+  int stop_loose_pieces = 0;             // and loose pieces of the back plane or the floor
+  bool stop_at_quota = false;            // cutting the rest out would have removed over a quarter of the model
   int cut_out = 0;                        // faces cut out of the sheet as the last resort
   std::vector<CutOutFace> cut_out_faces;  // each, with its place and why
   std::vector<NarrowStrip> narrow;        // faces and supports narrower than W, with their place
@@ -83,6 +95,10 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
 
 /// Every face (holes aside) whose pixels span fewer than W (block_px) columns, in face order.
 std::vector<NarrowStrip> narrow_strips(const SliceResult& slices, const PixelGrid& grid);
+
+/// Why supports stopped, in words ("" for SupportStop::None): "12 faces still invalid: no progress in
+/// 3 rounds; 2 loose pieces of the back plane or the floor", as the report gives it.
+std::string stop_reason(const SupportReport& report);
 
 /// The verdict: no floating or invalid face, and no dangling one unless they are allowed.
 bool plan_stands(const Validity& validity, bool allow_dangling);

@@ -182,7 +182,7 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
         {"round_bound", result.supports.round_bound},
         {"orders", result.supports.orders},
         {"converged", result.supports.converged},
-        {"stop_reason", result.supports.stop_reason}}},
+        {"stop_reason", stop_reason(result.supports)}}},
       {"time_ms", times},
   };
   // File names need not be UTF-8: replace bytes JSON cannot carry rather than fail.

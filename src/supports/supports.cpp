@@ -58,6 +58,24 @@ std::vector<NarrowStrip> narrow_strips(const SliceResult& slices, const PixelGri
   return narrow;
 }
 
+std::string stop_reason(const SupportReport& report) {
+  const std::string faces = std::to_string(report.stop_faces) + " faces ";
+  std::string text;
+  switch (report.stop) {
+    case SupportStop::None: return text;
+    case SupportStop::NoProgress: text = faces + "still invalid: no progress in 3 rounds"; break;
+    case SupportStop::RoundBound:
+      text = faces + "still invalid after " + std::to_string(report.round_bound) + " rounds (the loop's bound)";
+      break;
+    case SupportStop::Unreachable: text = faces + "invalid and no support reaches them"; break;
+    case SupportStop::ExactInvalid: text = faces + "invalid in the exact plan"; break;
+  }
+  if (report.stop_loose_pieces > 0)
+    text += "; " + std::to_string(report.stop_loose_pieces) + " loose pieces of the back plane or the floor";
+  if (report.stop_at_quota) text += "; cutting them out would remove over a quarter of the model";
+  return text;
+}
+
 bool plan_stands(const Validity& validity, bool allow_dangling) {
   return validity.floating + validity.invalid == 0 && (allow_dangling || validity.dangling == 0);
 }
@@ -189,8 +207,13 @@ class OrderRun {
     last_build_.reset();  // one arrangement at a time in memory
     adopt(std::make_shared<const PlanBuild>(setting_.maps, slices_, setting_.sheet, setting_.plan_options));
   }
-  std::string support_rounds();
-  std::string pass();
+  // Why rounds stopped, and how many faces were invalid then (SupportStop::None: none was).
+  struct Stopped {
+    SupportStop why = SupportStop::None;
+    int faces = 0;
+  };
+  Stopped support_rounds();
+  Stopped pass();
   bool part_faces(const std::vector<std::int32_t>& invalid, int loose);
   bool cut_out_cheapest(std::vector<std::int32_t> invalid);
   // Cuts the faces out, each with why, counting their pixels against the model's (pieces of the
@@ -231,22 +254,21 @@ class OrderRun {
 };
 
 // Rounds of supports until every face stands or they stop helping; returns why they stopped.
-std::string OrderRun::support_rounds() {
+OrderRun::Stopped OrderRun::support_rounds() {
   SupportReport& tally = report();
   std::size_t fewest_invalid = SIZE_MAX;
   int rounds_without_progress = 0;
   for (;;) {
     std::vector<std::int32_t> invalid = invalid_faces();
     if (invalid.empty()) return {};
+    const int count = static_cast<int>(invalid.size());
     // Supports that split other faces can leave as many invalid faces as they fixed: give up
     // when three rounds in a row made no progress.
     if (invalid.size() < fewest_invalid)
       fewest_invalid = invalid.size(), rounds_without_progress = 0;
     else if (++rounds_without_progress >= 3)
-      return std::to_string(invalid.size()) + " faces still invalid: no progress in 3 rounds";
-    if (!rounds_left())
-      return std::to_string(invalid.size()) + " faces still invalid after " + std::to_string(tally.round_bound) +
-             " rounds (the loop's bound)";
+      return {SupportStop::NoProgress, count};
+    if (!rounds_left()) return {SupportStop::RoundBound, count};
     ++tally.rounds;
     std::shuffle(invalid.begin(), invalid.end(), random_);
     Reach round_reach = rules_.reach;
@@ -256,8 +278,7 @@ std::string OrderRun::support_rounds() {
     const SupportChoice choice = choose_supports(setting_.maps, slices_, *last_build_, painted_since_, standing_, folds,
                                                  invalid, setting_.options, round_reach);
     const std::vector<Candidate>& chosen = choice.supports;
-    if (chosen.empty() && choice.cut_out.empty())
-      return std::to_string(invalid.size()) + " faces invalid and no support reaches them";
+    if (chosen.empty() && choice.cut_out.empty()) return {SupportStop::Unreachable, count};
     tally.supports += static_cast<int>(chosen.size());
     // Faces whose holding would cost the picture more than their hole are cut out (seed §4.4 never
     // cuts; a support across the model to a crumb at its back is worse than the crumb's hole), once
@@ -275,7 +296,7 @@ std::string OrderRun::support_rounds() {
 // passes that left as many, as the greedy choice did, repeats them: the ears of a state are the
 // same each time.) Found is the fewer of the exact count and the raster graph's: the pass's end is counted on
 // the raster graph, which may miss a face the exact plan sees.
-std::string OrderRun::pass() {
+OrderRun::Stopped OrderRun::pass() {
   const bool from_exact = exact_;
   std::size_t invalid_before = invalid_faces().size();
   if (exact_) {
@@ -285,8 +306,8 @@ std::string OrderRun::pass() {
   const int supports_before = report().supports, cut_out_before = report().cut_out;
   const std::size_t cut_out_faces_before = report().cut_out_faces.size();
   const std::int64_t cut_out_pixels_before = cut_out_pixels_;
-  std::string why = support_rounds();
-  if (from_exact && !why.empty() && invalid_faces().size() > invalid_before) {
+  const Stopped why = support_rounds();
+  if (from_exact && why.why != SupportStop::None && invalid_faces().size() > invalid_before) {
     slices_.face = confirmed_.first;
     slices_.faces = confirmed_.second;
     report().supports = supports_before;  // the rounds still count against the bound
@@ -338,7 +359,7 @@ bool OrderRun::cut_out_cheapest(std::vector<std::int32_t> invalid) {
   std::int64_t more = 0;
   for (const std::int32_t f : invalid) more += slices_.faces[static_cast<std::size_t>(f)].pixels;
   if (4 * (cut_out_pixels_ + more) > model_pixels_) {
-    report().stop_reason += "; cutting them out would remove over a quarter of the model";
+    report().stop_at_quota = true;
     return false;
   }
   const double W = slices_.min_strip_mm;
@@ -384,13 +405,15 @@ Supported OrderRun::run() {
   adopt(setting_.initial);  // every pass, the first too, walks an exact plan
   std::size_t fewest_exact = SIZE_MAX;
   for (;;) {
-    const std::string why = pass();
+    const Stopped why = pass();
     std::vector<std::int32_t> invalid = invalid_faces();
     const int loose = result_.plan.loose_card_pieces;
     if (invalid.empty() && loose == 0) break;
-    report().stop_reason = why.empty() ? std::to_string(invalid.size()) + " faces invalid in the exact plan" : why;
-    if (loose > 0)
-      report().stop_reason += "; " + std::to_string(loose) + " loose pieces of the back plane or the floor";
+    SupportReport& tally = report();
+    tally.stop = why.why == SupportStop::None ? SupportStop::ExactInvalid : why.why;
+    tally.stop_faces = why.why == SupportStop::None ? static_cast<int>(invalid.size()) : why.faces;
+    tally.stop_loose_pieces = loose;
+    tally.stop_at_quota = false;
     if (rounds_left() && part_faces(invalid, loose)) continue;
     // The exact plan found fewer invalid faces than last time: another pass of rounds from its word.
     const bool progress = invalid.size() < fewest_exact;
@@ -427,7 +450,7 @@ Supported OrderRun::run() {
 Supported OrderRun::finish() {
   SupportReport& tally = report();
   tally.converged = tally.cut_out == 0 && invalid_faces().empty() && result_.plan.loose_card_pieces == 0;
-  if (tally.converged) tally.stop_reason.clear();
+  if (tally.converged) tally.stop = SupportStop::None, tally.stop_faces = tally.stop_loose_pieces = 0, tally.stop_at_quota = false;
   slices_.face = std::move(confirmed_.first);
   slices_.faces = std::move(confirmed_.second);
   result_.plan = last_build_->full();
