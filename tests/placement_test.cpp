@@ -102,7 +102,7 @@ TEST(Placement, ProjectionLeavingTheSheetIsAnErrorNamingTheOption) {
     place(test::box({0, 0, 0}, {20, 20, 20}), Sheet{}, options);
     FAIL() << "no error";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--scale/--offset"), std::string::npos) << e.what();
+    EXPECT_EQ(e.field, "PlacementOptions::scale/PlacementOptions::offset_mm") << e.what();
     EXPECT_NE(std::string(e.what()).find("leaves the"), std::string::npos) << e.what();
   }
   options.offset_mm.reset();

@@ -263,7 +263,7 @@ TEST(PlanExport, PdfPageIsTheSheetOrTheChosenPaperReadBackByPdfinfo) {
     plan_pdf(a4_sheet, letter);
     ADD_FAILURE() << "an A4 sheet does not fit on Letter paper";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("--paper:", 0), 0u) << e.what();
+    EXPECT_EQ(e.field, "ExportOptions::paper") << e.what();
   }
 }
 

@@ -67,7 +67,7 @@ struct PageSize {
 };
 
 /// The PDF page in mm for a sheet on a paper: the sheet itself for Paper::Sheet, else the paper
-/// upright if the sheet fits so, else turned. \throws InputError naming --paper if the sheet fits
+/// upright if the sheet fits so, else turned. \throws InputError naming ExportOptions::paper if the sheet fits
 /// the paper neither way.
 PageSize pdf_page(const Sheet& sheet, Paper paper);
 

@@ -45,7 +45,7 @@ struct SliceResult {
 };
 
 /// Slices every segment. Deterministic: the same maps and options give the same face map.
-/// \throws InputError naming --min-strip if W is not positive and finite or is below one pixel.
+/// \throws InputError naming SliceOptions::min_strip_mm if W is not positive and finite or is below one pixel.
 SliceResult slice(const RasterMaps& maps, const Segmentation& segmentation, const SliceOptions& options);
 
 /// Touching faces of one orientation and one depth lie in one plane: they become one face (a

@@ -278,6 +278,49 @@ class Progress {
   bool on_screen_ = false;
 };
 
+// The library names an option at fault by its field (InputError::field); the command line by its
+// flag. Fields joined by '/' are at fault together; each becomes its flag, once.
+std::string flags_of(const std::string& fields) {
+  static const std::map<std::string, std::string> flag = {
+      {"Sheet", "--card"},
+      {"PlacementOptions::rotate_deg", "--rotate"},
+      {"PlacementOptions::scale", "--scale"},
+      {"PlacementOptions::offset_mm", "--offset"},
+      {"PlacementOptions::margin_mm", "--margin"},
+      {"RasterOptions::px_per_mm", "--px-per-mm"},
+      {"SliceOptions::min_strip_mm", "--min-strip"},
+      {"AnalysisOptions::min_strip_mm", "--min-strip"},
+      {"AnalysisOptions::tolerance_mm", "--tolerance"},
+      {"FoldStyleOptions::perf_cut_mm", "--perf"},
+      {"FoldStyleOptions::perf_gap_mm", "--perf"},
+      {"FoldStyleOptions::inset_mm", "--fold-inset"},
+      {"ExportOptions::paper", "--paper"},
+      {"ExportOptions::pdf_date_s", "SOURCE_DATE_EPOCH"},
+      {"FoldOptions::angle_deg", "--angle"},
+      {"FoldOptions::thickness_mm", "--thickness"},
+      {"RenderOptions::width_px", "--render-size"},
+      {"RenderOptions::height_px", "--render-size"},
+  };
+  std::string flags;
+  for (std::size_t at = 0; at <= fields.size();) {
+    const std::size_t end = std::min(fields.find('/', at), fields.size());
+    const std::string field = fields.substr(at, end - at);
+    const auto known = flag.find(field);
+    const std::string name = known != flag.end() ? known->second : field;  // a field no flag sets
+    if (flags != name && !flags.ends_with("/" + name)) flags += (flags.empty() ? "" : "/") + name;
+    at = end + 1;
+  }
+  return flags;
+}
+
+// An InputError as the command line says it: the flag for the library's field, the plan's file for
+// its lines.
+std::string cli_message(const InputError& e, const std::string& plan_file = {}) {
+  if (e.field.empty()) return e.what();
+  if (e.field == "lines" && !plan_file.empty()) return plan_file + ": " + e.problem;
+  return flags_of(e.field) + ": " + e.problem;
+}
+
 int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const PopupArgs& popup_args) {
   const origamic::PopupFileOptions popup_options = popup_file_options(popup_args, args.out_dir);
   origamic::DesignOptions options;
@@ -376,8 +419,7 @@ int run_validate(const ValidateArgs& args) {
   try {
     analysis = origamic::analyze_plan(drawing.lines, options);
   } catch (const InputError& e) {
-    const std::string message = e.what();  // name the file for problems of the plan, not of an option
-    throw InputError(message.rfind("plan: ", 0) == 0 ? args.plan + ": " + message.substr(6) : message);
+    throw InputError(cli_message(e, args.plan));  // the file for problems of the plan's lines
   }
   if (args.json) {
     std::fputs(origamic::analysis_json(analysis, args.plan).c_str(), stdout);
@@ -429,7 +471,12 @@ int run_fold(const FoldArgs& args) {
   const origamic::DxfDrawing drawing = origamic::read_dxf_drawing(args.plan, args.layers);
   origamic::AnalysisOptions options;
   options.unit = drawing.unit;
-  const origamic::PlanAnalysis analysis = origamic::analyze_plan(drawing.lines, options);
+  origamic::PlanAnalysis analysis;
+  try {
+    analysis = origamic::analyze_plan(drawing.lines, options);
+  } catch (const InputError& e) {
+    throw InputError(cli_message(e, args.plan));
+  }
   const origamic::PlanBox& box = analysis.sheet;
   const origamic::Sheet sheet{box.max_X - box.min_X, 2 * std::max(box.max_Y, -box.min_Y)};
   const origamic::FoldedPopup popup =
@@ -573,7 +620,7 @@ int main(int argc, char** argv) {
     if (*design) return run_design(design_args, fabrication_args, popup_args);
     return 2;  // CLI11 requires one subcommand
   } catch (const origamic::InputError& e) {
-    print_error("", e.what());
+    print_error("", cli_message(e));
     return 2;
   } catch (const origamic::OutputError& e) {
     print_error("", e.what());

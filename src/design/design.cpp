@@ -59,8 +59,8 @@ DesignResult design(const std::filesystem::path& model_file, const DesignOptions
   if (std::none_of(result.slices.faces.begin() + 2, result.slices.faces.end(),
                    [](const RasterFace& f) { return !f.hole && f.pixels > 0; }))
     throw InputError(model_file.string() +
-                     ": the model leaves no face on the card (it is smaller than a strip width W or seen edge on; "
-                     "see --scale, --min-strip and --up)");
+                     ": the model leaves no face on the card (it is smaller than a strip width W or seen edge on: "
+                     "a larger scale, a smaller W or another up axis may help)");
   align_folds_to_lines(result.slices, result.maps.grid,
                        fold_snap_tolerance_mm(options.plan, result.slices, result.maps.grid));
   clock.lap("slice");

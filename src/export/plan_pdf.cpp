@@ -259,12 +259,12 @@ cairo_status_t append(void* closure, const unsigned char* data, unsigned int len
 
 PageSize pdf_page(const Sheet& sheet, Paper paper) {
   if (!(std::isfinite(sheet.width_mm) && std::isfinite(sheet.height_mm) && sheet.width_mm > 0 && sheet.height_mm > 0))
-    throw InputError("--card: the sheet must have a positive, finite width and height");
+    throw InputError("Sheet", "the sheet must have a positive, finite width and height");
   if (paper == Paper::Sheet) return {sheet.width_mm, sheet.height_mm};
   const PageSize size = paper == Paper::A4 ? PageSize{210, 297} : PageSize{215.9, 279.4};
   if (sheet.width_mm <= size.width_mm && sheet.height_mm <= size.height_mm) return size;
   if (sheet.width_mm <= size.height_mm && sheet.height_mm <= size.width_mm) return {size.height_mm, size.width_mm};
-  throw InputError("--paper: the " + number(sheet.width_mm) + "x" + number(sheet.height_mm) +
+  throw InputError("ExportOptions::paper", "the " + number(sheet.width_mm) + "x" + number(sheet.height_mm) +
                    " mm sheet does not fit on " + (paper == Paper::A4 ? "A4" : "Letter") + " paper (" +
                    number(size.width_mm) + "x" + number(size.height_mm) + " mm) either way up");
 }
@@ -276,7 +276,7 @@ std::string iso_date(std::int64_t seconds) {
   const auto time = static_cast<std::time_t>(seconds);
   std::tm utc{};
   if (seconds < 0 || seconds > kLatestPdfDate_s || !gmtime_r(&time, &utc))
-    throw InputError("PDF date: " + std::to_string(seconds) + " s since 1970 is not between 0 and " +
+    throw InputError("ExportOptions::pdf_date_s", std::to_string(seconds) + " s since 1970 is not between 0 and " +
                      std::to_string(kLatestPdfDate_s) + " (the year 9999)");
   char iso[32];
   std::strftime(iso, sizeof iso, "%Y-%m-%dT%H:%M:%SZ", &utc);

@@ -49,20 +49,21 @@ Extents extents(const TriangleMesh& mesh, const glm::dmat3& linear, const glm::d
 void check_options(const Sheet& sheet, const PlacementOptions& options) {
   if (!(std::isfinite(sheet.width_mm) && std::isfinite(sheet.height_mm) && sheet.width_mm > 0 &&
         sheet.height_mm > 0))
-    throw InputError("--card: the sheet must have a positive, finite width and height");
+    throw InputError("Sheet", "the sheet must have a positive, finite width and height");
   // Beyond any cutter's bed or printer's page (a wide plotter takes 1.6 m).
-  if (sheet.width_mm > 5000 || sheet.height_mm > 5000) throw InputError("--card: a side longer than 5000 mm is no card");
-  if (!(std::abs(options.rotate_deg) <= 360)) throw InputError("--rotate: must be an angle from -360 to 360 degrees");
+  if (sheet.width_mm > 5000 || sheet.height_mm > 5000) throw InputError("Sheet", "a side longer than 5000 mm is no card");
+  if (!(std::abs(options.rotate_deg) <= 360))
+    throw InputError("PlacementOptions::rotate_deg", "must be an angle from -360 to 360 degrees");
   if (options.scale && !(std::isfinite(*options.scale) && *options.scale > 0))
-    throw InputError("--scale: must be a positive, finite number");
+    throw InputError("PlacementOptions::scale", "must be a positive, finite number");
   if (options.offset_mm && !(std::isfinite(options.offset_mm->x) && std::isfinite(options.offset_mm->y) &&
                              std::isfinite(options.offset_mm->z)))
-    throw InputError("--offset: must be three finite numbers X,H,D in mm");
+    throw InputError("PlacementOptions::offset_mm", "must be three finite numbers X,H,D in mm");
   if (!(std::isfinite(options.margin_mm) && options.margin_mm >= 0))
-    throw InputError("--margin: must be a non-negative, finite length in mm");
+    throw InputError("PlacementOptions::margin_mm", "must be a non-negative, finite length in mm");
   if (!options.scale && !options.offset_mm &&
       (2 * options.margin_mm >= sheet.width_mm || options.margin_mm >= sheet.half_height_mm()))
-    throw InputError("--margin: leaves no room on the sheet for the model");
+    throw InputError("PlacementOptions::margin_mm", "leaves no room on the sheet for the model");
 }
 
 // The largest scale at which extents e (unscaled, resting at h = d = 0) fit inside the margins, with
@@ -81,7 +82,7 @@ double fit_scale(const Extents& e, const Sheet& sheet, double margin_mm) {
   if (e.hi.y > e.lo.y) scale = std::min(scale, room_half / (e.hi.y - e.lo.y));
   if (e.hi.z > e.lo.z) scale = std::min(scale, room_half / (e.hi.z - e.lo.z));
   if (!std::isfinite(scale))
-    throw InputError("model: its 45-degree projection has zero extent; give --scale");
+    throw InputError("PlacementOptions::scale", "the model's 45-degree projection has zero extent: give a scale");
   return scale;
 }
 
@@ -121,19 +122,19 @@ Placement place(const TriangleMesh& mesh, const Sheet& sheet, const PlacementOpt
   const bool inside = placed.lo.x >= sheet.min_X() - slack && placed.hi.x <= sheet.max_X() + slack &&
                       placed.lo_Y >= sheet.min_Y() - slack && placed.hi_Y <= sheet.max_Y() + slack;
   if (!inside) {
-    const std::string option = options.offset_mm && options.scale ? "--scale/--offset"
-                               : options.offset_mm                ? "--offset"
-                               : options.scale                    ? "--scale"
-                                                                  : "--card/--margin";
-    throw InputError(option + ": the model's 45-degree projection (X " + mm(placed.lo.x) + " to " +
+    const std::string option = options.offset_mm && options.scale ? "PlacementOptions::scale/PlacementOptions::offset_mm"
+                               : options.offset_mm                ? "PlacementOptions::offset_mm"
+                               : options.scale                    ? "PlacementOptions::scale"
+                                                                  : "Sheet/PlacementOptions::margin_mm";
+    throw InputError(option, "the model's 45-degree projection (X " + mm(placed.lo.x) + " to " +
                      mm(placed.hi.x) + ", Y " + mm(placed.lo_Y) + " to " + mm(placed.hi_Y) +
                      " mm) leaves the " + mm(sheet.width_mm) + " x " + mm(sheet.height_mm) +
                      " mm sheet (X 0 to " + mm(sheet.max_X()) + ", Y " + mm(sheet.min_Y()) + " to " +
                      mm(sheet.max_Y()) + ")");
   }
   if (placed.lo.y < -slack || placed.lo.z < -slack)
-    throw InputError((options.offset_mm ? std::string("--offset") : std::string("--scale")) +
-                     ": the model reaches below the floor (min h " + mm(placed.lo.y) +
+    throw InputError(options.offset_mm ? "PlacementOptions::offset_mm" : "PlacementOptions::scale",
+                     "the model reaches below the floor (min h " + mm(placed.lo.y) +
                      " mm) or behind the back plane (min d " + mm(placed.lo.z) + " mm); both must be >= 0");
   return placement;
 }

@@ -58,11 +58,11 @@ using OmMesh = OpenMesh::TriMesh_ArrayKernelT<OmTraits>;
 
 void check_options(const FoldOptions& options) {
   if (!(options.angle_deg >= 0 && options.angle_deg <= 180))
-    throw InputError("--angle: the opening angle must be between 0 and 180 degrees, not " +
+    throw InputError("FoldOptions::angle_deg", "the opening angle must be between 0 and 180 degrees, not " +
                      number_text(options.angle_deg));
   // Card is at most a millimetre or so; 10 mm is a slab, not paper.
   if (!(options.thickness_mm >= 0 && options.thickness_mm <= 10))
-    throw InputError("--thickness: the paper thickness must be between 0 and 10 mm, not " +
+    throw InputError("FoldOptions::thickness_mm", "the paper thickness must be between 0 and 10 mm, not " +
                      number_text(options.thickness_mm));
 }
 
@@ -152,7 +152,7 @@ void check_finite(const PlanRegion& region, std::size_t index) {
   for (const auto& ring : region.rings)
     for (const PlanPoint& p : ring)
       if (!std::isfinite(p.X) || !std::isfinite(p.Y))
-        throw InputError("region " + std::to_string(index) + ": a ring has a coordinate that is not finite");
+        throw InputError("regions", "region " + std::to_string(index) + " has a ring with a coordinate that is not finite");
 }
 
 // The fold edges of each region: a horizontal ring edge whose reverse is a ring edge of a placed

@@ -116,17 +116,18 @@ class Tracer {
 void check_options(const RenderOptions& options) {
   auto check_side = [](int px, const char* what) {
     if (px < 8 || px > 8192)
-      throw InputError(std::string("--render-size: the image ") + what + " must be 8 to 8192 pixels, not " +
+      throw InputError(std::string("RenderOptions::") + what + "_px", std::string("the image ") + what + " must be 8 to 8192 pixels, not " +
                        std::to_string(px));
   };
   check_side(options.width_px, "width");
   check_side(options.height_px, "height");
   if (options.samples < 1 || options.samples > 8)
-    throw InputError("render samples: must be 1 to 8 a side, not " + std::to_string(options.samples));
+    throw InputError("RenderOptions::samples", "must be 1 to 8 a side, not " + std::to_string(options.samples));
   if (!(std::abs(options.elevation_deg) < 90) || !std::isfinite(options.azimuth_deg))
-    throw InputError("render view: the elevation must lie strictly between -90 and 90 degrees");
+    throw InputError("RenderOptions::elevation_deg/RenderOptions::azimuth_deg",
+                     "the elevation must lie strictly between -90 and 90 degrees, the azimuth be finite");
   if (!(options.fov_deg > 1 && options.fov_deg < 150))
-    throw InputError("render view: the field of view must lie between 1 and 150 degrees");
+    throw InputError("RenderOptions::fov_deg", "the field of view must lie between 1 and 150 degrees");
 }
 
 std::uint8_t to_byte(double value) {

@@ -122,18 +122,19 @@ Hit intersect_exactly(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3
 
 void check_options(const Sheet& sheet, const RasterOptions& options) {
   if (!(std::isfinite(options.px_per_mm) && options.px_per_mm > 0))
-    throw InputError("--px-per-mm: must be a positive, finite number");
+    throw InputError("RasterOptions::px_per_mm", "must be a positive, finite number");
   const double cols = sheet.width_mm * options.px_per_mm, rows = sheet.height_mm * options.px_per_mm;
   if (!(cols >= 1 && rows >= 2))
-    throw InputError("--px-per-mm: " + std::to_string(options.px_per_mm) + " gives less than one pixel across the sheet");
+    throw InputError("RasterOptions::px_per_mm",
+                     std::to_string(options.px_per_mm) + " gives less than one pixel across the sheet");
   const double pixels = cols * rows;
   constexpr double max_pixels = 64e6;  // the maps take about 45 bytes a pixel: 3 GB at most
   if (!(pixels <= max_pixels))
   {
     char text[160];
-    std::snprintf(text, sizeof text, "--px-per-mm: %g gives %.3g Mpx on this sheet; at most 64 Mpx are allowed",
-                  options.px_per_mm, pixels / 1e6);
-    throw InputError(text);
+    std::snprintf(text, sizeof text, "%g gives %.3g Mpx on this sheet; at most 64 Mpx are allowed", options.px_per_mm,
+                  pixels / 1e6);
+    throw InputError("RasterOptions::px_per_mm", text);
   }
 }
 

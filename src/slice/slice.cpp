@@ -418,15 +418,15 @@ double oriented_box_min_side_px(const std::vector<std::pair<int, int>>& pixels) 
 SliceResult slice(const RasterMaps& maps, const Segmentation& seg, const SliceOptions& options) {
   const double W = options.min_strip_mm;
   if (!(std::isfinite(W) && W * maps.grid.px_per_mm >= 1))
-    throw InputError("--min-strip: must be a finite width of at least one pixel (" +
+    throw InputError("SliceOptions::min_strip_mm", "must be a finite width of at least one pixel (" +
                      std::to_string(1 / maps.grid.px_per_mm) + " mm at this resolution)");
   // A pop-up needs a few strips across each half of the card.
   const double widest = std::min(maps.grid.cols, maps.grid.rows_above_fold) / maps.grid.px_per_mm / 4;
   if (!(W <= widest)) {
     char text[128];
     std::snprintf(text, sizeof text,
-                  "--min-strip: at most a quarter of the card's width and of each half's height (%.1f mm here)", widest);
-    throw InputError(text);
+                  "at most a quarter of the card's width and of each half's height (%.1f mm here)", widest);
+    throw InputError("SliceOptions::min_strip_mm", text);
   }
   SliceResult result;
   result.min_strip_mm = W;

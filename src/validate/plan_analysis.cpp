@@ -417,9 +417,9 @@ bool is_error(PlanProblemKind kind) { return kind < PlanProblemKind::CutInsideFa
 
 PlanAnalysis analyze_plan(const std::vector<PlanPolyline>& lines, const AnalysisOptions& options) {
   if (!(std::isfinite(options.min_strip_mm) && options.min_strip_mm >= 0))
-    throw InputError("--min-strip: W must be zero (no check) or a positive number of mm");
+    throw InputError("AnalysisOptions::min_strip_mm", "W must be zero (no check) or a positive number of mm");
   if (!(std::isfinite(options.tolerance_mm) && options.tolerance_mm >= 0 && options.tolerance_mm <= 0.1))
-    throw InputError("--tolerance: must be between 0 and 0.1 mm");
+    throw InputError("AnalysisOptions::tolerance_mm", "must be between 0 and 0.1 mm");
   const auto lock = exact_run_lock();
   Analyzer analyzer(options);
   analyzer.run(lines);

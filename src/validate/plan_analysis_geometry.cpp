@@ -135,7 +135,7 @@ Input collect(const std::vector<PlanPolyline>& lines, const AnalysisOptions& opt
   const FT unit = exact_unit(options.unit);
   const bool scaled = options.unit != DrawingUnit::Millimetre;
   auto exact = [&](PlanPoint p) {
-    if (!std::isfinite(p.X) || !std::isfinite(p.Y)) throw InputError("plan: a coordinate is not finite");
+    if (!std::isfinite(p.X) || !std::isfinite(p.Y)) throw InputError("lines", "a coordinate is not finite");
     return scaled ? Point(FT(p.X) * unit, FT(p.Y) * unit) : Point(p.X, p.Y);
   };
   std::vector<std::vector<Point>> points(lines.size());
@@ -144,7 +144,7 @@ Input collect(const std::vector<PlanPolyline>& lines, const AnalysisOptions& opt
     for (const PlanPoint& p : lines[i].points) points[i].push_back(exact(p));
     if (lines[i].points.size() >= 2) (lines[i].kind == LineKind::Outline ? any_outline : any_line) = true;
   }
-  if (!any_line) throw InputError("plan: no cut or fold line");
+  if (!any_line) throw InputError("lines", "no cut or fold line");
 
   Input in;
   bool first = true;
@@ -159,7 +159,7 @@ Input collect(const std::vector<PlanPolyline>& lines, const AnalysisOptions& opt
     }
   }
   if (!(in.min_X < in.max_X) || !(in.min_Y < in.max_Y))
-    throw InputError("plan: the sheet (X " + num(nearest_double(in.min_X)) + " to " + num(nearest_double(in.max_X)) +
+    throw InputError("lines", "the sheet (X " + num(nearest_double(in.min_X)) + " to " + num(nearest_double(in.max_X)) +
                      ", Y " + num(nearest_double(in.min_Y)) + " to " + num(nearest_double(in.max_Y)) +
                      " mm) has no area");
   // The main fold: Y = 0 where the sheet straddles it (drawn from the main fold), else halfway up

@@ -224,7 +224,7 @@ class Reader : public DL_CreationAdapter {
       throw InputError(name_ + ": no line on the layers " + layer_name(LineKind::Cut) + ", " +
                        layer_name(LineKind::Mountain) + " or " + layer_name(LineKind::Valley) +
                        (found.empty() ? std::string(" (the file has no other entity)")
-                                      : " (entities are on: " + found + "; see --cut-layer and the others)"));
+                                      : " (entities are on: " + found + ": name the layers that hold the plan's lines)"));
     }
   }
 
