@@ -15,6 +15,7 @@
 
 #include "helpers.hpp"
 #include "origamic/design.hpp"
+#include "origamic/error.hpp"
 #include "origamic/output.hpp"
 #include "origamic/plan_analysis.hpp"
 #include "origamic/plan_dxf_reader.hpp"
@@ -497,6 +498,27 @@ TEST(Plan, TwoDesignsAtOnceTakeTurnsAndGetTheirOwnPlans) {
       }
     }
   }
+}
+
+// A model already read designs as its file does: a caller that pictures the model reads it once.
+TEST(Plan, AModelReadOnceDesignsAsItsFile) {
+  const std::filesystem::path house = std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj";
+  const DesignResult from_file = design(house, DesignOptions{});
+  const DesignResult from_mesh = design(load_mesh(house), DesignOptions{}, house);
+  EXPECT_EQ(from_mesh.model_file, house);
+  EXPECT_EQ(from_mesh.format, "obj");
+  EXPECT_EQ(from_mesh.triangles, from_file.triangles);
+  EXPECT_EQ(from_mesh.likeness.p95_mm, from_file.likeness.p95_mm);
+  ASSERT_EQ(from_mesh.plan.lines.size(), from_file.plan.lines.size());
+  for (std::size_t i = 0; i < from_file.plan.lines.size(); ++i) {
+    ASSERT_EQ(from_mesh.plan.lines[i].points.size(), from_file.plan.lines[i].points.size()) << i;
+    for (std::size_t k = 0; k < from_file.plan.lines[i].points.size(); ++k) {
+      EXPECT_EQ(from_mesh.plan.lines[i].points[k].X, from_file.plan.lines[i].points[k].X);
+      EXPECT_EQ(from_mesh.plan.lines[i].points[k].Y, from_file.plan.lines[i].points[k].Y);
+    }
+  }
+  EXPECT_TRUE(std::ranges::none_of(from_mesh.times, [](const StageTime& t) { return t.stage == "load"; }));
+  EXPECT_THROW(design(LoadedMesh{}, DesignOptions{}), InputError) << "no mesh, no design";
 }
 
 // The support loop builds only verdicts: they must be the full plan's, to the last face.

@@ -69,4 +69,9 @@ struct DesignResult {
 /// \throws InputError for a bad file or absurd options.
 DesignResult design(const std::filesystem::path& model_file, const DesignOptions& options);
 
+/// The same on a model already read (load_mesh; its file's facts are taken from it, and model_file,
+/// which may be empty, only names it in the result and in errors): a caller that needs the mesh
+/// again, for a picture of the model, reads the file once. No "load" stage time.
+DesignResult design(const LoadedMesh& model, const DesignOptions& options, const std::filesystem::path& model_file = {});
+
 }  // namespace origamic

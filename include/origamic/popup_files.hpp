@@ -28,11 +28,11 @@ struct PopupFileOptions {
 void check_popup_file_options(const PopupFileOptions& files);
 
 /// The files, named BASE_popup.obj and so on (BASE is a path without extension). The pop-up is the
-/// design's final plan's regions folded (fold_popup); the model picture reloads the model file and
-/// places it as the design did, and shows it from the same viewpoint as the pop-up picture. The
-/// animation opens the card through opening_deg and closes it again.
-/// \throws InputError for absurd options (fold_popup, frame_view) or a model file that changed.
+/// design's final plan's regions folded (fold_popup); the model picture places `model` (the mesh the
+/// design was made of, as read) as the design did, and shows it from the same viewpoint as the
+/// pop-up picture. The animation opens the card through opening_deg and closes it again.
+/// \throws InputError for absurd options (fold_popup, frame_view).
 std::vector<OutputFile> popup_files(const DesignResult& result, const DesignOptions& options, const std::string& base,
-                                    const PopupFileOptions& files);
+                                    const PopupFileOptions& files, const TriangleMesh& model);
 
 }  // namespace origamic

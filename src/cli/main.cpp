@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -345,7 +346,19 @@ int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const
 
   Progress progress;
   options.on_stage = [&](std::string_view stage) { progress.show(stage); };
-  const origamic::DesignResult result = origamic::design(args.model, options);
+  // Pictures of the model need its mesh again: then it is read here, once, and designed from.
+  std::optional<origamic::LoadedMesh> model;
+  origamic::DesignResult result;
+  if (popup_options.renders && !args.out_dir.empty()) {
+    progress.show("reading the model");
+    const auto start = std::chrono::steady_clock::now();
+    model = origamic::load_mesh(args.model, options.load);
+    const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    result = origamic::design(*model, options, args.model);
+    result.times.insert(result.times.begin(), {"load", load_ms});
+  } else {
+    result = origamic::design(args.model, options);
+  }
   progress.show("writing the files");
   // Every file is rendered first, then all are written together: a failure leaves none behind.
   std::vector<origamic::OutputFile> files;
@@ -355,7 +368,8 @@ int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const
     files.push_back({base + ".json", origamic::report_json(result, options)});
     for (auto& file : origamic::plan_files(result.plan, exports, base)) files.push_back(std::move(file));
     written += "plan: " + base + ".{dxf,svg,png,pdf}\nreport: " + base + ".json\n";
-    for (auto& file : origamic::popup_files(result, options, base, popup_options)) {
+    for (auto& file : origamic::popup_files(result, options, base, popup_options,
+                                            model ? model->mesh : origamic::TriangleMesh{})) {
       written += "3D: " + file.path.string() + "\n";
       files.push_back(std::move(file));
     }

@@ -23,25 +23,18 @@ class StageClock {
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
-}  // namespace
-
-DesignResult design(const std::filesystem::path& model_file, const DesignOptions& options) {
-  const auto lock = exact_run_lock();  // one design at a time per process: see exact_runs.hpp
-  DesignResult result;
-  result.model_file = model_file;
-  StageClock clock(result.times);
+// The pipeline from the model read to the finished plan, into `result` (its stages timed on `clock`).
+void design_loaded(LoadedMesh loaded, const std::filesystem::path& model_file, const DesignOptions& options,
+                   DesignResult& result, StageClock& clock) {
   const auto starting = [&](std::string_view stage) {
     if (options.on_stage) options.on_stage(stage);
   };
-
-  starting("reading the model");
-  LoadedMesh loaded = load_mesh(model_file, options.load);
+  result.model_file = model_file;
   result.format = loaded.format;
   result.triangles = loaded.mesh.triangles.size();
   result.vertices = loaded.mesh.positions.size();
   result.file_normals = loaded.file_normals;
   result.faces_dropped = loaded.faces_dropped;
-  clock.lap("load");
 
   result.placement = place(loaded.mesh, options.sheet, options.placement);
   const RayScene scene(apply(result.placement, std::move(loaded.mesh)));
@@ -58,7 +51,7 @@ DesignResult design(const std::filesystem::path& model_file, const DesignOptions
   result.slices = slice(result.maps, result.segmentation, options.slice);
   if (std::none_of(result.slices.faces.begin() + 2, result.slices.faces.end(),
                    [](const RasterFace& f) { return !f.hole && f.pixels > 0; }))
-    throw InputError(model_file.string() +
+    throw InputError((model_file.empty() ? std::string("the model") : model_file.string()) +
                      ": the model leaves no face on the card (it is smaller than a strip width W or seen edge on: "
                      "a larger scale, a smaller W or another up axis may help)");
   align_folds_to_lines(result.slices, result.maps.grid,
@@ -92,6 +85,26 @@ DesignResult design(const std::filesystem::path& model_file, const DesignOptions
   result.card = card_view(result.maps.grid, result.plan.regions, support);
   result.likeness = likeness(result.maps, result.card, W);
   clock.lap("likeness");
+}
+
+}  // namespace
+
+DesignResult design(const std::filesystem::path& model_file, const DesignOptions& options) {
+  const auto lock = exact_run_lock();  // one design at a time per process: see exact_runs.hpp
+  DesignResult result;
+  StageClock clock(result.times);
+  if (options.on_stage) options.on_stage("reading the model");
+  LoadedMesh loaded = load_mesh(model_file, options.load);
+  clock.lap("load");
+  design_loaded(std::move(loaded), model_file, options, result, clock);
+  return result;
+}
+
+DesignResult design(const LoadedMesh& model, const DesignOptions& options, const std::filesystem::path& model_file) {
+  const auto lock = exact_run_lock();
+  DesignResult result;
+  StageClock clock(result.times);
+  design_loaded(model, model_file, options, result, clock);
   return result;
 }
 

@@ -11,7 +11,7 @@ void check_popup_file_options(const PopupFileOptions& files) {
 }
 
 std::vector<OutputFile> popup_files(const DesignResult& result, const DesignOptions& options, const std::string& base,
-                                    const PopupFileOptions& files) {
+                                    const PopupFileOptions& files, const TriangleMesh& model) {
   std::vector<OutputFile> out;
   if (!files.fold_model && !files.renders) return out;
   const std::vector<PlanRegion>& regions = result.plan.regions;
@@ -22,8 +22,7 @@ std::vector<OutputFile> popup_files(const DesignResult& result, const DesignOpti
 
   // The pop-up and the model from one viewpoint, framing both and the whole card.
   const ColouredMesh popup_picture = popup_scene(popup, true);
-  const ColouredMesh model_picture = model_scene(apply(result.placement, load_mesh(result.model_file, options.load).mesh),
-                                                 options.sheet);
+  const ColouredMesh model_picture = model_scene(apply(result.placement, model), options.sheet);
   const auto [lo, hi] = bounds_of({&popup_picture, &model_picture});
   const View view = frame_view(lo, hi, files.render);
   out.push_back({base + "_popup.png", image_png(render(popup_picture, view, files.render), base + "_popup.png")});
