@@ -501,7 +501,7 @@ Plan designed_box_plan() {
   const RayScene scene(test::box({kX0, 0, 0}, {kX1, kH, kD}));
   const Sheet sheet;
   const RasterMaps maps = raster(scene, sheet, RasterOptions{});
-  const SliceResult slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const RasterPlan slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
   return build_plan(maps, slices, sheet, PlanOptions{});
 }
 

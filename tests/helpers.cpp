@@ -316,7 +316,7 @@ std::string dxf_text(const std::vector<PlanPolyline>& lines, int insunits, const
 
 namespace {
 
-SliceResult sliced(const RasterMaps& maps) { return slice(maps, segment(maps, SegmentOptions{}), SliceOptions{}); }
+RasterPlan sliced(const RasterMaps& maps) { return slice(maps, segment(maps, SegmentOptions{}), SliceOptions{}); }
 
 }  // namespace
 

@@ -33,8 +33,8 @@ struct FloatingBoxPlan {
   FloatingBoxPlan();
   Sheet sheet;
   RasterMaps maps;
-  SliceResult slices;
-  PlanBuild build;
+  RasterPlan slices;
+  ExactPlan build;
   std::int32_t front = 2, top = 3;  // the faces' ids
 };
 

@@ -26,7 +26,7 @@ Plan plan_of_oa_mesh(TriangleMesh oa_mesh, const Sheet& sheet) {
   const RayScene scene(std::move(oa_mesh));
   const RasterMaps maps = raster(scene, sheet, RasterOptions{});
   const Segmentation segmentation = segment(maps, SegmentOptions{});
-  const SliceResult slices = slice(maps, segmentation, SliceOptions{});
+  const RasterPlan slices = slice(maps, segmentation, SliceOptions{});
   return build_plan(maps, slices, sheet, PlanOptions{});
 }
 

@@ -29,7 +29,7 @@ Plan plan_of_oa_mesh(TriangleMesh oa_mesh) {
   const Sheet sheet;
   const RasterMaps maps = raster(scene, sheet, RasterOptions{});
   const Segmentation segmentation = segment(maps, SegmentOptions{});
-  const SliceResult slices = slice(maps, segmentation, SliceOptions{});
+  const RasterPlan slices = slice(maps, segmentation, SliceOptions{});
   return build_plan(maps, slices, sheet, PlanOptions{});
 }
 
@@ -115,7 +115,7 @@ TEST(Plan, AFacesPieceApartFromItIsFloatingAndACrumbIsCutOut) {
   const RayScene scene(test::box({40, 0, 0}, {150, 60, 40}));
   const Sheet sheet;
   const RasterMaps maps = raster(scene, sheet, RasterOptions{});
-  const SliceResult sliced = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const RasterPlan sliced = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
   const Plan whole = build_plan(maps, sliced, sheet, PlanOptions{});
   ASSERT_EQ(whole.faces.size(), 4u);
   ASSERT_TRUE(whole.validity.ok());
@@ -126,7 +126,7 @@ TEST(Plan, AFacesPieceApartFromItIsFloatingAndACrumbIsCutOut) {
   const std::int32_t front = sliced.faces[2].orientation == Orientation::V ? 2 : 3;
   ASSERT_EQ(sliced.faces[static_cast<std::size_t>(front)].orientation, Orientation::V);
   auto with_island = [&](int size) {
-    SliceResult s = sliced;
+    RasterPlan s = sliced;
     for (int r = row; r < row + size; ++r)
       for (int c = col; c < col + size; ++c) s.face(c, r) = front;
     return build_plan(maps, s, sheet, PlanOptions{});
@@ -157,14 +157,14 @@ TEST(Plan, BoxFloatingInMidAirIsFloating) {
 // (sides off the pixel lattice): front V(47.1) from h 41.3 to 77.9, top H(77.9) from d 18.6 to 47.1.
 TEST(Plan, RaysShotOnTheExactPlanReachTheFacesWhereTheirFoldLinesMeetThem) {
   const test::FloatingBoxPlan box;
-  const SliceResult& slices = box.slices;
-  const PlanBuild& build = box.build;
+  const RasterPlan& slices = box.slices;
+  const ExactPlan& build = box.build;
   ASSERT_EQ(slices.faces.size(), 4u);
   const std::int32_t front = box.front, top = box.top;
   ASSERT_EQ(slices.faces[static_cast<std::size_t>(front)].orientation, Orientation::V);
   ASSERT_EQ(slices.faces[static_cast<std::size_t>(top)].depth_mm, 77.9);
   const double x = 100.3;
-  using Reached = std::vector<PlanBuild::Reached>;
+  using Reached = std::vector<ExactPlan::Reached>;
   auto faces_of = [](const Reached& reached) {
     std::vector<std::int32_t> faces;
     for (const auto& r : reached) faces.push_back(r.face);
@@ -208,7 +208,7 @@ TEST(Plan, RaysShotOnTheExactPlanReachTheFacesWhereTheirFoldLinesMeetThem) {
 // Y = h - 47.1, and its bottom is a cut on a pixel edge, under Y = 41.3 - 47.1.
 TEST(Plan, AFoldJustShortOfAFaceReachesItWithinTheGivenDistance) {
   const test::FloatingBoxPlan box;
-  const PlanBuild& build = box.build;
+  const ExactPlan& build = box.build;
   const double x = 100.3;
   double bottom = NAN;  // the front's bottom cut, where the ray crosses it
   for (const PlanPolyline& line : build.full().lines)
@@ -235,7 +235,7 @@ TEST(Plan, AFoldJustShortOfAFaceReachesItWithinTheGivenDistance) {
 // Supports painted since the exact plan was built cover what it holds where they cross the ray.
 TEST(Plan, RaysMeetTheFacesPaintedSinceThePlanWasBuiltAndNotWhatTheyCover) {
   const test::FloatingBoxPlan box;
-  const PlanBuild& build = box.build;
+  const ExactPlan& build = box.build;
   ASSERT_EQ(box.slices.faces.size(), 4u);
   const std::int32_t top = box.top;
   const double x = 100.3;
@@ -528,7 +528,7 @@ TEST(Plan, AVerdictBuildDecidesAsTheFullBuildAndDrawsNothing) {
   options.placement.up = UpAxis::Z;
   options.supports.enabled = false;  // sliced, unsupported: floating and invalid faces, in pieces
   const DesignResult r = design(test::models_dir() / "seedlike" / "sphere.stl", options);
-  const Plan verdict = PlanBuild(r.maps, r.slices, options.sheet, options.plan).verdict();
+  const Plan verdict = ExactPlan(r.maps, r.slices, options.sheet, options.plan).verdict();
   const Plan& full = r.plan;
   ASSERT_GT(full.validity.floating + full.validity.invalid, 0) << "a plan with something to decide";
   EXPECT_EQ(verdict.validity.status, full.validity.status);

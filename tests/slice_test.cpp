@@ -19,7 +19,7 @@ namespace {
 struct Planned {
   RasterMaps maps;
   Segmentation segmentation;
-  SliceResult slices;
+  RasterPlan slices;
 };
 
 Planned plan_of_oa_mesh(TriangleMesh oa_mesh, double W = 3.0) {
@@ -221,7 +221,7 @@ namespace {
 // A face cut in three by a column of another face: the largest part keeps its id, the other
 // becomes a face of its own with the same plane, and a crumb joins the face it touches most.
 TEST(Slice, FacesInPartsBecomeOneFacePerPartAndCrumbsJoinANeighbour) {
-  SliceResult s;
+  RasterPlan s;
   s.face = Grid<std::int32_t>(12, 6, kBackFace);
   s.faces = {{Orientation::V, 0}, {Orientation::H, 0}, {Orientation::H, 7.5}, {Orientation::V, 3}};
   for (int r = 1; r < 5; ++r) {
@@ -247,7 +247,7 @@ TEST(Slice, FacesInPartsBecomeOneFacePerPartAndCrumbsJoinANeighbour) {
 // Parts are 4-connected: a U whose arms meet only in its bottom row is one part, a square touching
 // it at a corner only is another, and the largest part keeps the id whatever order it is met in.
 TEST(Slice, AFaceIsInPartsOnlyWhereNoPathOfSidesJoinsThem) {
-  SliceResult s;
+  RasterPlan s;
   s.face = Grid<std::int32_t>(10, 7, kBackFace);
   s.faces = {{Orientation::V, 0}, {Orientation::H, 0}, {Orientation::V, 4}};
   for (int r = 0; r < 2; ++r)

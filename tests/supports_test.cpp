@@ -20,7 +20,7 @@ namespace origamic {
 namespace {
 
 // Column extent [min, max] in pixels of every support face of a raster plan.
-std::map<std::int32_t, std::pair<int, int>> support_columns(const SliceResult& slices) {
+std::map<std::int32_t, std::pair<int, int>> support_columns(const RasterPlan& slices) {
   std::map<std::int32_t, std::pair<int, int>> extent;
   for (int row = 0; row < slices.face.rows; ++row)
     for (int col = 0; col < slices.face.cols; ++col) {
@@ -62,8 +62,8 @@ std::vector<Candidate> nearest(const std::vector<Candidate>& leaving) {
 }
 
 // choose_supports on the raster plan's own folds.
-SupportChoice choose(const RasterMaps& maps, const SliceResult& slices, const PlanBuild& build,
-                     const Standing& standing, const std::vector<std::int32_t>& invalid, Reach reach = {}) {
+SupportChoice choose(const RasterMaps& maps, const RasterPlan& slices, const ExactPlan& build,
+                     const FaceVerdicts& standing, const std::vector<std::int32_t>& invalid, SupportReach reach = {}) {
   const std::vector<FoldEdge> folds = raster_folds(maps.grid, slices, aligned_fold_tolerance_mm(maps.grid));
   return choose_supports(maps, slices, build, {}, standing, folds, invalid, SupportOptions{}, reach);
 }
@@ -72,9 +72,9 @@ TEST(Supports, FloatingBoxIsSupportedAtTopAndBottom) {
   const RayScene scene(test::box({60, 40, 20}, {150, 80, 50}));
   const Sheet sheet;
   const RasterMaps maps = raster(scene, sheet, RasterOptions{});
-  const SliceResult slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const RasterPlan slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
   ASSERT_FALSE(plan_stands(build_plan(maps, slices, sheet, PlanOptions{}).validity, false));
-  const Supported s = add_supports(maps, slices, sheet, PlanOptions{}, SupportOptions{});
+  const SupportedPlan s = add_supports(maps, slices, sheet, PlanOptions{}, SupportOptions{});
   EXPECT_TRUE(s.report.converged) << stop_reason(s.report);
   EXPECT_EQ(s.report.supports, 2);
   expect_exact_and_standing(s.plan);
@@ -95,15 +95,15 @@ TEST(Supports, FloatingBoxIsSupportedAtTopAndBottom) {
   EXPECT_EQ(found, 2);
 }
 
-// A round finds what each support reaches on the exact plan (PlanBuild::faces_reached); the rows
+// A round finds what each support reaches on the exact plan (ExactPlan::faces_reached); the rows
 // it paints hold the fold the next exact plan draws there.
 TEST(Supports, ARoundReachesTheFacesOnTheExactPlan) {
   const test::FloatingBoxPlan box;
   const RasterMaps& maps = box.maps;
-  const SliceResult& slices = box.slices;
-  const PlanBuild& build = box.build;
+  const RasterPlan& slices = box.slices;
+  const ExactPlan& build = box.build;
   const Plan& verdict = build.verdict();
-  const Standing standing = standing_of(verdict);
+  const FaceVerdicts standing = standing_of(verdict);
   const std::vector<std::int32_t> invalid{2, 3};
   ASSERT_EQ(verdict.validity.floating, 2);
   // One ear: the floor, the front, its fold with the top, the top, the back plane.
@@ -133,12 +133,12 @@ TEST(Supports, ARoundReachesTheFacesOnTheExactPlan) {
 TEST(Supports, RaysMeetFacesTheRasterPlanGainedSinceTheExactPlan) {
   const test::FloatingBoxPlan box;
   const RasterMaps& maps = box.maps;
-  const SliceResult& slices = box.slices;
-  const PlanBuild& build = box.build;
+  const RasterPlan& slices = box.slices;
+  const ExactPlan& build = box.build;
   const std::int32_t front = box.front;
   // Below the front V(47.1) (Y from 41.3 - 47.1 up), the floor gains an H(20) band from Y -30 to
   // -20 across the box: the front, reaching down along its plane, folds onto it at 20 - 47.1.
-  SliceResult changed = slices;
+  RasterPlan changed = slices;
   const auto h20 = static_cast<std::int32_t>(changed.faces.size());
   changed.faces.push_back({Orientation::H, 20, 0, 0, false, false});
   const PixelGrid& grid = maps.grid;
@@ -147,7 +147,7 @@ TEST(Supports, RaysMeetFacesTheRasterPlanGainedSinceTheExactPlan) {
       if (grid.Y(r) > -30 && grid.Y(r) < -20 && grid.X(c) > 60.2 && grid.X(c) < 150.7) changed.face(c, r) = h20;
   const std::vector<std::int32_t> faces{front};
   const std::vector<Candidate> down =
-      nearest(leaving(support_candidates(maps, changed, build, {}, faces, Reach{}), front, false));
+      nearest(leaving(support_candidates(maps, changed, build, {}, faces, SupportReach{}), front, false));
   ASSERT_FALSE(down.empty());
   for (const Candidate& c : down) {
     if (c.c0 < 60.2 * grid.px_per_mm || c.c1 > 150.7 * grid.px_per_mm) continue;  // the band's columns
@@ -158,7 +158,7 @@ TEST(Supports, RaysMeetFacesTheRasterPlanGainedSinceTheExactPlan) {
   }
   // On the plan as built, the front reaches the floor, at Y = -47.1.
   const std::vector<Candidate> before =
-      nearest(leaving(support_candidates(maps, slices, build, {}, faces, Reach{}), front, false));
+      nearest(leaving(support_candidates(maps, slices, build, {}, faces, SupportReach{}), front, false));
   ASSERT_FALSE(before.empty());
   for (const Candidate& c : before) EXPECT_EQ(c.target, kFloorFace);
 }
@@ -167,14 +167,14 @@ TEST(Supports, RaysMeetFacesTheRasterPlanGainedSinceTheExactPlan) {
 // hold: it gets no candidate, and the other faces of the round get theirs.
 TEST(Supports, AFaceWithNoPixelsLeftHasNoEdgeToHold) {
   const test::FloatingBoxPlan box;
-  SliceResult joined = box.slices;
+  RasterPlan joined = box.slices;
   for (std::int32_t& f : joined.face.values)
     if (f == box.top) f = box.front;
   joined.faces[static_cast<std::size_t>(box.front)].pixels +=
       std::exchange(joined.faces[static_cast<std::size_t>(box.top)].pixels, 0);
   const std::vector<std::int32_t> faces{box.top, box.front};
   const std::vector<Candidate> found =
-      support_candidates(box.maps, joined, box.build, {}, faces, Reach{true, true, true});
+      support_candidates(box.maps, joined, box.build, {}, faces, SupportReach{true, true, true});
   ASSERT_FALSE(found.empty());
   for (const Candidate& s : found) EXPECT_EQ(s.face, box.front);
 }
@@ -188,8 +188,8 @@ TEST(Supports, AFoldAtTheFarEndOfAFacesPieceLandsBeyondIt) {
   const Sheet sheet;
   const RayScene scene(test::merged(test::box({60, 0, 0}, {150, 50, 30}), test::box({80, 40, 60}, {130, 50, 80})));
   const RasterMaps maps = raster(scene, sheet, RasterOptions{});
-  const SliceResult slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
-  const PlanBuild build(maps, slices, sheet, PlanOptions{});
+  const RasterPlan slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const ExactPlan build(maps, slices, sheet, PlanOptions{});
   const Plan& verdict = build.verdict();
   std::int32_t s_top = -1, g_front = -1;
   for (std::size_t f = 2; f < slices.faces.size(); ++f) {
@@ -201,7 +201,7 @@ TEST(Supports, AFoldAtTheFarEndOfAFacesPieceLandsBeyondIt) {
   ASSERT_GE(s_top, 0);
   ASSERT_GE(g_front, 0);
   const std::vector<Candidate> up =
-      nearest(leaving(support_candidates(maps, slices, build, {}, {s_top}, Reach{}), s_top, true));
+      nearest(leaving(support_candidates(maps, slices, build, {}, {s_top}, SupportReach{}), s_top, true));
   ASSERT_FALSE(up.empty());
   for (const Candidate& c : up) {
     EXPECT_EQ(c.target, kBackFace);
@@ -219,8 +219,8 @@ TEST(Supports, AFoldOnARowEdgeLandsInTheRowBeforeWhereTheRowBeyondHoldsNoTarget)
   const Sheet sheet;
   const RayScene scene(test::box({60, 41.3, 18.6}, {150, 78, 47.1}));
   const RasterMaps maps = raster(scene, sheet, RasterOptions{});
-  const SliceResult slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
-  const PlanBuild build(maps, slices, sheet, PlanOptions{});
+  const RasterPlan slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const ExactPlan build(maps, slices, sheet, PlanOptions{});
   const PixelGrid& grid = maps.grid;
   std::int32_t top = -1;
   for (std::size_t f = 2; f < slices.faces.size(); ++f)
@@ -233,19 +233,19 @@ TEST(Supports, AFoldOnARowEdgeLandsInTheRowBeforeWhereTheRowBeyondHoldsNoTarget)
   ASSERT_EQ(grid.Y(beyond), 78 + px_mm / 2);
   ASSERT_EQ(grid.Y(before), 78 - px_mm / 2);
   const std::vector<Candidate> plain =
-      nearest(leaving(support_candidates(maps, slices, build, {}, {top}, Reach{}), top, true));
+      nearest(leaving(support_candidates(maps, slices, build, {}, {top}, SupportReach{}), top, true));
   ASSERT_FALSE(plain.empty());
   for (const Candidate& c : plain) {
     EXPECT_EQ(c.target, kBackFace);
     EXPECT_EQ(c.target_row, beyond);
   }
-  SliceResult cut = slices;
+  RasterPlan cut = slices;
   const auto hole = static_cast<std::int32_t>(cut.faces.size());
   cut.faces.push_back({Orientation::V, 0, 0, 0, false, true});
   for (int c = 0; c < cut.face.cols; ++c)
     if (cut.face(c, beyond) == kBackFace) cut.face(c, beyond) = hole;
   const std::vector<Candidate> chosen =
-      nearest(leaving(support_candidates(maps, cut, build, {}, {top}, Reach{}), top, true));
+      nearest(leaving(support_candidates(maps, cut, build, {}, {top}, SupportReach{}), top, true));
   ASSERT_FALSE(chosen.empty());
   for (const Candidate& c : chosen) {
     EXPECT_EQ(c.target, kBackFace);
@@ -460,8 +460,8 @@ TEST(Supports, ASupportThroughTheBackPlaneIsChosenOverAnEquallyLongOneAcrossAVis
   const RayScene scene(
       test::merged(test::box({60, 41.3, 18.6}, {150, 77.9, 47.1}), test::box({65, 0, 0}, {105, 66, 8})));
   const RasterMaps maps = raster(scene, sheet, RasterOptions{});
-  const SliceResult slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
-  const PlanBuild build(maps, slices, sheet, PlanOptions{});
+  const RasterPlan slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const ExactPlan build(maps, slices, sheet, PlanOptions{});
   std::int32_t top = -1, front = -1, c_top = -1;
   for (std::size_t f = 2; f < slices.faces.size(); ++f) {
     const RasterFace& face = slices.faces[f];
@@ -474,7 +474,7 @@ TEST(Supports, ASupportThroughTheBackPlaneIsChosenOverAnEquallyLongOneAcrossAVis
   ASSERT_GE(c_top, 0);
   // Both kinds of candidate are there, as long, to the back plane.
   const std::vector<Candidate> up =
-      nearest(leaving(support_candidates(maps, slices, build, {}, {top}, Reach{}), top, true));
+      nearest(leaving(support_candidates(maps, slices, build, {}, {top}, SupportReach{}), top, true));
   const int c_from = static_cast<int>(65 * maps.grid.px_per_mm), c_to = static_cast<int>(105 * maps.grid.px_per_mm);
   const auto across_c = std::ranges::find_if(up, [&](const Candidate& c) { return c.c0 > c_from && c.c1 < c_to; });
   const auto bare = std::ranges::find_if(up, [&](const Candidate& c) { return c.c0 > c_to; });

@@ -78,13 +78,13 @@ int main(int argc, char** argv) {
   benchmark::RegisterBenchmark("slice", [&](benchmark::State& state) {
     std::size_t faces = 0;
     for (auto _ : state) {
-      const origamic::SliceResult slices = origamic::slice(maps, segmentation, origamic::SliceOptions{});
+      const origamic::RasterPlan slices = origamic::slice(maps, segmentation, origamic::SliceOptions{});
       faces = slices.faces.size();
     }
     state.counters["faces"] = static_cast<double>(faces);
   })->Unit(benchmark::kMillisecond)->MinTime(1.0);
 
-  const origamic::SliceResult slices = origamic::slice(maps, segmentation, origamic::SliceOptions{});
+  const origamic::RasterPlan slices = origamic::slice(maps, segmentation, origamic::SliceOptions{});
   benchmark::RegisterBenchmark("plan", [&](benchmark::State& state) {
     origamic::Plan plan;
     for (auto _ : state) plan = origamic::build_plan(maps, slices, sheet, origamic::PlanOptions{});

@@ -90,7 +90,7 @@ struct Plan {
 inline constexpr double kFoldLineTolerance_mm = 1e-6;
 
 /// How far from its fold line a V/H boundary may run and still become that fold, in mm.
-inline double fold_snap_tolerance_mm(const PlanOptions& options, const SliceResult& slices, const PixelGrid& grid) {
+inline double fold_snap_tolerance_mm(const PlanOptions& options, const RasterPlan& slices, const PixelGrid& grid) {
   return options.fold_snap_fraction_of_W * slices.min_strip_mm + 1 / grid.px_per_mm;
 }
 
@@ -100,8 +100,8 @@ inline double aligned_fold_tolerance_mm(const PixelGrid& grid) { return 1 / grid
 
 /// Builds the exact plan from the raster plan (sheet in mm). Deterministic. The exact numbers are built
 /// without thread safety, so calls from several threads take turns (one exact run at a time per
-/// process, as for PlanBuild, add_supports, design and analyze_plan).
-Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& sheet, const PlanOptions& options);
+/// process, as for ExactPlan, add_supports, design and analyze_plan).
+Plan build_plan(const RasterMaps& maps, const RasterPlan& slices, const Sheet& sheet, const PlanOptions& options);
 
 /// The plan line Y = h - d, taken exactly (the difference of the two doubles, unrounded): where a
 /// fold between H(h) and V(d) lies.
@@ -137,12 +137,12 @@ struct PaintedBand {
 /// (the faces' statuses, orientations, depths, areas and folds on top and bottom, the validity, the
 /// arrangement's checks; no lines nor their lengths, no regions, inside points, lost or collapsed
 /// faces), then, from the arrangement kept, the plan in full, as build_plan gives it. Same rules.
-class PlanBuild {
+class ExactPlan {
  public:
-  PlanBuild(const RasterMaps& maps, const SliceResult& slices, const Sheet& sheet, const PlanOptions& options);
-  ~PlanBuild();
-  PlanBuild(PlanBuild&&) noexcept;
-  PlanBuild& operator=(PlanBuild&&) noexcept;
+  ExactPlan(const RasterMaps& maps, const RasterPlan& slices, const Sheet& sheet, const PlanOptions& options);
+  ~ExactPlan();
+  ExactPlan(ExactPlan&&) noexcept;
+  ExactPlan& operator=(ExactPlan&&) noexcept;
 
   const Plan& verdict() const;
   Plan full() const;

@@ -82,7 +82,7 @@ struct PlanAnalysis {
   std::vector<double> area_mm2;       // per region
   std::vector<std::int32_t> node;     // per region: its face in `graph` (0 back plane, 1 floor, 2.. the others)
   FaceGraph graph;                    // one fold per fold edge between two nodes; lines by Y within the tolerance
-  Validity validity;                  // validate(graph)
+  Validity validity;                  // validity_of(graph)
   std::vector<PlanProblem> problems;  // errors and warnings, errors first, each group in plan order
   int faces = 0;                      // nodes other than the back plane and the floor
   int errors = 0, warnings = 0;

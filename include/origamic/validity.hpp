@@ -36,8 +36,8 @@ struct FaceGraph {
 
 struct Validity {
   std::vector<FaceStatus> status;  // per face; back plane and floor are Valid
-  std::vector<bool> in_X;          // reachable from the back plane without the floor
-  std::vector<bool> in_Y;          // reachable from the floor without the back plane
+  std::vector<bool> reaches_back_plane;          // reachable from the back plane without the floor
+  std::vector<bool> reaches_floor;          // reachable from the floor without the back plane
   std::vector<int> fold_lines;     // distinct fold lines per face
   int valid = 0, indirect = 0, floating = 0, dangling = 0, invalid = 0, removed = 0;  // over faces 2 ..
 
@@ -51,7 +51,7 @@ struct Validity {
 /// Of the rest, the valid faces are those in one biconnected block with a node joined to both the
 /// back plane and the floor (Menger: two such disjoint paths exist exactly then). The sets X and Y
 /// are computed as the seed grows them; faces outside the valid set are classified as it says.
-Validity validate(const FaceGraph& graph);
+Validity validity_of(const FaceGraph& graph);
 
 /// Adds the status of every face but the back plane and the floor to the counts.
 void count_statuses(Validity& validity);

@@ -66,7 +66,7 @@ void design_loaded(LoadedMesh loaded, const std::filesystem::path& model_file, c
     result.plan = build_plan(result.maps, result.slices, options.sheet, options.plan);
     clock.lap("plan");
   } else {
-    Supported supported = add_supports(result.maps, result.slices, options.sheet, options.plan, options.supports);
+    SupportedPlan supported = add_supports(result.maps, result.slices, options.sheet, options.plan, options.supports);
     result.slices = std::move(supported.slices);
     result.plan = std::move(supported.plan);
     result.supports = supported.report;

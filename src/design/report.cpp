@@ -31,7 +31,7 @@ nlohmann::json placement_json(const Placement& p, const PlacementOptions& option
 }
 
 nlohmann::json slices_json(const DesignResult& result, const DesignOptions& options) {
-  const SliceResult& slices = result.slices;
+  const RasterPlan& slices = result.slices;
   const double pixel_area_mm2 = 1 / (result.maps.grid.px_per_mm * result.maps.grid.px_per_mm);
   nlohmann::json faces = nlohmann::json::array();
   for (std::size_t i = 0; i < slices.faces.size(); ++i) {

@@ -58,7 +58,7 @@ bool is_fold(const RasterFace& upper, const RasterFace& lower, double boundary_Y
   return std::abs(fold_line_Y(upper.orientation, upper.depth_mm, lower.depth_mm) - boundary_Y) <= pixel_mm;
 }
 
-std::vector<std::uint8_t> plan_preview_rgb(const RasterMaps& maps, const SliceResult& slices) {
+std::vector<std::uint8_t> plan_preview_rgb(const RasterMaps& maps, const RasterPlan& slices) {
   const Grid<std::int32_t>& face = slices.face;
   std::vector<std::uint8_t> pixels(3 * face.size(), 255);
   auto paint = [&](int col, int row, std::array<std::uint8_t, 3> rgb) {
@@ -98,7 +98,7 @@ std::vector<std::uint8_t> error_rgb(const Grid<float>& error, double W) {
 }  // namespace
 
 std::vector<OutputFile> slice_image_files(const RasterMaps& maps, const Segmentation& segmentation,
-                                          const SliceResult& slices, const CardView& card,
+                                          const RasterPlan& slices, const CardView& card,
                                           const std::filesystem::path& dir) {
   const int w = maps.grid.cols, h = maps.grid.rows;
   const std::vector<std::pair<std::string, std::vector<std::uint8_t>>> images = {

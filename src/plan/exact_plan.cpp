@@ -332,7 +332,7 @@ int keep_faces_on_the_card(const std::vector<RasterFace>& faces, Built& built) {
 
 }  // namespace
 
-PlanBuild::PlanBuild(const RasterMaps& maps, const SliceResult& sliced, const Sheet& sheet, const PlanOptions& options)
+ExactPlan::ExactPlan(const RasterMaps& maps, const RasterPlan& sliced, const Sheet& sheet, const PlanOptions& options)
     : state_(std::make_unique<State>()) {
   const auto lock = exact_run_lock();
   State& state = *state_;  // built in place: the handles read off the arrangement stay valid
@@ -341,7 +341,7 @@ PlanBuild::PlanBuild(const RasterMaps& maps, const SliceResult& sliced, const Sh
   // they can (align_folds_to_lines; a no-op on plans already aligned), then only those within half a
   // pixel snap onto it. Snapping farther could carry a fold across a neighbouring boundary, which
   // forced the whole chain back to its pixel contour and lost the fold.
-  SliceResult slices;  // the fields a plan is built of (a field it comes to read must be copied here)
+  RasterPlan slices;  // the fields a plan is built of (a field it comes to read must be copied here)
   slices.min_strip_mm = sliced.min_strip_mm;
   slices.block_px = sliced.block_px;
   slices.face = sliced.face;
@@ -475,7 +475,7 @@ PlanBuild::PlanBuild(const RasterMaps& maps, const SliceResult& sliced, const Sh
         among_holes[static_cast<std::size_t>(pieces.of.at(side))] = 0;
     }
   const PieceVerdict verdict =
-      face_validity(validate(graph), pieces, node, piece_area, among_holes, n, slices.min_strip_mm);
+      face_validity(validity_of(graph), pieces, node, piece_area, among_holes, n, slices.min_strip_mm);
   plan.validity = verdict.validity;
   plan.loose_card_pieces = verdict.loose_card_pieces;
   plan.crumbs_cut_out = static_cast<int>(std::ranges::count(verdict.cut_out, 1));
@@ -495,24 +495,24 @@ PlanBuild::PlanBuild(const RasterMaps& maps, const SliceResult& sliced, const Sh
   state.faces = std::move(slices.faces);
 }
 
-PlanBuild::~PlanBuild() {
+ExactPlan::~ExactPlan() {
   const auto lock = exact_run_lock();  // its exact numbers are freed
   state_.reset();
 }
-PlanBuild::PlanBuild(PlanBuild&&) noexcept = default;
-PlanBuild& PlanBuild::operator=(PlanBuild&& other) noexcept {
+ExactPlan::ExactPlan(ExactPlan&&) noexcept = default;
+ExactPlan& ExactPlan::operator=(ExactPlan&& other) noexcept {
   const auto lock = exact_run_lock();
   state_ = std::move(other.state_);
   return *this;
 }
 
-const Plan& PlanBuild::verdict() const { return state_->plan; }
-const Grid<std::int32_t>& PlanBuild::face_map() const { return state_->labels; }
-const std::vector<RasterFace>& PlanBuild::faces() const { return state_->faces; }
+const Plan& ExactPlan::verdict() const { return state_->plan; }
+const Grid<std::int32_t>& ExactPlan::face_map() const { return state_->labels; }
+const std::vector<RasterFace>& ExactPlan::faces() const { return state_->faces; }
 
-Plan build_plan(const RasterMaps& maps, const SliceResult& slices, const Sheet& sheet, const PlanOptions& options) {
+Plan build_plan(const RasterMaps& maps, const RasterPlan& slices, const Sheet& sheet, const PlanOptions& options) {
   const auto lock = exact_run_lock();
-  return PlanBuild(maps, slices, sheet, options).full();
+  return ExactPlan(maps, slices, sheet, options).full();
 }
 
 }  // namespace origamic

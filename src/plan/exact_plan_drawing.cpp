@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The exact plan drawn in full (PlanBuild::full): its lines chained and measured, its faces as
+// The exact plan drawn in full (ExactPlan::full): its lines chained and measured, its faces as
 // regions with a point inside each, and the raster faces it lost.
 
 // Exact numbers here are never shared between threads (see exact_kernel.hpp).
@@ -213,7 +213,7 @@ void count_vanished_faces(const Grid<std::int32_t>& labels, const std::vector<Ra
 
 }  // namespace
 
-Plan PlanBuild::full() const {
+Plan ExactPlan::full() const {
   const auto lock = exact_run_lock();
   const State& state = *state_;
   Plan plan = state.plan;

@@ -74,8 +74,8 @@ PieceVerdict face_validity(const Validity& by_node, const Pieces& pieces, const 
   verdict.cut_out.assign(pieces.label.size(), 0);
   Validity& v = verdict.validity;
   v.status.assign(faces, FaceStatus::Valid);
-  v.in_X.assign(faces, true);
-  v.in_Y.assign(faces, true);
+  v.reaches_back_plane.assign(faces, true);
+  v.reaches_floor.assign(faces, true);
   v.fold_lines.assign(faces, 2);
   std::vector<int> worst(faces, -1);
   std::vector<std::uint8_t> kept(faces, 0);  // some piece of the face stays in the sheet
@@ -103,7 +103,7 @@ PieceVerdict face_validity(const Validity& by_node, const Pieces& pieces, const 
     if (shortfall(by_node.status[k]) <= worst[f]) continue;
     worst[f] = shortfall(by_node.status[k]);
     v.status[f] = by_node.status[k];
-    v.in_X[f] = by_node.in_X[k], v.in_Y[f] = by_node.in_Y[k], v.fold_lines[f] = by_node.fold_lines[k];
+    v.reaches_back_plane[f] = by_node.reaches_back_plane[k], v.reaches_floor[f] = by_node.reaches_floor[k], v.fold_lines[f] = by_node.fold_lines[k];
   }
   // A face all of whose pieces fell out is a hole.
   for (std::size_t p = 0; p < pieces.label.size(); ++p)

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Vertical ray shooting on the exact plan (PlanBuild::faces_reached): where a support leaving a face
+// Vertical ray shooting on the exact plan (ExactPlan::faces_reached): where a support leaving a face
 // can fold onto another, decided exactly.
 
 // Exact numbers here are never shared between threads, but for the lines read under the lock (see
-// exact_kernel.hpp and PlanBuild::State).
+// exact_kernel.hpp and ExactPlan::State).
 #define CGAL_HAS_NO_THREADS 1
 
 #include <algorithm>
@@ -29,7 +29,7 @@ using exact::Point;
 // The edges the vertical line X = x crosses, bottom to top. An edge is crossed where x lies in
 // [its left end's x, its right end's x): a line through a vertex takes the edges to its right, as a
 // line a hair to the right would, and no vertical edge.
-const std::vector<PlanBuild::State::Crossing>& PlanBuild::State::line_at(double x) {
+const std::vector<ExactPlan::State::Crossing>& ExactPlan::State::line_at(double x) {
   const std::lock_guard lock(mutex);
   if (const auto known = lines.find(x); known != lines.end()) return known->second;
   const Arrangement& arr = built.arrangement;
@@ -93,7 +93,7 @@ exact::Rational exact_Y(const FoldLine& line) { return exact::Rational(line.h) -
 
 }  // namespace
 
-std::vector<PlanBuild::Reached> PlanBuild::faces_reached(const Ray& ray) const {
+std::vector<ExactPlan::Reached> ExactPlan::faces_reached(const Ray& ray) const {
   const auto& [x, from_Y, up, h, d, painted, short_mm] = ray;
   using Rational = exact::Rational;
   // The line's crossings, and the ends of the bands painted over it, as marks: a crossing points at

@@ -20,7 +20,7 @@
 namespace origamic {
 namespace exact {
 
-// Threads read copies of the lines' rationals at once (PlanBuild::State): gmpxx copies are deep,
+// Threads read copies of the lines' rationals at once (ExactPlan::State): gmpxx copies are deep,
 // where CGAL's own Gmpq would share a reference count that CGAL_HAS_NO_THREADS leaves unguarded.
 static_assert(std::is_same_v<Rational, mpq_class>, "exact rationals must be gmpxx's mpq_class");
 
@@ -81,7 +81,7 @@ inline double length_of(Arrangement::Halfedge_const_handle he) {
 }  // namespace exact
 
 // What a verdict leaves for drawing the plan in full: the arrangement and what was read off it.
-struct PlanBuild::State {
+struct ExactPlan::State {
   PixelGrid grid;
   std::vector<RasterFace> faces;
   Grid<std::int32_t> labels;

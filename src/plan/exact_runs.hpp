@@ -2,9 +2,9 @@
 // Internal: one exact run at a time per process. The exact numbers are built without thread safety
 // (exact_kernel.hpp: CGAL_HAS_NO_THREADS tripled nothing's cost but leaves their reference counts
 // and caches unguarded), so every public call that makes or frees them (design, add_supports,
-// build_plan, PlanBuild, analyze_plan) holds this lock on its caller's thread: two threads calling
+// build_plan, ExactPlan, analyze_plan) holds this lock on its caller's thread: two threads calling
 // design() wait for each other instead of racing. It is recursive (design calls the others); the
-// worker threads of a run never take it (they read what the run made, under PlanBuild's own lock).
+// worker threads of a run never take it (they read what the run made, under ExactPlan's own lock).
 #pragma once
 
 #include <mutex>

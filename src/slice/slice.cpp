@@ -329,7 +329,7 @@ void fill_holes(const PixelGrid& grid, const Grid<std::int32_t>& segment, const 
 // Y > h, a V(d) face below the floor where Y < -d (the part of a slope beyond its mean). That part
 // becomes the back plane (the floor), so the face ends on its fold with it, at Y = h (Y = -d), as
 // the paper does (seed §4.5).
-void keep_within_card(const PixelGrid& grid, SliceResult& result) {
+void keep_within_card(const PixelGrid& grid, RasterPlan& result) {
   for (int row = 0; row < result.face.rows; ++row)
     for (int col = 0; col < result.face.cols; ++col) {
       std::int32_t& f = result.face(col, row);
@@ -346,7 +346,7 @@ void keep_within_card(const PixelGrid& grid, SliceResult& result) {
 // Connected pieces of each full-resolution subsegment become faces; pieces whose oriented box has a
 // side under W are removed and their holes filled from the neighbours (§4.3.3, last paragraph).
 void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vector<Subsegment>& subsegments, double W,
-                 SliceResult& result) {
+                 RasterPlan& result) {
   const int cols = maps.grid.cols, rows = maps.grid.rows;
   result.face = Grid<std::int32_t>(cols, rows, kNoFace);
   result.faces = {{Orientation::V, 0.0, kBackSegment, 0}, {Orientation::H, 0.0, kFloorSegment, 0}};
@@ -415,7 +415,7 @@ double oriented_box_min_side_px(const std::vector<std::pair<int, int>>& pixels) 
   return std::min(hi_u - lo_u, hi_v - lo_v) + 1;
 }
 
-SliceResult slice(const RasterMaps& maps, const Segmentation& seg, const SliceOptions& options) {
+RasterPlan slice(const RasterMaps& maps, const Segmentation& seg, const SliceOptions& options) {
   const double W = options.min_strip_mm;
   if (!(std::isfinite(W) && W * maps.grid.px_per_mm >= 1))
     throw InputError("SliceOptions::min_strip_mm", "must be a finite width of at least one pixel (" +
@@ -428,7 +428,7 @@ SliceResult slice(const RasterMaps& maps, const Segmentation& seg, const SliceOp
                   "at most a quarter of the card's width and of each half's height (%.1f mm here)", widest);
     throw InputError("SliceOptions::min_strip_mm", text);
   }
-  SliceResult result;
+  RasterPlan result;
   result.min_strip_mm = W;
   result.block_px = static_cast<int>(std::ceil(W * maps.grid.px_per_mm - 1e-9));
   result.segment_orientation = choose_orientations(maps, seg);

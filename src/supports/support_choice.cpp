@@ -52,9 +52,9 @@ class CandidateFinder {
   };
  public:
   // Candidates will be asked of the faces in `wanted` only.
-  CandidateFinder(const RasterMaps& maps, const SliceResult& slices, const PlanBuild& exact,
+  CandidateFinder(const RasterMaps& maps, const RasterPlan& slices, const ExactPlan& exact,
                   std::span<const Candidate> painted, const std::vector<std::int32_t>& wanted,
-                  const SupportPicture& picture, Reach reach)
+                  const SupportPicture& picture, SupportReach reach)
       : exact_(exact),
         picture_(picture),
         painted_(painted),
@@ -146,7 +146,7 @@ class CandidateFinder {
     // crosses where they end with the face, instead of cutting them in two.
     const auto [lo, hi] = columns_[static_cast<std::size_t>(slot_[static_cast<std::size_t>(f)])];
     if (lo > hi) return candidates;  // no pixels left: no edge to hold
-    // With Reach::corners, one more at each end, extended a strip width beyond the face.
+    // With SupportReach::corners, one more at each end, extended a strip width beyond the face.
     struct Start {
       int c0, c1;
       double extra_cost;
@@ -391,7 +391,7 @@ class CandidateFinder {
     // A fold up to half a pixel short of a face counts as on it: the pixel row the fold falls in may
     // hold the face where its exact boundary, simplified, passes, and the support painted there has
     // its end within half a pixel of the fold, which the next plan snaps onto it.
-    for (const PlanBuild::Reached& reached :
+    for (const ExactPlan::Reached& reached :
          exact_.faces_reached({(centre + 0.75) * px_mm_, from_Y, up, h, d, column.painted(), px_mm_ / 2})) {
       // The row the fold falls in; on a row's edge, the row beyond, so that the support ends on the
       // fold, or else the row before, where the target may fill the block when it does not beyond.
@@ -448,7 +448,7 @@ class CandidateFinder {
     return s;
   }
 
-  const PlanBuild& exact_;
+  const ExactPlan& exact_;
   const SupportPicture& picture_;
   std::span<const Candidate> painted_;
   const PixelGrid& grid_;
@@ -534,8 +534,8 @@ void widen(const Grid<std::int32_t>& face, const Claims& claims, const SupportPi
 
 }  // namespace
 
-Standing standing_of(const Plan& plan) {
-  Standing s{plan.validity, {}, {}};
+FaceVerdicts standing_of(const Plan& plan) {
+  FaceVerdicts s{plan.validity, {}, {}};
   for (const PlanFace& face : plan.faces) {
     s.fold_on_top.push_back(face.fold_on_top);
     s.fold_on_bottom.push_back(face.fold_on_bottom);
@@ -563,17 +563,17 @@ std::vector<Candidate> candidates_of(const CandidateFinder& finder, const std::v
 
 }  // namespace
 
-std::vector<Candidate> support_candidates(const RasterMaps& maps, const SliceResult& slices, const PlanBuild& exact,
+std::vector<Candidate> support_candidates(const RasterMaps& maps, const RasterPlan& slices, const ExactPlan& exact,
                                           std::span<const Candidate> painted, const std::vector<std::int32_t>& faces,
-                                          Reach reach) {
+                                          SupportReach reach) {
   const SupportPicture picture(maps, slices);
   return candidates_of(CandidateFinder(maps, slices, exact, painted, faces, picture, reach), faces, reach.split_faces);
 }
 
-SupportChoice choose_supports(const RasterMaps& maps, const SliceResult& slices, const PlanBuild& exact,
-                              std::span<const Candidate> painted, const Standing& standing,
+SupportChoice choose_supports(const RasterMaps& maps, const RasterPlan& slices, const ExactPlan& exact,
+                              std::span<const Candidate> painted, const FaceVerdicts& standing,
                               std::span<const FoldEdge> folds, const std::vector<std::int32_t>& invalid,
-                              const SupportOptions& options, Reach reach) {
+                              const SupportOptions& options, SupportReach reach) {
   const SupportPicture picture(maps, slices);
   const CandidateFinder finder(maps, slices, exact, painted, invalid, picture, reach);
   const std::vector<Candidate> candidates = candidates_of(finder, invalid, reach.split_faces);

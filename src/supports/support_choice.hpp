@@ -36,7 +36,7 @@ struct Candidate {
 };
 
 // What the loop needs to know of a plan: each face's status and which of its sides are folded.
-struct Standing {
+struct FaceVerdicts {
   Validity validity;
   std::vector<std::uint8_t> fold_on_top, fold_on_bottom;
 };
@@ -44,13 +44,13 @@ struct Standing {
 /// The folds of the raster plan: wherever a V(d) pixel and an H(h) pixel meet one above the other
 /// within `tolerance` of Y = h - d, as the exact plan snaps them (plan.hpp), the upper face first; a
 /// run of one pair once, in row order.
-std::vector<FoldEdge> raster_folds(const PixelGrid& grid, const SliceResult& slices, double tolerance);
+std::vector<FoldEdge> raster_folds(const PixelGrid& grid, const RasterPlan& slices, double tolerance);
 
 /// The exact plan's word on each face, as the rounds read it.
-Standing standing_of(const Plan& plan);
+FaceVerdicts standing_of(const Plan& plan);
 
 // What a round's supports may do; the loop (supports.cpp) allows more as the plain rules run out.
-struct Reach {
+struct SupportReach {
   bool split_faces = true;  // cut a third face in two
   // Hold a face that fills half a W-wide block only farther than 2 W in from its edge (the tip of
   // a tapering facet, a spire's) where it does, the support taking the tip.
@@ -64,16 +64,16 @@ struct Reach {
 /// Supports for the invalid faces, chosen ear by ear (support_ears.hpp), the cheapest first, over
 /// the plan's folds and the candidates of both edges of every invalid face; widened, never
 /// overlapping; not yet painted. `exact` is the exact plan of `slices` before the supports `painted`
-/// since: the face each support reaches is found on it and them (PlanBuild::faces_reached). A
+/// since: the face each support reaches is found on it and them (ExactPlan::faces_reached). A
 /// candidate costs the error it adds to the picture and a little for its length (and much for
 /// each face it cuts in two). A face is held only where that costs no more than the error a hole
 /// in its place would add (seed §4.4 shows supports always exist; here they must also be worth it).
 /// The candidate supports from both edges of the faces (seed §4.4, a few per ray: the first faces
 /// it can fold onto), each with its cost and the faces it cuts in two; what choose_supports chooses
 /// among. `exact` and `painted` as there.
-std::vector<Candidate> support_candidates(const RasterMaps& maps, const SliceResult& slices, const PlanBuild& exact,
+std::vector<Candidate> support_candidates(const RasterMaps& maps, const RasterPlan& slices, const ExactPlan& exact,
                                           std::span<const Candidate> painted, const std::vector<std::int32_t>& faces,
-                                          Reach reach);
+                                          SupportReach reach);
 
 struct SupportChoice {
   std::vector<Candidate> supports;
@@ -85,20 +85,20 @@ struct SupportChoice {
   };
   std::vector<CostlyFace> cut_out;
 };
-SupportChoice choose_supports(const RasterMaps& maps, const SliceResult& slices, const PlanBuild& exact,
-                              std::span<const Candidate> painted, const Standing& standing,
+SupportChoice choose_supports(const RasterMaps& maps, const RasterPlan& slices, const ExactPlan& exact,
+                              std::span<const Candidate> painted, const FaceVerdicts& standing,
                               std::span<const FoldEdge> folds, const std::vector<std::int32_t>& invalid,
-                              const SupportOptions& options, Reach reach);
+                              const SupportOptions& options, SupportReach reach);
 
 /// Makes every face of the raster plan one piece of paper, as the exact plan judges them: each
 /// 4-connected part of a face (a loose piece of the back plane or the floor too) becomes a face of
 /// its own, a part under crumb_px pixels joins a neighbour. The face graph of the rounds is then the
 /// exact plan's graph of pieces.
-void split_into_pieces(SliceResult& slices, std::int64_t crumb_px);
+void split_into_pieces(RasterPlan& slices, std::int64_t crumb_px);
 
 /// Paints the chosen supports into the raster plan as faces of their own (RasterFace::support),
 /// then splits it into pieces.
 void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid, double tolerance,
-                    std::int64_t crumb_px, SliceResult& slices);
+                    std::int64_t crumb_px, RasterPlan& slices);
 
 }  // namespace origamic

@@ -17,7 +17,7 @@ namespace origamic {
 // it beside the support, narrower than W and within the support's rows: a piece of paper too thin
 // to hold, which becomes part of the support (a wider support, the same folds).
 void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid, double tolerance,
-                    std::int64_t crumb_px, SliceResult& slices) {
+                    std::int64_t crumb_px, RasterPlan& slices) {
   Grid<std::int32_t>& face = slices.face;
   const auto first_support = static_cast<std::int32_t>(slices.faces.size());
   std::set<std::int32_t> crossed;
@@ -90,7 +90,7 @@ void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid,
   split_into_pieces(slices, crumb_px);
 }
 
-void split_into_pieces(SliceResult& slices, std::int64_t crumb_px) {
+void split_into_pieces(RasterPlan& slices, std::int64_t crumb_px) {
   std::vector<std::int32_t> all(slices.faces.size());
   std::iota(all.begin(), all.end(), 0);
   if (!split_disconnected_faces(slices, all, crumb_px, 0).empty()) merge_coplanar_faces(slices);

@@ -19,7 +19,7 @@ constexpr double kHoleExtra_W = 2;
 
 }  // namespace
 
-SupportPicture::SupportPicture(const RasterMaps& maps, const SliceResult& slices)
+SupportPicture::SupportPicture(const RasterMaps& maps, const RasterPlan& slices)
     : grid_(maps.grid),
       cap_mm_(static_cast<float>(kErrorCap_W * slices.min_strip_mm)),
       hole_error_(slices.faces.size(), 0.0) {

@@ -19,7 +19,7 @@ namespace origamic {
 class SupportPicture {
  public:
   /// The picture of the raster plan as it is.
-  SupportPicture(const RasterMaps& maps, const SliceResult& slices);
+  SupportPicture(const RasterMaps& maps, const RasterPlan& slices);
 
   /// The error a face of this plane would add over the pixels [c0, c1) x [r0, r1), in mm of h + d
   /// (capped) times mm² of plan (negative where it would show the model better than what is there).

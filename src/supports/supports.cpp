@@ -28,7 +28,7 @@ bool needs_support(FaceStatus status, bool allow_dangling) {
 
 }  // namespace
 
-std::vector<NarrowStrip> narrow_strips(const SliceResult& slices, const PixelGrid& grid) {
+std::vector<NarrowStrip> narrow_strips(const RasterPlan& slices, const PixelGrid& grid) {
   const std::size_t n = slices.faces.size();
   std::vector<int> lo(n, INT_MAX), hi(n, -1), lo_row(n, 0);
   for (int r = 0; r < slices.face.rows; ++r)
@@ -80,7 +80,7 @@ bool plan_stands(const Validity& validity, bool allow_dangling) {
   return validity.floating + validity.invalid == 0 && (allow_dangling || validity.dangling == 0);
 }
 
-std::vector<FoldEdge> raster_folds(const PixelGrid& grid, const SliceResult& slices, double tolerance) {
+std::vector<FoldEdge> raster_folds(const PixelGrid& grid, const RasterPlan& slices, double tolerance) {
   const Grid<std::int32_t>& face = slices.face;
   std::array<std::vector<FoldEdge>, kBands> bands;
   for_bands(face.rows - 1, [&](int band, int row_begin, int row_end) {
@@ -114,12 +114,12 @@ namespace {
 // The face graph read from the raster plan's folds (the upper face first). Rebuilding the exact
 // plan costs 50-700 ms; this costs a few, so rounds run on it and the exact plan only confirms (and
 // overrides) its verdict.
-Standing raster_standing(const PixelGrid& grid, const SliceResult& slices, double tolerance) {
+FaceVerdicts raster_standing(const PixelGrid& grid, const RasterPlan& slices, double tolerance) {
   const std::size_t n = slices.faces.size();
   FaceGraph graph;
   graph.faces = static_cast<std::int32_t>(n);
   for (const RasterFace& f : slices.faces) graph.holes.push_back(f.hole);
-  Standing s;
+  FaceVerdicts s;
   s.fold_on_top.assign(n, 0);
   s.fold_on_bottom.assign(n, 0);
   std::map<double, std::int32_t> line_ids;
@@ -129,11 +129,11 @@ Standing raster_standing(const PixelGrid& grid, const SliceResult& slices, doubl
     s.fold_on_bottom[static_cast<std::size_t>(upper)] = 1;
     graph.folds.push_back({upper, lower, line});
   }
-  s.validity = validate(graph);
+  s.validity = validity_of(graph);
   return s;
 }
 
-std::vector<std::int32_t> unsupported(const Standing& standing, bool allow_dangling) {
+std::vector<std::int32_t> unsupported(const FaceVerdicts& standing, bool allow_dangling) {
   std::vector<std::int32_t> faces;
   for (std::size_t f = 2; f < standing.validity.status.size(); ++f)
     if (needs_support(standing.validity.status[f], allow_dangling)) faces.push_back(static_cast<std::int32_t>(f));
@@ -143,7 +143,7 @@ std::vector<std::int32_t> unsupported(const Standing& standing, bool allow_dangl
 constexpr int kSplitRetryRounds = 8;
 // The orders from this one on (and the last, should there be fewer) may cut faces in two again.
 constexpr int kSplitRetryFromOrder = 3;
-// Later orders reach farther (Reach), each from its order on (and at the last, should there be
+// Later orders reach farther (SupportReach), each from its order on (and at the last, should there be
 // fewer): the first keeps to the plain rules, which most models stand by, and fast.
 constexpr int kBelowTipsFromOrder = 1;
 constexpr int kCornersFromOrder = 1;
@@ -154,21 +154,21 @@ struct OrderSetting {
   const Sheet& sheet;
   const PlanOptions& plan_options;
   const SupportOptions& options;
-  std::shared_ptr<const PlanBuild> initial;  // the exact plan of the slices
+  std::shared_ptr<const ExactPlan> initial;  // the exact plan of the slices
 };
 
 // What one order may do beyond the plain rules.
 struct OrderRules {
   // Before any of the model is cut out, a few more rounds in which supports may cut faces in two.
   bool retry_splits = false;
-  Reach reach;
+  SupportReach reach;
 };
 
 // One greedy run of the support loop in the face order that `random` draws: passes of rounds on
 // the raster graph, each ending in a verdict of the exact plan, which always has the last word.
-class OrderRun {
+class FaceOrderRun {
  public:
-  OrderRun(const OrderSetting& setting, SliceResult slices, OrderRules rules, std::mt19937& random)
+  FaceOrderRun(const OrderSetting& setting, RasterPlan slices, OrderRules rules, std::mt19937& random)
       : setting_(setting),
         slices_(std::move(slices)),
         rules_(rules),
@@ -181,7 +181,7 @@ class OrderRun {
     for (std::size_t f = 2; f < slices_.faces.size(); ++f) model_pixels_ += slices_.faces[f].pixels;
   }
 
-  Supported run();
+  SupportedPlan run();
 
  private:
   SupportReport& report() { return result_.report; }
@@ -193,7 +193,7 @@ class OrderRun {
     standing_ = raster_standing(setting_.maps.grid, slices_, aligned_fold_tolerance_mm(setting_.maps.grid));
     exact_ = false;
   }
-  void adopt(std::shared_ptr<const PlanBuild> build) {
+  void adopt(std::shared_ptr<const ExactPlan> build) {
     last_build_ = std::move(build);
     result_.plan = last_build_->verdict();
     confirmed_ = {slices_.face, slices_.faces};
@@ -205,7 +205,7 @@ class OrderRun {
   // The verdict of the exact plan of the slices as they are.
   void confirm() {
     last_build_.reset();  // one arrangement at a time in memory
-    adopt(std::make_shared<const PlanBuild>(setting_.maps, slices_, setting_.sheet, setting_.plan_options));
+    adopt(std::make_shared<const ExactPlan>(setting_.maps, slices_, setting_.sheet, setting_.plan_options));
   }
   // Why rounds stopped, and how many faces were invalid then (SupportStop::None: none was).
   struct Stopped {
@@ -226,20 +226,20 @@ class OrderRun {
     for (const auto& [f, hold, hole] : faces) ids.push_back(f), costs.emplace_back(hold, hole);
     cut_out(ids, costs, "holding it would cost the picture more than its hole");
   }
-  Supported finish();
+  SupportedPlan finish();
 
   const OrderSetting& setting_;
-  SliceResult slices_;
+  RasterPlan slices_;
   OrderRules rules_;
   std::mt19937& random_;
   double tolerance_;
   std::int64_t crumb_px_;
-  Supported result_;
+  SupportedPlan result_;
   bool exact_ = false;  // whether standing_ is the exact plan's word on slices_
   bool allow_splits_ = true;
   bool splits_retried_ = false;
   int split_rounds_left_ = 0;
-  Standing standing_;
+  FaceVerdicts standing_;
   // The face map and faces the last exact verdict was built of: an undone pass goes back to them,
   // and so does the end (the plan kept is drawn in full from that verdict; a crumb joined to a
   // neighbour after it would make them disagree).
@@ -249,12 +249,12 @@ class OrderRun {
   std::vector<Candidate> painted_since_;
   // The exact plan of the last verdict, kept: the plan kept is drawn in full from it. (Freed here,
   // not on another thread: CGAL is built without thread support, its reference counts not atomic.)
-  std::shared_ptr<const PlanBuild> last_build_;
+  std::shared_ptr<const ExactPlan> last_build_;
   std::int64_t model_pixels_ = 0, cut_out_pixels_ = 0;
 };
 
 // Rounds of supports until every face stands or they stop helping; returns why they stopped.
-OrderRun::Stopped OrderRun::support_rounds() {
+FaceOrderRun::Stopped FaceOrderRun::support_rounds() {
   SupportReport& tally = report();
   std::size_t fewest_invalid = SIZE_MAX;
   int rounds_without_progress = 0;
@@ -271,7 +271,7 @@ OrderRun::Stopped OrderRun::support_rounds() {
     if (!rounds_left()) return {SupportStop::RoundBound, count};
     ++tally.rounds;
     std::shuffle(invalid.begin(), invalid.end(), random_);
-    Reach round_reach = rules_.reach;
+    SupportReach round_reach = rules_.reach;
     round_reach.split_faces = allow_splits_ || split_rounds_left_-- > 0;
     const std::vector<FoldEdge> folds =
         raster_folds(setting_.maps.grid, slices_, aligned_fold_tolerance_mm(setting_.maps.grid));
@@ -296,11 +296,11 @@ OrderRun::Stopped OrderRun::support_rounds() {
 // passes that left as many, as the greedy choice did, repeats them: the ears of a state are the
 // same each time.) Found is the fewer of the exact count and the raster graph's: the pass's end is counted on
 // the raster graph, which may miss a face the exact plan sees.
-OrderRun::Stopped OrderRun::pass() {
+FaceOrderRun::Stopped FaceOrderRun::pass() {
   const bool from_exact = exact_;
   std::size_t invalid_before = invalid_faces().size();
   if (exact_) {
-    const Standing raster = raster_standing(setting_.maps.grid, slices_, aligned_fold_tolerance_mm(setting_.maps.grid));
+    const FaceVerdicts raster = raster_standing(setting_.maps.grid, slices_, aligned_fold_tolerance_mm(setting_.maps.grid));
     invalid_before = std::min(invalid_before, unsupported(raster, setting_.options.allow_dangling).size());
   }
   const int supports_before = report().supports, cut_out_before = report().cut_out;
@@ -333,7 +333,7 @@ OrderRun::Stopped OrderRun::pass() {
 // neighbour instead: a face left without pixels is merged away, not a face the rounds would have to
 // hold. A join adds no piece, so supports may still cut faces in two. Either way the slices are no
 // longer the exact plan's. Returns whether the face map changed.
-bool OrderRun::part_faces(const std::vector<std::int32_t>& invalid, int loose) {
+bool FaceOrderRun::part_faces(const std::vector<std::int32_t>& invalid, int loose) {
   std::vector<std::int32_t> apart = invalid;
   if (loose > 0) apart.insert(apart.end(), {kBackFace, kFloorFace});
   const std::vector<std::int32_t> before = slices_.face.values;
@@ -350,7 +350,7 @@ bool OrderRun::part_faces(const std::vector<std::int32_t>& invalid, int loose) {
 // supports to the others. A card missing more than a quarter of its model is no likeness: then
 // nothing is cut, and false returned. (Cutting the smaller half by area at once, as before, took out
 // 17 % of arch_stepped_tower where a face at a time takes out 3 %.)
-bool OrderRun::cut_out_cheapest(std::vector<std::int32_t> invalid) {
+bool FaceOrderRun::cut_out_cheapest(std::vector<std::int32_t> invalid) {
   const SupportPicture picture(setting_.maps, slices_);
   std::ranges::sort(invalid, [&](std::int32_t a, std::int32_t b) {
     return std::pair{picture.hole_error(a), a} < std::pair{picture.hole_error(b), b};
@@ -369,7 +369,7 @@ bool OrderRun::cut_out_cheapest(std::vector<std::int32_t> invalid) {
   return true;
 }
 
-void OrderRun::cut_out(const std::vector<std::int32_t>& faces, const std::vector<std::pair<double, double>>& costs,
+void FaceOrderRun::cut_out(const std::vector<std::int32_t>& faces, const std::vector<std::pair<double, double>>& costs,
                        const std::string& reason) {
   if (faces.empty()) return;
   std::vector<std::int32_t> slot(slices_.faces.size(), -1);
@@ -401,7 +401,7 @@ void OrderRun::cut_out(const std::vector<std::int32_t>& faces, const std::vector
       static_cast<double>(cut_out_pixels_) / static_cast<double>(std::max<std::int64_t>(1, model_pixels_));
 }
 
-Supported OrderRun::run() {
+SupportedPlan FaceOrderRun::run() {
   adopt(setting_.initial);  // every pass, the first too, walks an exact plan
   std::size_t fewest_exact = SIZE_MAX;
   for (;;) {
@@ -447,7 +447,7 @@ Supported OrderRun::run() {
 }
 
 // The plan kept: drawn in full from the last verdict, with the slices it was built of.
-Supported OrderRun::finish() {
+SupportedPlan FaceOrderRun::finish() {
   SupportReport& tally = report();
   tally.converged = tally.cut_out == 0 && invalid_faces().empty() && result_.plan.loose_card_pieces == 0;
   if (tally.converged) tally.stop = SupportStop::None, tally.stop_faces = tally.stop_loose_pieces = 0, tally.stop_at_quota = false;
@@ -459,12 +459,12 @@ Supported OrderRun::finish() {
   return std::move(result_);
 }
 
-bool stands(const Supported& s, bool allow_dangling) {
+bool stands(const SupportedPlan& s, bool allow_dangling) {
   return plan_stands(s.plan.validity, allow_dangling) && s.plan.loose_card_pieces == 0;
 }
 
 // How far a plan is from standing: its faces no support holds, then the share of the model cut out.
-std::pair<int, double> shortfall(const Supported& s, bool allow_dangling) {
+std::pair<int, double> shortfall(const SupportedPlan& s, bool allow_dangling) {
   const Validity& v = s.plan.validity;
   return {v.floating + v.invalid + (allow_dangling ? 0 : v.dangling) + s.plan.loose_card_pieces,
           s.report.cut_out_share};
@@ -477,7 +477,7 @@ constexpr double kPoorLikenessShare = 0.15;
 
 }  // namespace
 
-Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& sheet, const PlanOptions& plan_options,
+SupportedPlan add_supports(const RasterMaps& maps, RasterPlan slices, const Sheet& sheet, const PlanOptions& plan_options,
                        const SupportOptions& options) {
   const auto lock = exact_run_lock();
   // The greedy choice depends on the order the faces choose in, and one order can paint itself into
@@ -485,14 +485,14 @@ Supported add_supports(const RasterMaps& maps, SliceResult slices, const Sheet& 
   std::mt19937 random(options.seed);
   split_into_pieces(slices, std::int64_t{slices.block_px} * slices.block_px / 8);
   const OrderSetting setting{maps, sheet, plan_options, options,
-                             std::make_shared<const PlanBuild>(maps, slices, sheet, plan_options)};
-  std::optional<Supported> best;
+                             std::make_shared<const ExactPlan>(maps, slices, sheet, plan_options)};
+  std::optional<SupportedPlan> best;
   for (int order = 1; order <= std::max(1, options.orders); ++order) {
     const bool last = order >= options.orders;
     const OrderRules rules{order >= std::min(options.orders, kSplitRetryFromOrder),
                            {true, order >= std::min(options.orders, kBelowTipsFromOrder),
                             order >= std::min(options.orders, kCornersFromOrder)}};
-    Supported run = OrderRun(setting, last ? std::move(slices) : slices, rules, random).run();
+    SupportedPlan run = FaceOrderRun(setting, last ? std::move(slices) : slices, rules, random).run();
     if (!best || shortfall(run, options.allow_dangling) < shortfall(*best, options.allow_dangling))
       best = std::move(run);
     best->report.orders = order;

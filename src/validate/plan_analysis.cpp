@@ -350,7 +350,7 @@ struct Analyzer {
       const auto y = static_cast<std::size_t>(std::lower_bound(ys.begin(), ys.end(), fold.Y) - ys.begin());
       result.graph.folds.push_back({a, b, line_of[y]});
     }
-    result.validity = validate(result.graph);
+    result.validity = validity_of(result.graph);
     for (std::size_t r = 0; r < faces.size(); ++r) {
       PlanRegion& region = result.regions[r];
       region.placed = place[r].placed;

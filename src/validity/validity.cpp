@@ -43,7 +43,7 @@ std::string_view to_string(FaceStatus status) {
   return "?";
 }
 
-Validity validate(const FaceGraph& graph) {
+Validity validity_of(const FaceGraph& graph) {
   const auto n = static_cast<std::size_t>(graph.faces);
   Adjacency adjacency(n);
   for (const Fold& fold : graph.folds) {
@@ -58,8 +58,8 @@ Validity validate(const FaceGraph& graph) {
     for (const auto& [g, line] : adjacency[f]) lines.insert(line);
     v.fold_lines[f] = static_cast<int>(lines.size());
   }
-  v.in_X = grow(adjacency, 0, 1);
-  v.in_Y = grow(adjacency, 1, 0);
+  v.reaches_back_plane = grow(adjacency, 0, 1);
+  v.reaches_floor = grow(adjacency, 1, 0);
 
   // Set hinges aside: a face whose folds to faces still standing lie on at most one line.
   std::vector<bool> standing(n, true);
@@ -108,7 +108,7 @@ Validity validate(const FaceGraph& graph) {
       continue;
     }
     if (held[f] && v.fold_lines[f] >= 2) continue;
-    if (!v.in_X[f] && !v.in_Y[f]) {  // no chain of folds reaches the card
+    if (!v.reaches_back_plane[f] && !v.reaches_floor[f]) {  // no chain of folds reaches the card
       s = FaceStatus::Floating;
       continue;
     }

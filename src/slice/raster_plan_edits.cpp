@@ -21,7 +21,7 @@ constexpr int kStep[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
 
 }  // namespace
 
-void merge_coplanar_faces(SliceResult& result) {
+void merge_coplanar_faces(RasterPlan& result) {
   const std::size_t n = result.faces.size();
   UnionFind<std::int32_t> sets(n);
   Grid<std::int32_t>& face = result.face;
@@ -96,7 +96,7 @@ void merge_coplanar_faces(SliceResult& result) {
   result.faces = std::move(faces);
 }
 
-std::vector<FacePart> split_disconnected_faces(SliceResult& result, const std::vector<std::int32_t>& faces,
+std::vector<FacePart> split_disconnected_faces(RasterPlan& result, const std::vector<std::int32_t>& faces,
                                                std::int64_t min_part_px, int min_part_cols) {
   Grid<std::int32_t>& face = result.face;
   std::vector<std::uint8_t> wanted(result.faces.size(), 0);
@@ -209,7 +209,7 @@ namespace {
 // Where faces a (row r) and b (row r + 1 below it) should meet: their fold line Y = h - d lies
 // between rows t and t + 1, Y = (rows_above_fold - t - 1) / px_per_mm. -1 when they meet on no fold
 // within tolerance_mm of their boundary (and for a line above the sheet, which nothing can reach).
-int fold_row(const SliceResult& result, const PixelGrid& grid, double tolerance_mm, std::int32_t a, std::int32_t b,
+int fold_row(const RasterPlan& result, const PixelGrid& grid, double tolerance_mm, std::int32_t a, std::int32_t b,
              int r) {
   if (a == b || a < 0 || b < 0) return -1;
   const RasterFace &fa = result.faces[static_cast<std::size_t>(a)], &fb = result.faces[static_cast<std::size_t>(b)];
@@ -221,7 +221,7 @@ int fold_row(const SliceResult& result, const PixelGrid& grid, double tolerance_
 }
 
 // One sweep of align_folds_to_lines over one column; returns how many pixels changed face.
-std::int64_t align_column(SliceResult& result, const PixelGrid& grid, double tolerance_mm, int col) {
+std::int64_t align_column(RasterPlan& result, const PixelGrid& grid, double tolerance_mm, int col) {
   std::int64_t moved = 0;
   Grid<std::int32_t>& face = result.face;
   auto count = [&](std::int32_t f, int delta) { result.faces[static_cast<std::size_t>(f)].pixels += delta; };
@@ -248,7 +248,7 @@ std::int64_t align_column(SliceResult& result, const PixelGrid& grid, double tol
 // The first sweep of align_folds_to_lines; returns the columns in which pixels changed face.
 // Columns are independent, so only those with a boundary off its line are walked: a row-major scan
 // finds them far faster than walking every column down.
-std::vector<int> align_sweep(SliceResult& result, const PixelGrid& grid, double tolerance_mm) {
+std::vector<int> align_sweep(RasterPlan& result, const PixelGrid& grid, double tolerance_mm) {
   const Grid<std::int32_t>& face = result.face;
   std::vector<std::uint8_t> off_line(static_cast<std::size_t>(face.cols), 0);
   for (int r = 0; r + 1 < face.rows; ++r) {
@@ -273,7 +273,7 @@ std::vector<int> align_sweep(SliceResult& result, const PixelGrid& grid, double 
 
 }  // namespace
 
-void align_folds_to_lines(SliceResult& result, const PixelGrid& grid, double tolerance_mm) {
+void align_folds_to_lines(RasterPlan& result, const PixelGrid& grid, double tolerance_mm) {
   // A moved boundary can free another one in its column: sweep those columns again until nothing
   // moves, so that aligning an aligned plan changes nothing (build_plan aligns what it is given).
   // Columns are independent, so one in which nothing moved would not move on a later sweep.
@@ -286,7 +286,7 @@ void align_folds_to_lines(SliceResult& result, const PixelGrid& grid, double tol
 
 namespace origamic {
 
-void merge_near_coplanar_faces(SliceResult& result, double tolerance_mm) {
+void merge_near_coplanar_faces(RasterPlan& result, double tolerance_mm) {
   const Grid<std::int32_t>& face = result.face;
   const std::size_t n = result.faces.size();
   // The pairs of faces of one orientation that touch, each once.
