@@ -1,0 +1,101 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Invariants of the whole design: the plan of a model mirrored along the main fold is the mirrored
+// plan (sliced: the support choice breaks ties left to right), and the plan of a model moved along
+// the fold by whole pixels is the moved plan (with supports too when it moves by whole strips).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <algorithm>
+#include <filesystem>
+#include <iterator>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "origamic/design.hpp"
+#include "origamic/mesh_io.hpp"
+
+namespace origamic {
+namespace {
+
+const std::filesystem::path kHouse = std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj";
+constexpr double kScale = 15, kX = 100;  // mm per unit of the house, and where its origin goes
+
+// A plan's segments of each kind, each with its ends in nanometres, the smaller end first, after
+// mapping X (an exact map, or one rounding: nanometres absorb it). With `edges_stay`, points on the
+// sheet's left and right edges keep their X: the sheet does not move with the model.
+std::multiset<std::array<long long, 5>> segments(const Plan& plan, double X_sign, double X_shift, bool edges_stay = false) {
+  std::multiset<std::array<long long, 5>> out;
+  const auto X_of = [&](double X) {
+    return edges_stay && (X == 0 || X == plan.sheet.width_mm) ? X : X_sign * X + X_shift;
+  };
+  for (const PlanPolyline& line : plan.lines)
+    for (std::size_t i = 1; i < line.points.size(); ++i) {
+      std::array<long long, 2> a = {std::llround(X_of(line.points[i - 1].X) * 1e6),
+                                    std::llround(line.points[i - 1].Y * 1e6)};
+      std::array<long long, 2> b = {std::llround(X_of(line.points[i].X) * 1e6), std::llround(line.points[i].Y * 1e6)};
+      if (b < a) std::swap(a, b);
+      out.insert({static_cast<long long>(line.kind), a[0], a[1], b[0], b[1]});
+    }
+  return out;
+}
+
+// What one set of segments has that the other has not, a few of each, for the failure message.
+std::string difference(const std::multiset<std::array<long long, 5>>& a, const std::multiset<std::array<long long, 5>>& b) {
+  std::vector<std::array<long long, 5>> only_a, only_b;
+  std::ranges::set_difference(a, b, std::back_inserter(only_a));
+  std::ranges::set_difference(b, a, std::back_inserter(only_b));
+  std::string text = std::to_string(only_a.size()) + " segments only in the first, " + std::to_string(only_b.size()) +
+                     " only in the second";
+  for (const auto* list : {&only_a, &only_b})
+    for (std::size_t i = 0; i < list->size() && i < 6; ++i) {
+      const auto& s = (*list)[i];
+      text += (i == 0 ? (list == &only_a ? "\n first: " : "\n second: ") : " ") + std::string("[") +
+              std::to_string(s[0]) + " (" + std::to_string(s[1] / 1e6) + ", " + std::to_string(s[2] / 1e6) + ")-(" +
+              std::to_string(s[3] / 1e6) + ", " + std::to_string(s[4] / 1e6) + ")]";
+    }
+  return text;
+}
+
+DesignResult design_at(const TriangleMesh& model, double x, bool supports) {
+  DesignOptions options;
+  options.placement.scale = kScale;
+  options.placement.offset_mm = glm::dvec3(x, 0, 0);
+  options.supports.enabled = supports;
+  return design(LoadedMesh{.mesh = model, .format = "obj"}, options);
+}
+
+TEST(DesignInvariants, AModelMirroredAlongTheFoldGivesTheMirroredPlan) {
+  const TriangleMesh house = load_mesh(kHouse).mesh;
+  TriangleMesh mirrored = house;
+  for (glm::dvec3& p : mirrored.positions) p.x = -p.x;
+  for (auto& t : mirrored.triangles) std::swap(t[1], t[2]);  // still facing out
+  mirrored.corner_normals.clear();
+  const double W = Sheet{}.width_mm;
+  const DesignResult a = design_at(house, kX, false), b = design_at(mirrored, W - kX, false);
+  EXPECT_EQ(a.plan.faces.size(), b.plan.faces.size());
+  const auto expected = segments(a.plan, -1, W), got = segments(b.plan, 1, 0);
+  EXPECT_TRUE(expected == got) << difference(expected, got);
+  // The support choice breaks ties left to right, so a mirrored model gets supports of its own (as
+  // many faces, but not the mirrored ones): both stand.
+  const DesignResult c = design_at(house, kX, true), d = design_at(mirrored, W - kX, true);
+  EXPECT_EQ(c.plan.faces.size(), d.plan.faces.size());
+  EXPECT_TRUE(c.plan.validity.ok() && d.plan.validity.ok());
+}
+
+TEST(DesignInvariants, AModelMovedAlongTheFoldByWholePixelsGivesTheMovedPlan) {
+  const TriangleMesh house = load_mesh(kHouse).mesh;
+  // One pixel (0.25 mm) sliced; a whole strip width W (12 pixels) with supports too, whose
+  // candidates lie on the W-wide block columns of the sheet.
+  for (const auto& [shift, supports] : {std::pair{0.25, false}, std::pair{3.0, true}}) {
+    SCOPED_TRACE(std::to_string(shift) + (supports ? " mm with supports" : " mm sliced"));
+    const DesignResult a = design_at(house, kX, supports), b = design_at(house, kX + shift, supports);
+    EXPECT_EQ(a.plan.faces.size(), b.plan.faces.size());
+    const auto expected = segments(a.plan, 1, shift, true), got = segments(b.plan, 1, 0, true);
+    EXPECT_TRUE(expected == got) << difference(expected, got);
+  }
+}
+
+}  // namespace
+}  // namespace origamic
