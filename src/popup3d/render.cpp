@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "origamic/error.hpp"
+#include "embree_scene.hpp"
 #include "png_image.hpp"
 
 namespace origamic {
@@ -29,10 +30,8 @@ const glm::dvec3 kLight = glm::normalize(glm::dvec3(-0.4, 0.8, 0.65));
 // One Embree scene over the coloured mesh, with each triangle's unit normal.
 class Tracer {
  public:
-  explicit Tracer(const ColouredMesh& scene) : scene_(scene) {
-    device_ = rtcNewDevice(nullptr);
-    if (!device_) throw std::runtime_error("Embree: cannot create a device");
-    handle_ = rtcNewScene(device_);
+  explicit Tracer(const ColouredMesh& scene)
+      : scene_(scene), embree_(scene.positions, scene.triangles, RTC_BUILD_QUALITY_MEDIUM), handle_(embree_.handle()) {
     normals_.reserve(scene.triangles.size());
     for (const auto& t : scene.triangles) {
       const glm::dvec3 n = glm::cross(scene.positions[t[1]] - scene.positions[t[0]], scene.positions[t[2]] - scene.positions[t[0]]);
@@ -42,25 +41,6 @@ class Tracer {
     lo_ = glm::dvec3(std::numeric_limits<double>::infinity());
     hi_ = -lo_;
     for (const glm::dvec3& p : scene.positions) lo_ = glm::min(lo_, p), hi_ = glm::max(hi_, p);
-    if (!scene.triangles.empty()) {
-      RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-      auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-          geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), scene.positions.size()));
-      for (std::size_t i = 0; i < scene.positions.size(); ++i)
-        for (int k = 0; k < 3; ++k) vertices[3 * i + k] = static_cast<float>(scene.positions[i][k]);
-      auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-          geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), scene.triangles.size()));
-      for (std::size_t i = 0; i < scene.triangles.size(); ++i)
-        for (std::size_t k = 0; k < 3; ++k) indices[3 * i + k] = scene.triangles[i][k];
-      rtcCommitGeometry(geometry);
-      rtcAttachGeometry(handle_, geometry);
-      rtcReleaseGeometry(geometry);
-    }
-    rtcCommitScene(handle_);
-  }
-  ~Tracer() {
-    rtcReleaseScene(handle_);
-    rtcReleaseDevice(device_);
   }
   Tracer(const Tracer&) = delete;
   Tracer& operator=(const Tracer&) = delete;
@@ -107,8 +87,8 @@ class Tracer {
   }
 
   const ColouredMesh& scene_;
-  RTCDevice device_ = nullptr;
-  RTCScene handle_ = nullptr;
+  EmbreeScene embree_;
+  RTCScene handle_;
   std::vector<glm::dvec3> normals_;
   glm::dvec3 lo_, hi_;
 };

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -14,6 +15,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "embree_scene.hpp"
 #include "origamic/error.hpp"
 
 namespace origamic {
@@ -22,16 +24,7 @@ struct RayScene::Impl {
   TriangleMesh mesh;
   glm::dvec3 lo{0.0};
   glm::dvec3 hi{0.0};
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
-
-  Impl() = default;
-  Impl(const Impl&) = delete;
-  Impl& operator=(const Impl&) = delete;
-  ~Impl() {
-    if (scene) rtcReleaseScene(scene);
-    if (device) rtcReleaseDevice(device);
-  }
+  std::unique_ptr<EmbreeScene> embree;
 };
 
 RayScene::RayScene(TriangleMesh oa_mesh) : impl_(std::make_unique<Impl>()) {
@@ -54,28 +47,7 @@ RayScene::RayScene(TriangleMesh oa_mesh) : impl_(std::make_unique<Impl>()) {
     }
   }
 
-  s.device = rtcNewDevice(nullptr);
-  if (!s.device) throw std::runtime_error("Embree: cannot create a device");
-  s.scene = rtcNewScene(s.device);
-  rtcSetSceneBuildQuality(s.scene, RTC_BUILD_QUALITY_LOW);
-  if (s.mesh.triangles.empty()) {
-    rtcCommitScene(s.scene);
-    return;
-  }
-  RTCGeometry geometry = rtcNewGeometry(s.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), s.mesh.positions.size()));
-  for (std::size_t i = 0; i < s.mesh.positions.size(); ++i)
-    for (int k = 0; k < 3; ++k) vertices[3 * i + k] = static_cast<float>(s.mesh.positions[i][k]);
-  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), s.mesh.triangles.size()));
-  for (std::size_t i = 0; i < s.mesh.triangles.size(); ++i)
-    for (std::size_t k = 0; k < 3; ++k) indices[3 * i + k] = s.mesh.triangles[i][k];
-  rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_LOW);
-  rtcCommitGeometry(geometry);
-  rtcAttachGeometry(s.scene, geometry);
-  rtcReleaseGeometry(geometry);
-  rtcCommitScene(s.scene);
+  s.embree = std::make_unique<EmbreeScene>(s.mesh.positions, s.mesh.triangles, RTC_BUILD_QUALITY_LOW);
 }
 
 RayScene::~RayScene() = default;
@@ -189,7 +161,7 @@ RasterMaps raster(const RayScene& scene, const Sheet& sheet, const RasterOptions
         ray.ray.mask = ~0u;
         ray.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         ray.hit.primID = RTC_INVALID_GEOMETRY_ID;
-        if (!empty) rtcIntersect1(s.scene, &context, &ray);
+        if (!empty) rtcIntersect1(s.embree->handle(), &context, &ray);
 
         Hit hit;
         glm::vec3 normal;
