@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "exact_plan.hpp"
 #include "origamic/mesh_io.hpp"
 #include "origamic/oa.hpp"
 #include "origamic/plan_regions.hpp"

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "exact_kernel.hpp"
+#include "exact_plan.hpp"
 #include "origamic/plan.hpp"
 #include "origamic/validity.hpp"
 

@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "exact_plan.hpp"
 #include "origamic/plan.hpp"
 #include "origamic/raster.hpp"
 #include "origamic/slice.hpp"
