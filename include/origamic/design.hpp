@@ -64,6 +64,10 @@ struct DesignResult {
   std::vector<StageTime> times;
 };
 
+/// The options that shaped a design, in one line for the plan files ("card 210x297 mm, W 3 mm, 4
+/// px/mm, up y, margin 10 mm, supports seed 1").
+std::string settings_text(const DesignOptions& options);
+
 /// Runs the pipeline on a model file, up to the exact plan with its validity verdict. Designs called
 /// from several threads take turns: one exact run at a time per process.
 /// \throws InputError for a bad file or absurd options.

@@ -67,13 +67,6 @@ glm::dvec3 parse_offset(const std::string& text) {
   return v;
 }
 
-// A number as a person writes it: 3, 0.5, 210.3.
-std::string number_text(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
 // The model's name without folders and extensions: "dragon.ply.gz" -> "dragon".
 std::string model_name(const std::filesystem::path& file) {
   std::filesystem::path name = file.filename();
@@ -136,17 +129,11 @@ void parse_perf(const std::string& text, origamic::FoldStyleOptions& folds) {
 
 // The export options, checked against the sheet before any work is done.
 origamic::ExportOptions export_options(const DesignArgs& args, const FabricationArgs& fabrication,
-                                       const origamic::Sheet& sheet) {
+                                       const origamic::DesignOptions& design) {
+  const origamic::Sheet& sheet = design.sheet;
   origamic::ExportOptions exports;
   exports.model = std::filesystem::path(args.model).filename().string();
-  exports.settings = "card " + number_text(sheet.width_mm) + "x" + number_text(sheet.height_mm) + " mm, W " +
-                     number_text(args.min_strip_mm) + " mm, " + number_text(args.px_per_mm) + " px/mm, up " + args.up;
-  if (args.rotate_deg != 0) exports.settings += ", rotate " + number_text(args.rotate_deg) + " deg";
-  if (args.scale) exports.settings += ", scale " + number_text(*args.scale) + " mm/unit";
-  if (!args.offset.empty()) exports.settings += ", offset " + args.offset + " mm";
-  if (!args.scale && args.offset.empty()) exports.settings += ", margin " + number_text(args.margin_mm) + " mm";
-  exports.settings += args.no_supports ? ", no supports" : ", supports seed " + std::to_string(args.seed);
-  if (args.allow_dangling) exports.settings += ", dangling allowed";
+  exports.settings = origamic::settings_text(design);
   exports.colours = args.colours == "craft" ? origamic::ColourPreset::Craft : origamic::ColourPreset::Laser;
   exports.dxf_version = args.dxf == "r2000" ? origamic::DxfVersion::R2000 : origamic::DxfVersion::R12;
   exports.folds.style = fabrication.fold_style == "perforated" ? origamic::FoldStyle::Perforated
@@ -326,7 +313,6 @@ int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const
   const origamic::PopupFileOptions popup_options = popup_file_options(popup_args, args.out_dir);
   origamic::DesignOptions options;
   options.sheet = parse_card(args.card);
-  const origamic::ExportOptions exports = export_options(args, fabrication, options.sheet);
   options.placement.up = args.up == "z" ? origamic::UpAxis::Z : origamic::UpAxis::Y;
   options.placement.rotate_deg = args.rotate_deg;
   options.placement.scale = args.scale;
@@ -338,6 +324,7 @@ int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const
   options.supports.allow_dangling = args.allow_dangling;
   options.supports.seed = args.seed;
   options.supports.orders = args.orders;
+  const origamic::ExportOptions exports = export_options(args, fabrication, options);
 
   // A folder that cannot be made is reported before any work and before any file is written.
   for (const std::string& dir : {args.out_dir, args.maps_dir})
@@ -496,10 +483,9 @@ int run_fold(const FoldArgs& args) {
   const origamic::FoldedPopup popup =
       origamic::fold_popup(analysis.regions, sheet, {.angle_deg = args.angle_deg, .thickness_mm = args.thickness_mm});
   origamic::write_files(origamic::folded_mesh_files(popup, args.out, format->second));
-  int unplaced = 0;
-  for (const origamic::PlanRegion& region : analysis.regions) unplaced += !region.placed;
   std::printf("%s\nfolded at %g degrees: %s (%d faces not reached by any fold left out)\n",
-              origamic::analysis_summary_line(analysis).c_str(), args.angle_deg, args.out.c_str(), unplaced);
+              origamic::analysis_summary_line(analysis).c_str(), args.angle_deg, args.out.c_str(),
+              popup.unplaced_regions);
   return 0;
 }
 

@@ -2,6 +2,7 @@
 #include "origamic/design.hpp"
 #include "origamic/error.hpp"
 #include "exact_runs.hpp"
+#include "number_text.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -88,6 +89,23 @@ void design_loaded(LoadedMesh loaded, const std::filesystem::path& model_file, c
 }
 
 }  // namespace
+
+std::string settings_text(const DesignOptions& options) {
+  const Sheet& sheet = options.sheet;
+  const PlacementOptions& at = options.placement;
+  std::string text = "card " + number_text(sheet.width_mm) + "x" + number_text(sheet.height_mm) + " mm, W " +
+                     number_text(options.slice.min_strip_mm) + " mm, " + number_text(options.raster.px_per_mm) +
+                     " px/mm, up " + (at.up == UpAxis::Z ? "z" : "y");
+  if (at.rotate_deg != 0) text += ", rotate " + number_text(at.rotate_deg) + " deg";
+  if (at.scale) text += ", scale " + number_text(*at.scale) + " mm/unit";
+  if (at.offset_mm)
+    text += ", offset " + number_text(at.offset_mm->x) + "," + number_text(at.offset_mm->y) + "," +
+            number_text(at.offset_mm->z) + " mm";
+  if (!at.scale && !at.offset_mm) text += ", margin " + number_text(at.margin_mm) + " mm";
+  text += options.supports.enabled ? ", supports seed " + std::to_string(options.supports.seed) : ", no supports";
+  if (options.supports.allow_dangling) text += ", dangling allowed";
+  return text;
+}
 
 DesignResult design(const std::filesystem::path& model_file, const DesignOptions& options) {
   const auto lock = exact_run_lock();  // one design at a time per process: see exact_runs.hpp
