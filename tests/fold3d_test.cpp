@@ -347,6 +347,7 @@ TEST(Fold3d, OptionsAndCoordinatesOutOfRangeAreRejected) {
   EXPECT_EQ(message(regions, {}), "regions");
   try {
     fold_popup(regions, Sheet{}, {});
+    ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(e.problem.find("region 2 "), std::string::npos) << e.what();
   }

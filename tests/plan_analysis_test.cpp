@@ -468,6 +468,39 @@ TEST(PlanAnalysis, APlanDrawnFromItsLowerLeftCornerFoldsAboutItsMiddle) {
     EXPECT_NEAR(a.mountain_mm, original.mountain_mm, rounding);
     EXPECT_NEAR(a.valley_mm, original.valley_mm, rounding);
   }
+  // Without an OUTLINE, lines that do not straddle Y = 0 give no sheet to halve.
+  std::vector<PlanPolyline> bare = box_plan(Box{});
+  bare.erase(bare.begin());
+  for (PlanPolyline& line : bare)
+    for (PlanPoint& p : line.points) p.Y += kHalf;
+  try {
+    analyze_plan(bare, {});
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field, "lines") << e.what();
+    EXPECT_NE(e.problem.find("OUTLINE"), std::string::npos) << e.what();
+  }
+}
+
+// Paper through paper: a face reaching past the card is an error. Here the box's top H(h) folds onto
+// the back plane on Y = h over its left part only; over the rest its edge is a cut 0.5 mm higher,
+// where it would stand behind the back plane.
+TEST(PlanAnalysis, AFaceReachingBehindTheBackPlaneIsAnError) {
+  const Box b;
+  const double xm = b.mid(), over = 0.5;
+  std::vector<PlanPolyline> lines = box_plan(b);
+  std::erase_if(lines, [&](const PlanPolyline& l) { return l.points.front().Y == b.h && l.kind == LineKind::Valley; });
+  std::erase_if(lines, [&](const PlanPolyline& l) { return l.kind == LineKind::Cut && l.points.front().X == b.x1; });
+  lines.push_back({LineKind::Valley, {{b.x0, b.h}, {xm, b.h}}});
+  lines.push_back({LineKind::Cut, {{xm, b.h}, {xm, b.h + over}, {b.x1, b.h + over}, {b.x1, -b.d}}});
+  const PlanAnalysis a = analyze_plan(lines, {});
+  const auto outside = problems_of(a, PlanProblemKind::OutsideCard);
+  ASSERT_EQ(outside.size(), 1u) << listing(a);
+  EXPECT_NEAR(outside[0].value_mm, over, 1e-12);
+  EXPECT_TRUE(is_error(PlanProblemKind::OutsideCard));
+  EXPECT_FALSE(a.valid()) << listing(a);
+  EXPECT_EQ(a.errors, 1) << listing(a);
+  EXPECT_TRUE(analyze_plan(box_plan(b), {}).valid()) << "the box as drawn stays on the card";
 }
 
 TEST(PlanAnalysis, MirroredPlanHasTheMirroredFaces) {

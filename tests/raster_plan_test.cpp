@@ -4,6 +4,7 @@
 // simplifying of its boundaries.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <set>
@@ -159,6 +160,21 @@ TEST(BoundaryChains, AStaircaseSimplifiesWithinItsTolerance) {
   EXPECT_GT(close.size(), 2u);
   EXPECT_EQ(close.front().u, stairs.corners.front().u);
   EXPECT_EQ(close.back().v, stairs.corners.back().v);
+  // Every edge midpoint of the staircase lies within the tolerance of the polyline kept.
+  auto distance = [&](double x, double y) {
+    double nearest = 1e300;
+    for (std::size_t k = 1; k < close.size(); ++k) {
+      const double ax = lattice.X(close[k - 1].u), ay = lattice.Y(close[k - 1].v), bx = lattice.X(close[k].u),
+                   by = lattice.Y(close[k].v), dx = bx - ax, dy = by - ay;
+      const double t = std::clamp(((x - ax) * dx + (y - ay) * dy) / (dx * dx + dy * dy), 0.0, 1.0);
+      nearest = std::min(nearest, std::hypot(ax + t * dx - x, ay + t * dy - y));
+    }
+    return nearest;
+  };
+  for (std::size_t i = 1; i < stairs.corners.size(); ++i) {
+    const LatticePoint a = stairs.corners[i - 1], b = stairs.corners[i];
+    EXPECT_LE(distance(lattice.X((a.u + b.u) / 2), lattice.Y((a.v + b.v) / 2)), 0.05 + 1e-12) << i;
+  }
 }
 
 }  // namespace

@@ -541,12 +541,6 @@ TEST(Supports, ThePlanDoesNotDependOnTheThreads) {
   }
 }
 
-}  // namespace
-}  // namespace origamic
-
-namespace origamic {
-namespace {
-
 // Why supports stopped is an enum with its counts; the report says it in words.
 TEST(Supports, TheStopReasonSaysWhyInWords) {
   SupportReport report;

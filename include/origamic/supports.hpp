@@ -89,7 +89,8 @@ struct SupportedPlan {
 };
 
 /// Adds supports until every face of the exact plan is valid (or, with allow_dangling, valid or
-/// dangling), or the bound is reached. Deterministic for a given seed.
+/// dangling), or the bound is reached. Deterministic for a given seed. Calls from several threads
+/// take turns (one exact run at a time per process, as for build_plan and design).
 SupportedPlan add_supports(const RasterMaps& maps, RasterPlan slices, const Sheet& sheet, const PlanOptions& plan_options,
                        const SupportOptions& options);
 

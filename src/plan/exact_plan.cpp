@@ -332,10 +332,20 @@ int keep_faces_on_the_card(const std::vector<RasterFace>& faces, Built& built) {
 
 }  // namespace
 
-ExactPlan::ExactPlan(const RasterMaps& maps, const RasterPlan& sliced, const Sheet& sheet, const PlanOptions& options)
-    : state_(std::make_unique<State>()) {
-  const auto lock = exact_run_lock();
-  State& state = *state_;  // built in place: the handles read off the arrangement stay valid
+ExactPlan::ExactPlan(const RasterMaps& maps, const RasterPlan& sliced, const Sheet& sheet, const PlanOptions& options) {
+  const auto lock = exact_run_lock();  // held until the exact numbers are made, or freed on an error
+  state_ = std::make_unique<State>();
+  try {
+    build(*state_, maps, sliced, sheet, options);
+  } catch (...) {
+    state_.reset();
+    throw;
+  }
+}
+
+// Built in place: the handles read off the arrangement stay valid.
+void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& sliced, const Sheet& sheet,
+                      const PlanOptions& options) {
   state.grid = maps.grid;
   // §4.5 in two steps: the raster boundaries move to the pixel row nearest their fold line where
   // they can (align_folds_to_lines; a no-op on plans already aligned), then only those within half a

@@ -92,6 +92,8 @@ class ExactPlan {
 
  private:
   struct State;
+  static void build(State& state, const RasterMaps& maps, const RasterPlan& slices, const Sheet& sheet,
+                    const PlanOptions& options);
   std::unique_ptr<State> state_;
 };
 

@@ -450,7 +450,11 @@ SupportedPlan FaceOrderRun::run() {
 SupportedPlan FaceOrderRun::finish() {
   SupportReport& tally = report();
   tally.converged = tally.cut_out == 0 && invalid_faces().empty() && result_.plan.loose_card_pieces == 0;
-  if (tally.converged) tally.stop = SupportStop::None, tally.stop_faces = tally.stop_loose_pieces = 0, tally.stop_at_quota = false;
+  if (tally.converged) {
+    tally.stop = SupportStop::None;
+    tally.stop_faces = tally.stop_loose_pieces = 0;
+    tally.stop_at_quota = false;
+  }
   slices_.face = std::move(confirmed_.first);
   slices_.faces = std::move(confirmed_.second);
   result_.plan = last_build_->full();

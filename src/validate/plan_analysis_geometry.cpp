@@ -163,9 +163,15 @@ Input collect(const std::vector<PlanPolyline>& lines, const AnalysisOptions& opt
                      ", Y " + num(nearest_double(in.min_Y)) + " to " + num(nearest_double(in.max_Y)) +
                      " mm) has no area");
   // The main fold: Y = 0 where the sheet straddles it (drawn from the main fold), else halfway up
-  // the sheet (drawn from its lower-left corner, as origamic writes DXF and cutters expect). Every
-  // point moves by it exactly, so the analysis works in plan coordinates either way.
+  // the sheet drawn on OUTLINE (from its lower-left corner, as origamic writes DXF and cutters
+  // expect). Every point moves by it exactly, so the analysis works in plan coordinates either way.
+  // Without an outline the lines' extent is no sheet to halve.
   if (!(in.min_Y < FT(0) && FT(0) < in.max_Y)) {
+    if (!any_outline)
+      throw InputError("lines", "the lines (Y " + num(nearest_double(in.min_Y)) + " to " +
+                                    num(nearest_double(in.max_Y)) +
+                                    " mm) do not straddle the main fold Y = 0, and no OUTLINE gives the sheet "
+                                    "whose middle it is: draw the sheet's edge on OUTLINE");
     in.main_fold_Y = (in.min_Y + in.max_Y) / 2;
     for (auto& line : points)
       for (Point& p : line) p = Point(p.x(), p.y() - in.main_fold_Y);
