@@ -355,8 +355,8 @@ int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const
     files.push_back({base + ".json", origamic::report_json(result, options)});
     for (auto& file : origamic::plan_files(result.plan, exports, base)) files.push_back(std::move(file));
     written += "plan: " + base + ".{dxf,svg,png,pdf}\nreport: " + base + ".json\n";
-    for (auto& file : origamic::popup_files(result, options, base, popup_options,
-                                            model ? model->mesh : origamic::TriangleMesh{})) {
+    static const origamic::TriangleMesh no_model;  // both lvalues: the model is not copied
+    for (auto& file : origamic::popup_files(result, options, base, popup_options, model ? model->mesh : no_model)) {
       written += "3D: " + file.path.string() + "\n";
       files.push_back(std::move(file));
     }
