@@ -80,7 +80,8 @@ DrawnPlan draw_plan(const Plan& plan, const FoldStyleOptions& options);
 /// The dashes of a line as separate polylines along it (the line itself when it is solid).
 std::vector<std::vector<PlanPoint>> dash_pieces(const DrawnLine& line);
 
-/// \throws InputError naming FoldStyleOptions::perf_cut_mm/perf_gap_mm or ::inset_mm when a length is not finite, the perforation
+/// \throws InputError naming FoldStyleOptions::perf_cut_mm/perf_gap_mm or ::inset_mm when a length
+/// is not finite, the perforation
 /// cut or gap is outside 0.1-50 mm, or the inset outside 0-50 mm.
 void check_fold_style(const FoldStyleOptions& options);
 

@@ -29,8 +29,8 @@ class UnionFind {
   std::size_t size() const { return parent_.size(); }
 
   Index root(Index i) {
-    while (parent_[static_cast<std::size_t>(i)] != i)
-      i = parent_[static_cast<std::size_t>(i)] = parent_[static_cast<std::size_t>(parent_[static_cast<std::size_t>(i)])];
+    const auto at = [](Index k) { return static_cast<std::size_t>(k); };
+    while (parent_[at(i)] != i) i = parent_[at(i)] = parent_[at(parent_[at(i)])];
     return i;
   }
   /// Joins the sets of a and b under the smaller root; false if they were one set already.

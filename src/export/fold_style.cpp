@@ -264,7 +264,8 @@ std::vector<std::vector<PlanPoint>> dash_pieces(const DrawnLine& line) {
 void check_fold_style(const FoldStyleOptions& options) {
   for (const double v : {options.perf_cut_mm, options.perf_gap_mm})
     if (!(v >= 0.1 && v <= 50))
-      throw InputError("FoldStyleOptions::perf_cut_mm/FoldStyleOptions::perf_gap_mm", "the cut and gap lengths must each be between 0.1 and 50 mm, not " +
+      throw InputError("FoldStyleOptions::perf_cut_mm/FoldStyleOptions::perf_gap_mm",
+                       "the cut and gap lengths must each be between 0.1 and 50 mm, not " +
                        mm_text(options.perf_cut_mm) + "," + mm_text(options.perf_gap_mm));
   if (!(options.inset_mm >= 0 && options.inset_mm <= 50))
     throw InputError("FoldStyleOptions::inset_mm", "must be between 0 and 50 mm, not " + mm_text(options.inset_mm));

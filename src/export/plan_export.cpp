@@ -233,7 +233,8 @@ std::string plan_dxf(const Plan& plan, const ExportOptions& options) {
       const bool closed = is_closed(points);
       const std::size_t count = points.size() - (closed ? 1 : 0);
       dxf.writePolyline(*dw, DL_PolylineData(static_cast<int>(count), 0, 0, closed ? 1 : 0), attributes);
-      for (std::size_t i = 0; i < count; ++i) dxf.writeVertex(*dw, DL_VertexData(points[i].X, to_file_Y(points[i].Y), 0.0, 0.0));
+      for (std::size_t i = 0; i < count; ++i)
+        dxf.writeVertex(*dw, DL_VertexData(points[i].X, to_file_Y(points[i].Y), 0.0, 0.0));
       dxf.writePolylineEnd(*dw);
     };
     for (const Layer layer : layers) {
@@ -246,7 +247,8 @@ std::string plan_dxf(const Plan& plan, const ExportOptions& options) {
           continue;
         }
         for (const std::vector<PlanPoint>& p : dash_pieces(line)) {
-          if (p.size() == 2) dxf.writeLine(*dw, DL_LineData(p[0].X, to_file_Y(p[0].Y), 0.0, p[1].X, to_file_Y(p[1].Y), 0.0), attributes);
+          if (p.size() == 2)
+            dxf.writeLine(*dw, DL_LineData(p[0].X, to_file_Y(p[0].Y), 0.0, p[1].X, to_file_Y(p[1].Y), 0.0), attributes);
           else write_polyline(p, attributes);
         }
       }

@@ -73,7 +73,8 @@ void check_off_header(const std::filesystem::path& file, const std::string& byte
   // Each face line starts with its corner count, and OpenMesh reads that many numbers whatever the
   // line holds: a count of 3022407 (a blank lost between "3" and "022407") read past the file's end
   // for minutes. A face must list its corners on its line.
-  const auto first_line = static_cast<std::size_t>(std::count(bytes.begin(), bytes.begin() + std::min(at, bytes.size()), '\n'));
+  const auto first_line =
+      static_cast<std::size_t>(std::count(bytes.begin(), bytes.begin() + std::min(at, bytes.size()), '\n'));
   long long data = 0;
   for_each_line(bytes, std::min(at, bytes.size()), [&](std::string_view line, std::size_t number) {
     if (is_blank_or_comment(line) || data++ < counts[0] || data > counts[0] + counts[1]) return;

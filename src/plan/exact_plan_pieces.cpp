@@ -103,7 +103,9 @@ PieceVerdict face_validity(const Validity& by_node, const Pieces& pieces, const 
     if (shortfall(by_node.status[k]) <= worst[f]) continue;
     worst[f] = shortfall(by_node.status[k]);
     v.status[f] = by_node.status[k];
-    v.reaches_back_plane[f] = by_node.reaches_back_plane[k], v.reaches_floor[f] = by_node.reaches_floor[k], v.fold_lines[f] = by_node.fold_lines[k];
+    v.reaches_back_plane[f] = by_node.reaches_back_plane[k];
+    v.reaches_floor[f] = by_node.reaches_floor[k];
+    v.fold_lines[f] = by_node.fold_lines[k];
   }
   // A face all of whose pieces fell out is a hole.
   for (std::size_t p = 0; p < pieces.label.size(); ++p)

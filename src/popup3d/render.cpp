@@ -96,7 +96,8 @@ class Tracer {
 void check_options(const RenderOptions& options) {
   auto check_side = [](int px, const char* what) {
     if (px < 8 || px > 8192)
-      throw InputError(std::string("RenderOptions::") + what + "_px", std::string("the image ") + what + " must be 8 to 8192 pixels, not " +
+      throw InputError(std::string("RenderOptions::") + what + "_px",
+                       std::string("the image ") + what + " must be 8 to 8192 pixels, not " +
                        std::to_string(px));
   };
   check_side(options.width_px, "width");
