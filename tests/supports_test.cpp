@@ -103,7 +103,7 @@ TEST(Supports, ARoundReachesTheFacesOnTheExactPlan) {
   const RasterPlan& slices = box.slices;
   const ExactPlan& build = box.build;
   const Plan& verdict = build.verdict();
-  const FaceVerdicts standing = standing_of(verdict);
+  const FaceVerdicts standing = verdicts_of(verdict);
   const std::vector<std::int32_t> invalid{2, 3};
   ASSERT_EQ(verdict.validity.floating, 2);
   // One ear: the floor, the front, its fold with the top, the top, the back plane.
@@ -487,7 +487,7 @@ TEST(Supports, ASupportThroughTheBackPlaneIsChosenOverAnEquallyLongOneAcrossAVis
   EXPECT_EQ(bare->picture_mm, 0);
   EXPECT_GT(across_c->cost, bare->cost);
   // The round holds the top by the back plane, beside C.
-  const SupportChoice choice = choose(maps, slices, build, standing_of(build.verdict()), {top, front});
+  const SupportChoice choice = choose(maps, slices, build, verdicts_of(build.verdict()), {top, front});
   int from_top = 0;
   for (const Candidate& s : choice.supports) {
     if (s.face != top) continue;

@@ -534,7 +534,7 @@ void widen(const Grid<std::int32_t>& face, const Claims& claims, const SupportPi
 
 }  // namespace
 
-FaceVerdicts standing_of(const Plan& plan) {
+FaceVerdicts verdicts_of(const Plan& plan) {
   FaceVerdicts s{plan.validity, {}, {}};
   for (const PlanFace& face : plan.faces) {
     s.fold_on_top.push_back(face.fold_on_top);
@@ -571,7 +571,7 @@ std::vector<Candidate> support_candidates(const RasterMaps& maps, const RasterPl
 }
 
 SupportChoice choose_supports(const RasterMaps& maps, const RasterPlan& slices, const ExactPlan& exact,
-                              std::span<const Candidate> painted, const FaceVerdicts& standing,
+                              std::span<const Candidate> painted, const FaceVerdicts& verdicts,
                               std::span<const FoldEdge> folds, const std::vector<std::int32_t>& invalid,
                               const SupportOptions& options, SupportReach reach) {
   const SupportPicture picture(maps, slices);
@@ -579,8 +579,8 @@ SupportChoice choose_supports(const RasterMaps& maps, const RasterPlan& slices, 
   const std::vector<Candidate> candidates = candidates_of(finder, invalid, reach.split_faces);
   const std::size_t n = slices.faces.size();
   std::vector<std::uint8_t> stands(n, 0), open(n, 0), usable(candidates.size(), 1);
-  for (std::size_t f = 0; f < n && f < standing.validity.status.size(); ++f)
-    stands[f] = standing.validity.status[f] == FaceStatus::Valid && !slices.faces[f].hole;
+  for (std::size_t f = 0; f < n && f < verdicts.validity.status.size(); ++f)
+    stands[f] = verdicts.validity.status[f] == FaceStatus::Valid && !slices.faces[f].hole;
   // A face is held only while that costs the picture no more than cutting it out.
   std::vector<double> limit(n, 0);
   const double W = slices.min_strip_mm;

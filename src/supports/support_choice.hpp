@@ -48,7 +48,7 @@ struct FaceVerdicts {
 std::vector<FoldEdge> raster_folds(const PixelGrid& grid, const RasterPlan& slices, double tolerance);
 
 /// The exact plan's word on each face, as the rounds read it.
-FaceVerdicts standing_of(const Plan& plan);
+FaceVerdicts verdicts_of(const Plan& plan);
 
 // What a round's supports may do; the loop (supports.cpp) allows more as the plain rules run out.
 struct SupportReach {
@@ -87,7 +87,7 @@ struct SupportChoice {
   std::vector<CostlyFace> cut_out;
 };
 SupportChoice choose_supports(const RasterMaps& maps, const RasterPlan& slices, const ExactPlan& exact,
-                              std::span<const Candidate> painted, const FaceVerdicts& standing,
+                              std::span<const Candidate> painted, const FaceVerdicts& verdicts,
                               std::span<const FoldEdge> folds, const std::vector<std::int32_t>& invalid,
                               const SupportOptions& options, SupportReach reach);
 

@@ -114,7 +114,7 @@ namespace {
 // The face graph read from the raster plan's folds (the upper face first). Rebuilding the exact
 // plan costs 50-700 ms; this costs a few, so rounds run on it and the exact plan only confirms (and
 // overrides) its verdict.
-FaceVerdicts raster_standing(const PixelGrid& grid, const RasterPlan& slices, double tolerance) {
+FaceVerdicts raster_verdicts(const PixelGrid& grid, const RasterPlan& slices, double tolerance) {
   const std::size_t n = slices.faces.size();
   FaceGraph graph;
   graph.faces = static_cast<std::int32_t>(n);
@@ -185,12 +185,12 @@ class FaceOrderRun {
 
  private:
   SupportReport& report() { return result_.report; }
-  std::vector<std::int32_t> invalid_faces() const { return unsupported(standing_, setting_.options.allow_dangling); }
+  std::vector<std::int32_t> invalid_faces() const { return unsupported(verdicts_, setting_.options.allow_dangling); }
   bool rounds_left() const { return result_.report.rounds < result_.report.round_bound; }
 
   // The verdict of the raster graph.
   void settle() {
-    standing_ = raster_standing(setting_.maps.grid, slices_, aligned_fold_tolerance_mm(setting_.maps.grid));
+    verdicts_ = raster_verdicts(setting_.maps.grid, slices_, aligned_fold_tolerance_mm(setting_.maps.grid));
     exact_ = false;
   }
   void adopt(std::shared_ptr<const ExactPlan> build) {
@@ -198,7 +198,7 @@ class FaceOrderRun {
     result_.plan = last_build_->verdict();
     confirmed_ = {slices_.face, slices_.faces};
     ++report().exact_builds;
-    standing_ = standing_of(result_.plan);
+    verdicts_ = verdicts_of(result_.plan);
     exact_ = true;
     painted_since_.clear();
   }
@@ -235,11 +235,11 @@ class FaceOrderRun {
   double tolerance_;
   std::int64_t crumb_px_;
   SupportedPlan result_;
-  bool exact_ = false;  // whether standing_ is the exact plan's word on slices_
+  bool exact_ = false;  // whether verdicts_ is the exact plan's word on slices_
   bool allow_splits_ = true;
   bool splits_retried_ = false;
   int split_rounds_left_ = 0;
-  FaceVerdicts standing_;
+  FaceVerdicts verdicts_;
   // The face map and faces the last exact verdict was built of: an undone pass goes back to them,
   // and so does the end (the plan kept is drawn in full from that verdict; a crumb joined to a
   // neighbour after it would make them disagree).
@@ -275,7 +275,7 @@ FaceOrderRun::Stopped FaceOrderRun::support_rounds() {
     round_reach.split_faces = allow_splits_ || split_rounds_left_-- > 0;
     const std::vector<FoldEdge> folds =
         raster_folds(setting_.maps.grid, slices_, aligned_fold_tolerance_mm(setting_.maps.grid));
-    const SupportChoice choice = choose_supports(setting_.maps, slices_, *last_build_, painted_since_, standing_, folds,
+    const SupportChoice choice = choose_supports(setting_.maps, slices_, *last_build_, painted_since_, verdicts_, folds,
                                                  invalid, setting_.options, round_reach);
     const std::vector<Candidate>& chosen = choice.supports;
     if (chosen.empty() && choice.cut_out.empty()) return {SupportStop::Unreachable, count};
@@ -300,7 +300,7 @@ FaceOrderRun::Stopped FaceOrderRun::pass() {
   const bool from_exact = exact_;
   std::size_t invalid_before = invalid_faces().size();
   if (exact_) {
-    const FaceVerdicts raster = raster_standing(setting_.maps.grid, slices_, aligned_fold_tolerance_mm(setting_.maps.grid));
+    const FaceVerdicts raster = raster_verdicts(setting_.maps.grid, slices_, aligned_fold_tolerance_mm(setting_.maps.grid));
     invalid_before = std::min(invalid_before, unsupported(raster, setting_.options.allow_dangling).size());
   }
   const int supports_before = report().supports, cut_out_before = report().cut_out;
@@ -316,7 +316,7 @@ FaceOrderRun::Stopped FaceOrderRun::pass() {
     cut_out_pixels_ = cut_out_pixels_before;
     report().cut_out_share =
         static_cast<double>(cut_out_pixels_) / static_cast<double>(std::max<std::int64_t>(1, model_pixels_));
-    standing_ = standing_of(result_.plan);
+    verdicts_ = verdicts_of(result_.plan);
     exact_ = true;
     painted_since_.clear();
     ++report().passes_undone;
