@@ -310,6 +310,7 @@ int keep_faces_on_the_card(const std::vector<RasterFace>& faces, Built& built) {
     using CGAL::Arr_observer<Arrangement>::Arr_observer;
     void after_split_face(Face_handle f, Face_handle new_f, bool) override { new_f->set_data(f->data()); }
   } keep_labels(arr);
+  const auto first_cut = static_cast<std::int32_t>(built.sides.size());
   for (const Kernel::Segment_2& cut : cuts) {
     const auto data = static_cast<std::int32_t>(built.sides.size());
     built.sides.push_back(Sides{});  // names no face: its sides are read off the faces
@@ -327,6 +328,16 @@ int keep_faces_on_the_card(const std::vector<RasterFace>& faces, Built& built) {
     f->set_data(face.orientation == Orientation::H ? 0 : 1);  // the back plane V(0), the floor H(0)
     ++trimmed;
   }
+  // The cut lines' stretches with one label on both sides part nothing: they go, and the faces they
+  // crossed are whole again (a stretch under the fold tolerance would otherwise part a crumb off).
+  std::vector<Arrangement::Halfedge_handle> parting_nothing;
+  for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
+    const auto& data = e->curve().data();
+    if (e->face()->data() == e->twin()->face()->data() &&
+        std::ranges::all_of(data, [&](std::int32_t d) { return d >= first_cut; }))
+      parting_nothing.push_back(e);
+  }
+  for (const Arrangement::Halfedge_handle e : parting_nothing) arr.remove_edge(e);
   return trimmed;
 }
 
