@@ -20,6 +20,7 @@
 #include <tuple>
 
 #include "helpers.hpp"
+#include "union_find.hpp"
 #include "origamic/error.hpp"
 #include "origamic/output.hpp"
 #include "origamic/plan.hpp"
@@ -164,15 +165,10 @@ TEST(Fold3d, FacesShareTheVerticesOfTheirFoldsAndNoOthers) {
           }
       }
     // So the card is one piece: every triangle reaches every other through shared vertices.
-    std::vector<std::uint32_t> parent(popup.positions.size());
-    for (std::uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
-    auto root = [&](std::uint32_t i) {
-      while (parent[i] != i) i = parent[i] = parent[parent[i]];
-      return i;
-    };
-    for (const auto& t : popup.triangles) parent[root(t[1])] = root(t[0]), parent[root(t[2])] = root(t[0]);
+    UnionFind<std::uint32_t> sets(popup.positions.size());
+    for (const auto& t : popup.triangles) sets.join(t[0], t[1]), sets.join(t[0], t[2]);
     std::set<std::uint32_t> pieces;
-    for (const auto& t : popup.triangles) pieces.insert(root(t[0]));
+    for (const auto& t : popup.triangles) pieces.insert(sets.root(t[0]));
     EXPECT_EQ(pieces.size(), 1u) << "angle " << angle;
   }
   // Slabs of thick card meet on their mitre planes, each closed on its own.
