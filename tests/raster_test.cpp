@@ -51,6 +51,30 @@ TEST(Raster, GridCoversTheDefaultSheetWithAboutOneMegapixel) {
   EXPECT_DOUBLE_EQ(grid.Y(594), -0.125);
 }
 
+// The box's outline breaks the picture where the box puts it, between pixel centres: its side
+// x = 40.2 against the back plane (0.3 of the way from the centre at 40.125 to 40.375), its top's
+// back edge at Y = h = 61.7 against the back plane (0.7 down from 61.875), and the crease between
+// its front and top at Y = h - d = 24.4 (0.9 down from 24.625). Nothing breaks inside a face.
+TEST(Raster, TheBoxsEdgesBreakThePictureBetweenPixelCentres) {
+  const RasterMaps maps = box_maps();
+  const PixelGrid& grid = maps.grid;
+  // The row (column) whose centre is the last above Y (left of X).
+  const auto row_at = [&](double Y) { return static_cast<int>(std::floor(grid.rows_above_fold - Y * grid.px_per_mm - 0.5)); };
+  const auto col_at = [&](double X) { return static_cast<int>(std::floor(X * grid.px_per_mm - 0.5)); };
+  const double step = 1.0 / 1024;  // the bisection's resolution, of the way between centres
+  ASSERT_DOUBLE_EQ(grid.X(col_at(40.2)), 40.125);
+  EXPECT_NEAR(maps.break_right(col_at(40.2), row_at(-10)), 0.3, step);
+  ASSERT_DOUBLE_EQ(grid.Y(row_at(61.7)), 61.875);
+  EXPECT_NEAR(maps.break_below(col_at(100), row_at(61.7)), 0.7, step);
+  ASSERT_DOUBLE_EQ(grid.Y(row_at(24.4)), 24.625);
+  EXPECT_NEAR(maps.break_below(col_at(100), row_at(24.4)), 0.9, step);
+  for (const double Y : {-10.0, 10.0, 40.0}) {  // the front, the top
+    EXPECT_TRUE(std::isnan(maps.break_right(col_at(100), row_at(Y)))) << Y;
+    EXPECT_TRUE(std::isnan(maps.break_below(col_at(100), row_at(Y)))) << Y;
+  }
+  EXPECT_TRUE(std::isnan(maps.break_below(col_at(20), row_at(61.7)))) << "the back plane alone";
+}
+
 TEST(Raster, BoxFrontFaceHasItsExactDepthAndExtent) {
   const RasterMaps maps = box_maps();
   PixelBox front, top;

@@ -78,6 +78,7 @@ struct Plan {
   int lost_faces = 0;                   // raster faces that no arrangement face carries
   int collapsed_faces = 0;              // faces at most 2 px tall whose folds met when snapped
   int folds_snapped = 0;                // V/H boundaries moved onto their fold line
+  double off_model_edges_mm = 0;        // the farthest a cut drawn on the model's edge passes from it
   int trimmed_to_card = 0;              // arrangement faces beyond the back plane or floor given to them
   bool simplified = false;              // every cut simplified, every fold candidate snapped
 };

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "origamic/report.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -94,6 +96,31 @@ nlohmann::json narrow_places_json(const std::vector<PlanProblem>& narrow) {
   return list;
 }
 
+// What a cutter draws: the cut lines' segments and vertices, how many segments are under 1 mm (a
+// pixel staircase shows as many), and how far the cuts drawn on the model's edges pass from them.
+nlohmann::json cuts_json(const Plan& plan) {
+  std::size_t segments = 0, vertices = 0, short_segments = 0;
+  for (const PlanPolyline& line : plan.lines) {
+    if (line.kind != LineKind::Cut && line.kind != LineKind::CutOut) continue;
+    vertices += line.points.size();
+    for (std::size_t i = 1; i < line.points.size(); ++i) {
+      ++segments;
+      const PlanPoint &a = line.points[i - 1], &b = line.points[i];
+      short_segments += std::hypot(b.X - a.X, b.Y - a.Y) < 1;
+    }
+  }
+  return {{"segments", segments},
+          {"vertices", vertices},
+          {"segments_under_1_mm", short_segments},
+          {"off_model_edges_mm", plan.off_model_edges_mm}};
+}
+
+// The narrowest place of the plan under W, or null where it has none.
+nlohmann::json narrowest_json(const std::vector<PlanProblem>& narrow) {
+  if (narrow.empty()) return nullptr;
+  return std::ranges::min(narrow, {}, &PlanProblem::value_mm).value_mm;
+}
+
 nlohmann::json plan_json(const Plan& plan, bool allow_dangling) {
   nlohmann::json faces = nlohmann::json::array();
   for (std::size_t i = 0; i < plan.faces.size(); ++i) {
@@ -120,6 +147,7 @@ nlohmann::json plan_json(const Plan& plan, bool allow_dangling) {
             {"removed", v.removed},
             {"loose_card_pieces", plan.loose_card_pieces}}},
           {"length_mm", {{"cut", plan.cut_mm}, {"mountain", plan.mountain_mm}, {"valley", plan.valley_mm}}},
+          {"cuts", cuts_json(plan)},
           {"exact_checks",
            {{"arrangement_valid", plan.arrangement_valid},
             {"faces_tile_sheet", plan.faces_tile_sheet},
@@ -170,6 +198,7 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
         {"sliced", likeness_json(result.sliced_likeness)}}},
       {"plan", plan_json(result.plan, result.allow_dangling)},
       {"narrow_strips", narrow_places_json(result.narrow_strips)},
+      {"narrowest_strip_mm", narrowest_json(result.narrow_strips)},
       {"supports",
        {{"added", result.supports.supports},
         {"rounds", result.supports.rounds},

@@ -12,9 +12,11 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <utility>
 
 #include "boundary_chains.hpp"
+#include "chain_points.hpp"
 #include "exact_plan_state.hpp"
 #include "exact_runs.hpp"
 #include "origamic/plan.hpp"
@@ -23,6 +25,8 @@ namespace origamic {
 namespace {
 
 using chains::Chain;
+using chains::junctions_on_breaks;
+using chains::ChainPoint;
 using chains::labels_inside_sheet;
 using chains::LatticePoint;
 using chains::simplified;
@@ -52,9 +56,13 @@ using exact::Traits;
 struct Lattice : chains::LatticeScale {
   std::vector<FT> X_of_u, Y_of_v;
   double half_mm;
+  chains::PictureBreaks breaks;
 
-  Lattice(const PixelGrid& grid, const Sheet& sheet)
-      : LatticeScale{grid.rows_above_fold, 1 / grid.px_per_mm}, half_mm(sheet.half_height_mm()) {
+  Lattice(const RasterMaps& maps, const Sheet& sheet)
+      : LatticeScale{maps.grid.rows_above_fold, 1 / maps.grid.px_per_mm},
+        half_mm(sheet.half_height_mm()),
+        breaks{maps.break_right, maps.break_below} {
+    const PixelGrid& grid = maps.grid;
     const FT two_ppm = FT(2) * FT(grid.px_per_mm), width(sheet.width_mm), half(sheet.half_height_mm());
     for (int u = 0; u <= 2 * grid.cols; ++u) X_of_u.push_back(CGAL::min(FT(u) / two_ppm, width));
     for (int v = 0; v <= 2 * grid.rows; ++v)
@@ -64,6 +72,45 @@ struct Lattice : chains::LatticeScale {
   Point exact(int u, int v) const { return {X_of_u[static_cast<std::size_t>(u)], Y_of_v[static_cast<std::size_t>(v)]}; }
 };
 
+// Where a cut piece's end is drawn when not at its corner: a junction moved onto the model's edge,
+// or a fold's end where the model's edge meets it.
+struct PieceEnd {
+  Point exact;
+  std::array<double, 2> near;  // its nearest doubles
+};
+
+// Junctions moved onto the model's edges (chains::junctions_on_breaks), exactly, by their corner.
+class Junctions {
+ public:
+  Junctions(const std::vector<chains::MovedJunction>& moved, const Lattice& lattice, const std::vector<Chain>& chains,
+            const std::vector<RasterFace>& faces) {
+    for (const chains::MovedJunction& m : moved) {
+      const FT X = m.u_on_lattice >= 0 ? lattice.X_of_u[static_cast<std::size_t>(m.u_on_lattice)] : FT(m.X);
+      FT Y = m.v_on_lattice >= 0 ? lattice.Y_of_v[static_cast<std::size_t>(m.v_on_lattice)] : FT(m.Y);
+      if (m.on_fold_of >= 0) {
+        const Chain& chain = chains[static_cast<std::size_t>(m.on_fold_of)];
+        const RasterFace &a = faces[static_cast<std::size_t>(chain.left)], &b = faces[static_cast<std::size_t>(chain.right)];
+        Y = fold_line_Y(a.orientation, FT(a.depth_mm), FT(b.depth_mm));
+      }
+      at_.emplace(std::pair{m.corner.u, m.corner.v},
+                  PieceEnd{Point(X, Y), {CGAL::to_double(X), CGAL::to_double(Y)}});
+    }
+  }
+  /// Where a corner is drawn if its junction moved.
+  std::optional<PieceEnd> moved(LatticePoint corner) const {
+    const auto moved = at_.find({corner.u, corner.v});
+    return moved != at_.end() ? std::optional(moved->second) : std::nullopt;
+  }
+  /// The point a corner is drawn at.
+  Point operator()(LatticePoint corner, const Lattice& lattice) const {
+    const auto moved = at_.find({corner.u, corner.v});
+    return moved != at_.end() ? moved->second.exact : lattice.exact(corner.u, corner.v);
+  }
+
+ private:
+  std::map<std::pair<int, int>, PieceEnd> at_;
+};
+
 struct Curves {
   std::vector<Traits::Curve_2> curves;
   std::vector<Sides> sides;
@@ -71,6 +118,7 @@ struct Curves {
   std::vector<Point> fold_ends;            // where snapped folds end: T-contacts meant to be
   std::int32_t chain = kNoLabel;           // the chain whose segments are being added
   int folds_snapped = 0;
+  double off_model_edges_mm = 0;           // the farthest a cut passes from the model's edge it follows
 
   // A segment with `left` on its left walking p -> q; stored from its lexicographically smaller end.
   void add(const Point& p, const Point& q, std::int32_t left, std::int32_t right) {
@@ -84,18 +132,41 @@ struct Curves {
   }
 };
 
+// Cuts moved onto the model's own edges (where the picture breaks) are kept this close to them: a
+// 96-sided drum's rim, 35 mm across, bulges 0.019 mm from its chords.
+constexpr double kSimplifyOnBreaks_mm = 0.02;
+// A fold's end moved less than this onto the model's edge keeps its corner's X: the rays' float
+// rounding (about 3e-5 mm on the house) would leave a sliver beside the corner.
+constexpr double kLeastMove_mm = 1e-3;
+
 // How much of the vectorization a chain keeps: a chain that crossed another is first left
 // unsimplified, then also unsnapped (its pixel contour, which crosses nothing).
 enum class Fallback : std::uint8_t { None, Unsimplified, PixelContour };
 
-void add_cut(const Chain& chain, std::size_t from, std::size_t to, const Lattice& lattice, double simplify_mm,
-             Curves& curves) {
+void add_cut(const Chain& chain, std::size_t from, std::size_t to, const Lattice& lattice, const Junctions& junctions,
+             double simplify_mm, Curves& curves, std::array<std::optional<PieceEnd>, 2> ends = {}) {
   if (to <= from) return;
   const Chain piece{chain.left, chain.right, {chain.corners.begin() + from, chain.corners.begin() + to + 1}};
-  const std::vector<LatticePoint> points = simplified(piece, lattice, simplify_mm);
-  Point from_point = lattice.exact(points[0].u, points[0].v);
+  if (!ends[0]) ends[0] = junctions.moved(piece.corners.front());
+  if (!ends[1]) ends[1] = junctions.moved(piece.corners.back());
+  const auto near = [](const std::optional<PieceEnd>& end) {
+    return end ? std::optional(end->near) : std::nullopt;
+  };
+  const chains::DrawnChain drawn = simplified(piece, lattice, lattice.breaks, simplify_mm,
+                                              std::min(simplify_mm, kSimplifyOnBreaks_mm), {near(ends[0]), near(ends[1])});
+  const std::vector<ChainPoint>& points = drawn.points;
+  curves.off_model_edges_mm = std::max(curves.off_model_edges_mm, drawn.off_edge_mm);
+  const auto exact = [&](std::size_t k) {
+    if (k == 0 && ends[0]) return ends[0]->exact;
+    if (k + 1 == points.size() && ends[1]) return ends[1]->exact;
+    const ChainPoint& p = points[k];
+    if (!p.on_break) return lattice.exact(p.lattice.u, p.lattice.v);
+    return Point(p.on_lattice_u >= 0 ? lattice.X_of_u[static_cast<std::size_t>(p.on_lattice_u)] : FT(p.X),
+                 p.on_lattice_v >= 0 ? lattice.Y_of_v[static_cast<std::size_t>(p.on_lattice_v)] : FT(p.Y));
+  };
+  Point from_point = exact(0);
   for (std::size_t k = 1; k < points.size(); ++k) {
-    Point to_point = lattice.exact(points[k].u, points[k].v);
+    Point to_point = exact(k);
     curves.add(from_point, to_point, chain.left, chain.right);
     from_point = std::move(to_point);
   }
@@ -106,17 +177,18 @@ void add_cut(const Chain& chain, std::size_t from, std::size_t to, const Lattice
 // trimmed to meet on it. Short vertical cuts join its ends to the corners the run had (they name no
 // face; the arrangement finds their sides). The rest of the boundary is a cut.
 void add_chain(const Chain& chain, Fallback fallback, const std::vector<RasterFace>& faces, const Lattice& lattice,
-               double simplify_mm, double tolerance, Curves& curves) {
+               const Junctions& junctions, double simplify_mm, double tolerance, Curves& curves) {
   const std::size_t last = chain.corners.size() - 1;
   if (fallback != Fallback::None) simplify_mm = 0;
   const RasterFace &a = faces[static_cast<std::size_t>(chain.left)], &b = faces[static_cast<std::size_t>(chain.right)];
   if (fallback == Fallback::PixelContour || a.orientation == b.orientation || a.hole || b.hole)
-    return add_cut(chain, 0, last, lattice, simplify_mm, curves);
+    return add_cut(chain, 0, last, lattice, junctions, simplify_mm, curves);
   const double fold_Y = fold_line_Y(a.orientation, a.depth_mm, b.depth_mm);
-  if (!(std::abs(fold_Y) < lattice.half_mm)) return add_cut(chain, 0, last, lattice, simplify_mm, curves);
+  if (!(std::abs(fold_Y) < lattice.half_mm)) return add_cut(chain, 0, last, lattice, junctions, simplify_mm, curves);
   const FT exact_Y = fold_line_Y(a.orientation, FT(a.depth_mm), FT(b.depth_mm));
   auto near = [&](std::size_t i) { return std::abs(lattice.Y(chain.corners[i].v) - fold_Y) <= tolerance; };
   std::size_t cut_from = 0, i = 0;
+  std::optional<PieceEnd> cut_from_end;  // where the cut from cut_from starts, if not at its corner
   while (i <= last) {
     if (!near(i)) {
       ++i;
@@ -135,23 +207,42 @@ void add_chain(const Chain& chain, Fallback fallback, const std::vector<RasterFa
       i = j + 1;
       continue;
     }
-    add_cut(chain, cut_from, i, lattice, simplify_mm, curves);
+    // Where the cut before the run (after it) comes in on the model's edge, the fold ends where
+    // that edge meets its line, and the cut runs to it: no connector.
+    const auto on_edge = [&](std::size_t from, std::size_t to, bool front) -> std::optional<PieceEnd> {
+      if (fallback != Fallback::None || to <= from) return std::nullopt;
+      const Chain piece{chain.left, chain.right, {chain.corners.begin() + from, chain.corners.begin() + to + 1}};
+      const std::optional<double> X = chains::leg_meets_line(piece, front, fold_Y, lattice, lattice.breaks);
+      if (!X) return std::nullopt;
+      // A move under a micrometre is the corner's own X, in the rays' rounding.
+      const LatticePoint corner = chain.corners[front ? from : to];
+      if (std::abs(*X - lattice.X(corner.u)) < kLeastMove_mm)
+        return PieceEnd{Point(lattice.exact(corner.u, corner.v).x(), exact_Y), {lattice.X(corner.u), fold_Y}};
+      return PieceEnd{Point(FT(*X), exact_Y), {*X, fold_Y}};
+    };
+    const std::optional<PieceEnd> start_on_edge = on_edge(cut_from, i, false);
+    add_cut(chain, cut_from, i, lattice, junctions, simplify_mm, curves, {cut_from_end, start_on_edge});
+    std::size_t next_cut_to = j + 1;  // the cut after the run ends at the next run or the chain's end
+    while (next_cut_to <= last && !near(next_cut_to)) ++next_cut_to;
+    const std::optional<PieceEnd> end_on_edge = on_edge(j, std::min(next_cut_to, last), true);
     const LatticePoint start = chain.corners[i], end = chain.corners[j];
-    const Point s = lattice.exact(start.u, start.v), e = lattice.exact(end.u, end.v);
-    const Point s_on(s.x(), exact_Y), e_on(e.x(), exact_Y);
+    const Point s = junctions(start, lattice), e = junctions(end, lattice);
+    const Point s_on = start_on_edge ? start_on_edge->exact : Point(s.x(), exact_Y);
+    const Point e_on = end_on_edge ? end_on_edge->exact : Point(e.x(), exact_Y);
     curves.add(s_on, e_on, chain.left, chain.right);
     curves.sides.back().fold = true;
     const std::int32_t owner = std::exchange(curves.chain, kNoLabel);  // connectors lie along other cuts
-    curves.add(s, s_on, kNoLabel, kNoLabel);
-    curves.add(e, e_on, kNoLabel, kNoLabel);
+    if (!start_on_edge) curves.add(s, s_on, kNoLabel, kNoLabel);
+    if (!end_on_edge) curves.add(e, e_on, kNoLabel, kNoLabel);
     curves.chain = owner;
     curves.fold_ends.push_back(s_on);
     curves.fold_ends.push_back(e_on);
     ++curves.folds_snapped;
     cut_from = j;
+    cut_from_end = end_on_edge;
     i = j + 1;
   }
-  add_cut(chain, cut_from, last, lattice, simplify_mm, curves);
+  add_cut(chain, cut_from, last, lattice, junctions, simplify_mm, curves, {cut_from_end, std::nullopt});
 }
 
 // Signed area of a boundary cycle from its vertices' nearest doubles: areas are reported, never
@@ -166,19 +257,46 @@ double ccb_area(Arrangement::Ccb_halfedge_const_circulator first) {
   return twice / 2;
 }
 
+// What each chain's ends allow its junctions: a chain that falls back to its raster contour keeps
+// them on the lattice; an end that may snap onto its fold (add_chain) moves only along the fold.
+std::vector<chains::ChainEnds> chain_ends(const std::vector<Chain>& chains, const std::vector<Fallback>& fallback,
+                                          const std::vector<RasterFace>& faces, const Lattice& lattice,
+                                          double fold_tolerance) {
+  std::vector<chains::ChainEnds> ends(chains.size());
+  for (std::size_t i = 0; i < chains.size(); ++i) {
+    const Chain& chain = chains[i];
+    const RasterFace &a = faces[static_cast<std::size_t>(chain.left)], &b = faces[static_cast<std::size_t>(chain.right)];
+    if (fallback[i] != Fallback::None) {
+      ends[i].pinned = true;
+    } else if (a.orientation != b.orientation && !a.hole && !b.hole) {
+      const double fold_Y = fold_line_Y(a.orientation, a.depth_mm, b.depth_mm);
+      if (!(std::abs(fold_Y) < lattice.half_mm)) continue;
+      const LatticePoint corners[2] = {chain.corners.front(), chain.corners.back()};
+      for (const int end : {0, 1})
+        if (std::abs(lattice.Y(corners[end].v) - fold_Y) <= fold_tolerance) ends[i].fold_Y[end] = fold_Y;
+    }
+  }
+  return ends;
+}
+
 void build_arrangement(const std::vector<Chain>& chains, const std::vector<Fallback>& fallback,
                        const std::vector<RasterFace>& faces, const Lattice& lattice, const Sheet& sheet,
                        double simplify_mm, double fold_tolerance, Built& built) {
   Curves curves;
+  const chains::JunctionMoves moves =
+      junctions_on_breaks(chains, lattice, lattice.breaks, chain_ends(chains, fallback, faces, lattice, fold_tolerance));
+  const Junctions junctions(moves.moved, lattice, chains, faces);
   for (std::size_t i = 0; i < chains.size(); ++i) {
+    if (moves.collapsed[i]) continue;
     curves.chain = static_cast<std::int32_t>(i);
-    add_chain(chains[i], fallback[i], faces, lattice, simplify_mm, fold_tolerance, curves);
+    add_chain(chains[i], fallback[i], faces, lattice, junctions, simplify_mm, fold_tolerance, curves);
   }
   curves.chain = kNoLabel;
   const FT W(sheet.width_mm), H(sheet.half_height_mm());
   const Point corners[4] = {{0, -H}, {W, -H}, {W, H}, {0, H}};
   for (int i = 0; i < 4; ++i) curves.add(corners[i], corners[(i + 1) % 4], kNoLabel, kNoLabel);
   built.folds_snapped = curves.folds_snapped;
+  built.off_model_edges_mm = curves.off_model_edges_mm;
   built.sides = std::move(curves.sides);
   CGAL::insert(built.arrangement, curves.curves.begin(), curves.curves.end());
 
@@ -368,7 +486,7 @@ void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& sl
   slices.face = sliced.face;
   slices.faces = sliced.faces;
   align_folds_to_lines(slices, maps.grid, fold_snap_tolerance_mm(options, slices, maps.grid));
-  const Lattice lattice(maps.grid, sheet);
+  const Lattice lattice(maps, sheet);
   state.labels = labels_inside_sheet(std::move(slices.face));  // the face map is not read again
   const Grid<std::int32_t>& labels = state.labels;
   const std::vector<Chain> chains = trace_chains(labels);
@@ -406,6 +524,7 @@ void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& sl
   plan.arrangement_valid = arr.is_valid();
   plan.label_conflicts = built.conflicts;
   plan.folds_snapped = built.folds_snapped;
+  plan.off_model_edges_mm = built.off_model_edges_mm;
 
   // Faces: exact areas per label, and the tiling check.
   const std::size_t n = slices.faces.size();

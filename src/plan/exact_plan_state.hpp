@@ -42,6 +42,7 @@ struct Built {
   std::vector<bool> crossed;  // per chain: one of its segments runs through a vertex it does not end at
   int conflicts = 0;
   int folds_snapped = 0;
+  double off_model_edges_mm = 0;  // the farthest a cut passes from the model's edge it follows
 };
 
 /// The pieces of paper: sets of arrangement faces of one label joined across edges with that label on

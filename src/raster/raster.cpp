@@ -9,9 +9,11 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -73,6 +75,13 @@ struct Hit {
   double d = 0;
 };
 
+// A key step between neighbouring pixel centres larger than this may be a jump, and is bisected:
+// a surface at 45 degrees to the rays steps 0.5 mm a pixel at 4 px/mm.
+constexpr double kBreakJump_mm = 1.0;
+// Facings more than 20 degrees apart between neighbouring pixel centres may be a crease; finer
+// facets (a 96-sided drum turns 3.75 degrees from facet to facet) are the model's curve.
+constexpr double kCreaseCosine = 0.9397;
+
 // The point (X, Y + d, d) of the 45-degree line through plan point (X, Y) on the plane of triangle
 // abc, in double precision. Axis-parallel faces return their coordinate untouched, so a V face's d
 // and an H face's h are exactly the mesh's.
@@ -92,6 +101,156 @@ Hit intersect_exactly(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3
   return {Y + d, d};
 }
 
+
+struct Traced {
+  HitKind kind = HitKind::Outside;
+  Hit hit;
+  glm::vec3 normal{0.0f};
+  std::int32_t primitive = -1;
+};
+
+// The 45-degree rays of one scene: from plan point (X, Y) along (X, Y + start_d - t, start_d - t)
+// to the model, or to the back plane (d = 0, reached at t = start_d when Y >= 0) or the floor (h = 0,
+// at t = start_d + Y when Y < 0).
+struct Tracer {
+  const RayScene::Impl& scene;
+  double start_d;  // rays start on this vertical plane, in front of the model and the floor's edge
+
+  /// The unit normal of a triangle's plane, turned to face the viewer (+h, +d).
+  glm::dvec3 facing(std::int32_t primitive) const {
+    const auto& t = scene.mesh.triangles[static_cast<std::size_t>(primitive)];
+    const glm::dvec3& p = scene.mesh.positions[t[0]];
+    const glm::dvec3 n = glm::cross(scene.mesh.positions[t[1]] - p, scene.mesh.positions[t[2]] - p);
+    const double length = glm::length(n);
+    if (!(length > 0)) return glm::dvec3(0.0);
+    return (n.y + n.z < 0 ? -n : n) / length;
+  }
+
+  Traced trace(double X, double Y, bool with_normal) const {
+    const double t_plane = Y >= 0 ? start_d : start_d + Y;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit ray{};
+    ray.ray.org_x = static_cast<float>(X);
+    ray.ray.org_y = static_cast<float>(Y + start_d);
+    ray.ray.org_z = static_cast<float>(start_d);
+    ray.ray.dir_x = 0.0f;
+    ray.ray.dir_y = -1.0f;
+    ray.ray.dir_z = -1.0f;
+    ray.ray.tnear = 0.0f;
+    ray.ray.tfar = static_cast<float>(t_plane);
+    ray.ray.mask = ~0u;
+    ray.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    ray.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    if (!scene.mesh.positions.empty()) rtcIntersect1(scene.embree->handle(), &context, &ray);
+
+    Traced traced;
+    if (ray.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+      traced.kind = HitKind::Model;
+      traced.primitive = static_cast<std::int32_t>(ray.hit.primID);
+      const auto& t = scene.mesh.triangles[ray.hit.primID];
+      traced.hit = intersect_exactly(scene.mesh.positions[t[0]], scene.mesh.positions[t[1]],
+                                     scene.mesh.positions[t[2]], X, Y, start_d - ray.ray.tfar);
+      if (!with_normal) return traced;
+      const auto* n = &scene.mesh.corner_normals[3 * static_cast<std::size_t>(ray.hit.primID)];
+      glm::vec3 normal = glm::normalize((1 - ray.hit.u - ray.hit.v) * n[0] + ray.hit.u * n[1] + ray.hit.v * n[2]);
+      // Show the side facing the viewer, whatever the winding of an open or inverted mesh.
+      if (normal.y + normal.z < 0) normal = -normal;
+      if (!std::isfinite(normal.x)) normal = glm::vec3(0.0f, 0.70710678f, 0.70710678f);
+      traced.normal = normal;
+    } else if (Y >= 0) {
+      traced = {HitKind::Back, {Y, 0.0}, {0.0f, 0.0f, 1.0f}, -1};
+    } else {
+      traced = {HitKind::Floor, {0.0, -Y}, {0.0f, 1.0f, 0.0f}, -1};
+    }
+    return traced;
+  }
+};
+
+// The 45-degree key h + d: equal for points on one ray, larger nearer the viewer.
+double key_of(const Traced& traced) { return traced.hit.h + traced.hit.d; }
+
+// The last interval of a bisection from plan point a (fraction 0) to b (fraction 1).
+struct Bisected {
+  double lo = 0, hi = 1;
+  Traced at_lo, at_hi;
+};
+
+// Bisects a to b, 10 times (to 1/1024 of the way), on which side of a change a point lies.
+template <typename OnASide>
+Bisected bisect(const Tracer& tracer, glm::dvec2 a, glm::dvec2 b, const Traced& at_a, const Traced& at_b,
+                OnASide on_a_side) {
+  Bisected range{0, 1, at_a, at_b};
+  for (int step = 0; step < 10; ++step) {
+    const double mid = (range.lo + range.hi) / 2;
+    const glm::dvec2 p = a + mid * (b - a);
+    const Traced at_mid = tracer.trace(p.x, p.y, false);
+    if (on_a_side(at_mid))
+      range.lo = mid, range.at_lo = at_mid;
+    else
+      range.hi = mid, range.at_hi = at_mid;
+  }
+  return range;
+}
+
+// Where the picture breaks on the way from plan point a to b, as a fraction of it, or NaN: the
+// model against the background; a jump in the key (one surface in front of another); or a crease,
+// the facing turning sharply (a box's top edge). A jump or crease must stay whole as the bisection
+// narrows it to 1/1024 of the way: a steep or curved but smooth surface spreads its change.
+float break_between(const Tracer& tracer, glm::dvec2 a, glm::dvec2 b, const Traced& at_a, const Traced& at_b) {
+  constexpr float none = std::numeric_limits<float>::quiet_NaN();
+  const bool model_a = at_a.kind == HitKind::Model, model_b = at_b.kind == HitKind::Model;
+  // A break on the pixel edge itself (an axis-parallel model edge on the lattice, as often as not)
+  // leaves the first midpoint, 1/2, an end of the last interval: it is there, and stays symmetric.
+  const auto middle = [](const Bisected& range) {
+    return range.lo == 0.5 || range.hi == 0.5 ? 0.5f : static_cast<float>((range.lo + range.hi) / 2);
+  };
+  if (model_a != model_b)
+    return middle(bisect(tracer, a, b, at_a, at_b, [&](const Traced& t) { return (t.kind == HitKind::Model) == model_a; }));
+  if (!model_a) return none;
+  const double jump = key_of(at_b) - key_of(at_a);
+  if (std::abs(jump) > kBreakJump_mm) {
+    const Bisected range = bisect(tracer, a, b, at_a, at_b, [&](const Traced& t) {
+      return t.kind == HitKind::Model && std::abs(key_of(t) - key_of(at_a)) < std::abs(key_of(t) - key_of(at_b));
+    });
+    if (std::abs(key_of(range.at_hi) - key_of(range.at_lo)) >= std::abs(jump) / 2) return middle(range);
+  }
+  const glm::dvec3 facing_a = tracer.facing(at_a.primitive), facing_b = tracer.facing(at_b.primitive);
+  const double turn = glm::dot(facing_a, facing_b);
+  if (!(turn < kCreaseCosine)) return none;
+  const Bisected range = bisect(tracer, a, b, at_a, at_b, [&](const Traced& t) {
+    if (t.kind != HitKind::Model) return false;
+    const glm::dvec3 facing = tracer.facing(t.primitive);
+    return glm::dot(facing, facing_a) > glm::dot(facing, facing_b);
+  });
+  if (range.at_lo.kind != HitKind::Model || range.at_hi.kind != HitKind::Model) return none;
+  if (!(glm::dot(tracer.facing(range.at_lo.primitive), tracer.facing(range.at_hi.primitive)) <= (1 + turn) / 2))
+    return none;
+  return middle(range);
+}
+
+// The maps' breaks between neighbouring pixel centres on the sheet, in parallel over rows.
+void trace_breaks(const Tracer& tracer, RasterMaps& maps) {
+  const PixelGrid& grid = maps.grid;
+  maps.break_right = Grid<float>(grid.cols, grid.rows, std::numeric_limits<float>::quiet_NaN());
+  maps.break_below = Grid<float>(grid.cols, grid.rows, std::numeric_limits<float>::quiet_NaN());
+  const double px_mm = 1 / grid.px_per_mm;
+  tbb::parallel_for(tbb::blocked_range<int>(0, grid.rows), [&](const tbb::blocked_range<int>& range) {
+    for (int row = range.begin(); row != range.end(); ++row)
+      for (int col = 0; col < grid.cols; ++col) {
+        if (maps.kind(col, row) == HitKind::Outside) continue;
+        const glm::dvec2 a(grid.X(col), grid.Y(row));
+        const Traced at_a{maps.kind(col, row), {maps.h_mm(col, row), maps.d_mm(col, row)}, {}, maps.primitive(col, row)};
+        for (const auto& [c, r, out] : {std::tuple{col + 1, row, &maps.break_right},
+                                         std::tuple{col, row + 1, &maps.break_below}}) {
+          if (!maps.kind.contains(c, r) || maps.kind(c, r) == HitKind::Outside) continue;
+          const Traced at_b{maps.kind(c, r), {maps.h_mm(c, r), maps.d_mm(c, r)}, {}, maps.primitive(c, r)};
+          (*out)(col, row) = break_between(tracer, a, a + glm::dvec2(c - col, row - r) * px_mm, at_a, at_b);
+        }
+      }
+  });
+}
+
 void check_options(const Sheet& sheet, const RasterOptions& options) {
   if (!(std::isfinite(options.px_per_mm) && options.px_per_mm > 0))
     throw InputError("RasterOptions::px_per_mm", "must be a positive, finite number");
@@ -100,7 +259,7 @@ void check_options(const Sheet& sheet, const RasterOptions& options) {
     throw InputError("RasterOptions::px_per_mm",
                      std::to_string(options.px_per_mm) + " gives less than one pixel across the sheet");
   const double pixels = cols * rows;
-  constexpr double max_pixels = 64e6;  // the maps take about 45 bytes a pixel: 3 GB at most
+  constexpr double max_pixels = 64e6;  // the maps take about 53 bytes a pixel: 3.4 GB at most
   if (!(pixels <= max_pixels))
   {
     char text[160];
@@ -136,68 +295,28 @@ RasterMaps raster(const RayScene& scene, const Sheet& sheet, const RasterOptions
   // Rays start on the vertical plane d = start_d, in front of the model and of the floor's edge.
   const double start_d = ref.front_d_mm + 1.0;
 
+  const Tracer tracer{s, start_d};
   tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& range) {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     for (int row = range.begin(); row != range.end(); ++row) {
       const double Y = maps.grid.Y(row);
       if (Y < sheet.min_Y() || Y > sheet.max_Y()) continue;
       for (int col = 0; col < cols; ++col) {
         const double X = maps.grid.X(col);
         if (X > sheet.max_X()) continue;
-        // Along the ray (X, Y + start_d - t, start_d - t) the back plane d = 0 is reached at
-        // t = start_d when Y >= 0, the floor h = 0 at t = start_d + Y when Y < 0.
-        const double t_plane = Y >= 0 ? start_d : start_d + Y;
-        RTCRayHit ray{};
-        ray.ray.org_x = static_cast<float>(X);
-        ray.ray.org_y = static_cast<float>(Y + start_d);
-        ray.ray.org_z = static_cast<float>(start_d);
-        ray.ray.dir_x = 0.0f;
-        ray.ray.dir_y = -1.0f;
-        ray.ray.dir_z = -1.0f;
-        ray.ray.tnear = 0.0f;
-        ray.ray.tfar = static_cast<float>(t_plane);
-        ray.ray.mask = ~0u;
-        ray.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        ray.hit.primID = RTC_INVALID_GEOMETRY_ID;
-        if (!empty) rtcIntersect1(s.embree->handle(), &context, &ray);
-
-        Hit hit;
-        glm::vec3 normal;
-        HitKind kind;
-        std::int32_t primitive = -1;
-        if (ray.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-          kind = HitKind::Model;
-          primitive = static_cast<std::int32_t>(ray.hit.primID);
-          const auto& t = s.mesh.triangles[ray.hit.primID];
-          hit = intersect_exactly(s.mesh.positions[t[0]], s.mesh.positions[t[1]], s.mesh.positions[t[2]], X, Y,
-                                  start_d - ray.ray.tfar);
-          const auto* n = &s.mesh.corner_normals[3 * static_cast<std::size_t>(ray.hit.primID)];
-          normal = glm::normalize((1 - ray.hit.u - ray.hit.v) * n[0] + ray.hit.u * n[1] + ray.hit.v * n[2]);
-          // Show the side facing the viewer, whatever the winding of an open or inverted mesh.
-          if (normal.y + normal.z < 0) normal = -normal;
-          if (!std::isfinite(normal.x)) normal = glm::vec3(0.0f, 0.70710678f, 0.70710678f);
-        } else if (Y >= 0) {
-          kind = HitKind::Back;
-          hit = {Y, 0.0};
-          normal = {0.0f, 0.0f, 1.0f};
-        } else {
-          kind = HitKind::Floor;
-          hit = {0.0, -Y};
-          normal = {0.0f, 1.0f, 0.0f};
-        }
-        maps.kind(col, row) = kind;
+        const Traced traced = tracer.trace(X, Y, true);
+        const Hit& hit = traced.hit;
+        maps.kind(col, row) = traced.kind;
         maps.h_mm(col, row) = hit.h;
         maps.d_mm(col, row) = hit.d;
         maps.D(col, row) = static_cast<float>((ref.diag_mm - (hit.h + hit.d)) / ref.diag_mm);
         maps.F(col, row) = static_cast<float>((ref.front_d_mm - hit.d) / ref.front_d_mm);
         maps.T(col, row) = static_cast<float>((ref.top_h_mm - hit.h) / ref.top_h_mm);
-        maps.normal(col, row) = normal;
-        maps.primitive(col, row) = primitive;
+        maps.normal(col, row) = traced.normal;
+        maps.primitive(col, row) = traced.primitive;
       }
     }
   });
+  trace_breaks(tracer, maps);
 
   for (const HitKind k : maps.kind.values) maps.model_pixels += k == HitKind::Model;
   return maps;

@@ -10,7 +10,6 @@
 #include "bands.hpp"
 
 namespace origamic::chains {
-
 Grid<std::int32_t> labels_inside_sheet(Grid<std::int32_t> labels) {
   // The pixels inside that border one outside, row by row, found in bands in parallel.
   std::array<std::vector<std::pair<int, int>>, kBands> band_rings;
@@ -129,43 +128,6 @@ std::vector<Chain> trace_chains(const Grid<std::int32_t>& labels) {
   for (std::uint32_t i = 0; i < edges.size(); ++i)
     if (!used[i]) follow(i);
   return chains;
-}
-
-std::vector<LatticePoint> simplified(const Chain& chain, const LatticeScale& lattice, double tolerance_mm) {
-  if (tolerance_mm <= 0) return chain.corners;
-  std::vector<LatticePoint> points = {chain.corners.front()};
-  for (std::size_t i = 1; i < chain.corners.size(); ++i) {
-    const LatticePoint a = chain.corners[i - 1], b = chain.corners[i];
-    points.push_back({(a.u + b.u) / 2, (a.v + b.v) / 2});
-  }
-  points.push_back(chain.corners.back());
-  std::vector<bool> keep(points.size(), false);
-  keep.front() = keep.back() = true;
-  std::vector<std::pair<std::size_t, std::size_t>> stack = {{0, points.size() - 1}};
-  while (!stack.empty()) {
-    const auto [i, j] = stack.back();
-    stack.pop_back();
-    if (j <= i + 1) continue;
-    const double ax = lattice.X(points[i].u), ay = lattice.Y(points[i].v);
-    const double bx = lattice.X(points[j].u), by = lattice.Y(points[j].v);
-    const double dx = bx - ax, dy = by - ay, length = std::hypot(dx, dy);
-    double worst = -1;
-    std::size_t worst_k = i;
-    for (std::size_t k = i + 1; k < j; ++k) {
-      const double px = lattice.X(points[k].u) - ax, py = lattice.Y(points[k].v) - ay;
-      const double distance = length > 0 ? std::abs(dx * py - dy * px) / length : std::hypot(px, py);
-      if (distance > worst) worst = distance, worst_k = k;
-    }
-    if (worst > tolerance_mm) {
-      keep[worst_k] = true;
-      stack.emplace_back(i, worst_k);
-      stack.emplace_back(worst_k, j);
-    }
-  }
-  std::vector<LatticePoint> result;
-  for (std::size_t k = 0; k < points.size(); ++k)
-    if (keep[k]) result.push_back(points[k]);
-  return result;
 }
 
 }  // namespace origamic::chains

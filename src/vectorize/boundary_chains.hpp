@@ -39,7 +39,4 @@ Grid<std::int32_t> labels_inside_sheet(Grid<std::int32_t> labels);
 /// Every boundary between two labels as chains, each edge of a pixel in one chain.
 std::vector<Chain> trace_chains(const Grid<std::int32_t>& labels);
 
-/// Douglas-Peucker over the chain's edge midpoints between its two fixed end corners.
-std::vector<LatticePoint> simplified(const Chain& chain, const LatticeScale& lattice, double tolerance_mm);
-
 }  // namespace origamic::chains

@@ -1,0 +1,389 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "chain_points.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <map>
+#include <optional>
+#include <utility>
+
+#include "union_find.hpp"
+
+namespace origamic::chains {
+namespace {
+
+// A chain's first edges on the picture's break are a straight leg if they lie within this of one
+// line (refined points on a straight model edge scatter about 1e-4 mm: float rays, 1/1024 pixel).
+constexpr double kLegStraightness_mm = 0.01;
+// Two legs meet in a junction only if they cross at 15 degrees or more: nearly parallel legs (one
+// edge of the model on both sides of the main fold) place it poorly.
+constexpr double kLegMinSine = 0.25;
+// A junction moves at most this far: the model's edge passes within half a pixel of every
+// refined point, and the junction's corner within a pixel's diagonal of the edges' meeting point.
+constexpr double kJunctionMove_px = 1.0;
+// Runs of fewer edges on breaks are not drawn on them (see simplified). Drawing every break left
+// prim_cylinder 24 places narrower than W where the lattice left 9 (its 22.5-degree creases touched
+// by slices' ends); on the 37 models runs of 4, 8 and 16 leave 6,152, 6,129 and 6,130 (the lattice
+// 6,060).
+constexpr std::size_t kMinBreakRun = 8;
+// A fold's end moves along its line to the model's edge by at most this: a 30-degree edge meets
+// the line up to 1.5 pixels from where the traced run reached it.
+constexpr double kFoldEndMove_px = 2.0;
+// A junction moved less than this stays on its corner: the rays' float rounding (about 3e-5 mm on
+// the house) would leave a sliver beside a corner that is on the model's edge already.
+constexpr double kLeastMove_mm = 1e-3;
+
+// The midpoint of the pixel edge from corner a to corner b, on the picture's break across it if
+// there is one.
+ChainPoint edge_point(LatticePoint a, LatticePoint b, const LatticeScale& lattice, const PictureBreaks& breaks) {
+  ChainPoint point{{(a.u + b.u) / 2, (a.v + b.v) / 2}};
+  if (breaks.right.size() == 0) return point;
+  const int u = point.lattice.u, v = point.lattice.v;
+  float t = std::numeric_limits<float>::quiet_NaN();
+  if (a.v == b.v) {  // between pixel rows v/2 - 1 (above) and v/2, at column (u - 1)/2
+    const int col = (u - 1) / 2, above = v / 2 - 1;
+    if (breaks.below.contains(col, above)) t = breaks.below(col, above);
+    if (!std::isnan(t)) point = {point.lattice, true, lattice.X(u), lattice.Y(v - 1) - t * lattice.px_mm};
+  } else {  // between pixel columns u/2 - 1 and u/2, at row (v - 1)/2
+    const int left = u / 2 - 1, row = (v - 1) / 2;
+    if (breaks.right.contains(left, row)) t = breaks.right(left, row);
+    if (!std::isnan(t)) point = {point.lattice, true, lattice.X(u - 1) + t * lattice.px_mm, lattice.Y(v)};
+  }
+  return point;
+}
+
+// A chain's straight start from one of its ends.
+struct Leg {
+  double X, Y;    // a point of the line
+  double dx, dy;  // its unit direction
+  bool on_break;  // the line is the model's edge; otherwise a lattice line through `through`
+  LatticePoint through;
+  std::int32_t fold_chain = -1;  // the line is this chain's fold line (it snaps onto it there)
+};
+
+// The chain's leg at its front (or back): its first edges' points on the picture's break, if they
+// lie on one line (a model edge), or its first edges along one lattice line.
+std::optional<Leg> leg_of(const Chain& chain, bool front, const LatticeScale& lattice, const PictureBreaks& breaks) {
+  constexpr std::size_t kEdges = 3;  // 0.75 mm at 4 px/mm: a curve of radius 70 mm bends 0.001 mm in it
+  const std::size_t n = chain.corners.size();
+  const auto corner = [&](std::size_t k) { return chain.corners[front ? k : n - 1 - k]; };
+  const std::size_t edges = std::min(kEdges, n - 1);
+  if (edges < 2) return std::nullopt;
+  std::vector<ChainPoint> points;
+  for (std::size_t k = 0; k < edges; ++k) points.push_back(edge_point(corner(k), corner(k + 1), lattice, breaks));
+  const LatticePoint j = corner(0);
+  if (std::ranges::all_of(points, &ChainPoint::on_break)) {
+    const ChainPoint &a = points.front(), &b = points.back();
+    const double length = std::hypot(b.X - a.X, b.Y - a.Y);
+    if (!(length > 0)) return std::nullopt;
+    const Leg leg{a.X, a.Y, (b.X - a.X) / length, (b.Y - a.Y) / length, true, j};
+    for (const ChainPoint& p : points)
+      if (std::abs((p.X - leg.X) * leg.dy - (p.Y - leg.Y) * leg.dx) > kLegStraightness_mm) return std::nullopt;
+    return leg;
+  }
+  if (std::ranges::any_of(points, &ChainPoint::on_break)) return std::nullopt;
+  const bool along_u = std::ranges::all_of(points, [&](const ChainPoint& p) { return p.lattice.v == j.v; });
+  const bool along_v = std::ranges::all_of(points, [&](const ChainPoint& p) { return p.lattice.u == j.u; });
+  if (!along_u && !along_v) return std::nullopt;
+  return Leg{lattice.X(j.u), lattice.Y(j.v), along_u ? 1.0 : 0.0, along_u ? 0.0 : 1.0, false, j};
+}
+
+bool same(LatticePoint a, LatticePoint b) { return a.u == b.u && a.v == b.v; }
+
+bool is_loop(const Chain& chain) { return same(chain.corners.front(), chain.corners.back()); }
+
+// Where the two legs most across each other meet, one of them on a break, if they cross at
+// kLegMinSine or more; on a lattice leg's line exactly. Where a chain snaps onto its fold at the
+// junction, on that fold's line: the junction then is the fold's end (and another fold ending
+// there meets it by a connector, as ever).
+std::optional<MovedJunction> meeting_point(const std::vector<Leg>& legs) {
+  const auto folds = std::ranges::count_if(legs, [](const Leg& leg) { return leg.fold_chain >= 0; });
+  double best_sine = kLegMinSine;
+  std::optional<MovedJunction> best;
+  for (const Leg& p : legs)
+    for (const Leg& q : legs) {
+      if (!p.on_break || &p == &q || (folds > 0 && q.fold_chain < 0)) continue;
+      const double sine = p.dx * q.dy - p.dy * q.dx;
+      if (!(std::abs(sine) > best_sine)) continue;
+      const double t = ((q.X - p.X) * q.dy - (q.Y - p.Y) * q.dx) / sine;
+      MovedJunction at{{}, p.X + t * p.dx, p.Y + t * p.dy};
+      if (q.fold_chain >= 0)
+        at.Y = q.Y, at.on_fold_of = q.fold_chain;
+      else if (!q.on_break)
+        (q.dy == 0 ? at.v_on_lattice : at.u_on_lattice) = q.dy == 0 ? q.through.v : q.through.u;
+      best_sine = std::abs(sine);
+      best = at;
+    }
+  return best;
+}
+
+}  // namespace
+
+std::optional<double> leg_meets_line(const Chain& chain, bool front, double Y, const LatticeScale& lattice,
+                                     const PictureBreaks& breaks) {
+  if (breaks.right.size() == 0) return std::nullopt;
+  const std::optional<Leg> leg = leg_of(chain, front, lattice, breaks);
+  if (!leg || !leg->on_break || !(std::abs(leg->dy) > kLegMinSine)) return std::nullopt;
+  const double X = leg->X + (Y - leg->Y) / leg->dy * leg->dx;
+  const LatticePoint end = front ? chain.corners.front() : chain.corners.back();
+  if (!(std::hypot(X - lattice.X(end.u), Y - lattice.Y(end.v)) <= kFoldEndMove_px * lattice.px_mm)) return std::nullopt;
+  return X;
+}
+
+JunctionMoves junctions_on_breaks(const std::vector<Chain>& chains, const LatticeScale& lattice,
+                                  const PictureBreaks& breaks, const std::vector<ChainEnds>& ends) {
+  JunctionMoves result;
+  result.collapsed.assign(chains.size(), false);
+  if (breaks.right.size() == 0) return result;
+  // Junctions one pixel edge apart are one place on the model's edge (where it crosses the main
+  // fold, say, between the back plane and the floor): the short chains between them form clusters.
+  std::map<std::pair<int, int>, std::int32_t> junction_of;
+  std::vector<LatticePoint> corner_of;
+  const auto id = [&](LatticePoint p) {
+    const auto [it, fresh] = junction_of.try_emplace({p.u, p.v}, static_cast<std::int32_t>(corner_of.size()));
+    if (fresh) corner_of.push_back(p);
+    return it->second;
+  };
+  for (const Chain& chain : chains)
+    if (!is_loop(chain)) id(chain.corners.front()), id(chain.corners.back());
+  UnionFind<std::int32_t> clusters(corner_of.size());
+  const auto is_short = [](const Chain& chain) { return chain.corners.size() < 3; };
+  for (const Chain& chain : chains)
+    if (!is_loop(chain) && is_short(chain)) clusters.join(id(chain.corners.front()), id(chain.corners.back()));
+  std::vector<std::vector<Leg>> legs(corner_of.size());
+  std::vector<bool> held(corner_of.size(), false);
+  for (std::size_t i = 0; i < chains.size(); ++i) {
+    const Chain& chain = chains[i];
+    if (is_loop(chain)) continue;
+    for (const bool front : {true, false}) {
+      const LatticePoint end = front ? chain.corners.front() : chain.corners.back();
+      const auto cluster = static_cast<std::size_t>(clusters.root(id(end)));
+      if (ends[i].pinned) held[cluster] = true;
+      if (const std::optional<double> fold_Y = ends[i].fold_Y[front ? 0 : 1])
+        legs[cluster].push_back({lattice.X(end.u), *fold_Y, 1, 0, false, end, static_cast<std::int32_t>(i)});
+      else if (const std::optional<Leg> leg = leg_of(chain, front, lattice, breaks))
+        legs[cluster].push_back(*leg);
+    }
+  }
+  std::vector<std::optional<MovedJunction>> moved_to(corner_of.size());
+  for (std::size_t c = 0; c < corner_of.size(); ++c)
+    if (clusters.root(static_cast<std::int32_t>(c)) == static_cast<std::int32_t>(c) && !held[c])
+      moved_to[c] = meeting_point(legs[c]);
+  std::vector<double> farthest(corner_of.size(), 0);  // per cluster: its farthest junction's move
+  for (std::size_t j = 0; j < corner_of.size(); ++j) {
+    const auto root = static_cast<std::size_t>(clusters.root(static_cast<std::int32_t>(j)));
+    if (!moved_to[root]) continue;
+    const MovedJunction& at = *moved_to[root];
+    farthest[root] = std::max(farthest[root], std::hypot(at.X - lattice.X(corner_of[j].u), at.Y - lattice.Y(corner_of[j].v)));
+  }
+  // A cluster moves whole or not at all; by a pixel at most, and not by the rays' rounding alone.
+  for (std::size_t c = 0; c < corner_of.size(); ++c)
+    if (moved_to[c] && !(farthest[c] <= kJunctionMove_px * lattice.px_mm && farthest[c] >= kLeastMove_mm))
+      moved_to[c].reset();
+  for (std::size_t j = 0; j < corner_of.size(); ++j)
+    if (const auto& at = moved_to[static_cast<std::size_t>(clusters.root(static_cast<std::int32_t>(j)))]) {
+      MovedJunction moved = *at;
+      moved.corner = corner_of[j];
+      result.moved.push_back(moved);
+    }
+  for (std::size_t i = 0; i < chains.size(); ++i) {
+    const Chain& chain = chains[i];
+    if (is_loop(chain) || !is_short(chain)) continue;
+    result.collapsed[i] = moved_to[static_cast<std::size_t>(clusters.root(id(chain.corners.front())))].has_value();
+  }
+  return result;
+}
+
+namespace {
+
+// Where a run of points on the model's edge meets a straight run along one lattice line (a support's
+// side leaving a roof's edge), the corner between them moves onto the edge: the two lines' meeting
+// point, on the lattice line exactly, if it is within a pixel of the corner; it is inserted, fixed,
+// and the edge's points beyond it go.
+void insert_corners(const LatticeScale& lattice, std::vector<ChainPoint>& points, std::vector<bool>& fixed) {
+  // The corner two consecutive pixel edges share, from their midpoints (a corner's coordinates are
+  // even, a midpoint's odd across its edge).
+  const auto shared_corner = [](LatticePoint m1, LatticePoint m2) {
+    const auto pick = [](int a, int b) { return a % 2 == 0 ? a : b % 2 == 0 ? b : (a + b) / 2; };
+    return LatticePoint{pick(m1.u, m2.u), pick(m1.v, m2.v)};
+  };
+  constexpr std::size_t kRun = 3;  // points on each side that must make the two straight lines
+  for (std::size_t k = kRun; k + kRun < points.size(); ++k) {
+    // points[k] and points[k + 1], where both are edges' midpoints, are either side of a corner.
+    for (const bool edge_first : {true, false}) {
+      const std::size_t first_break = edge_first ? k + 1 - kRun : k + 1, first_lattice = edge_first ? k + 1 : k + 1 - kRun;
+      const auto all = [&](std::size_t from, bool on_break) {
+        for (std::size_t m = from; m < from + kRun; ++m)
+          if (points[m].on_break != on_break || fixed[m]) return false;
+        return true;
+      };
+      if (!all(first_break, true) || !all(first_lattice, false)) continue;
+      // The lattice run: its edges on one lattice line through the corner.
+      const LatticePoint corner = shared_corner(points[k].lattice, points[k + 1].lattice);
+      bool along_u = true, along_v = true;
+      for (std::size_t m = first_lattice; m < first_lattice + kRun; ++m)
+        along_u = along_u && points[m].lattice.v == corner.v, along_v = along_v && points[m].lattice.u == corner.u;
+      if (along_u == along_v) continue;
+      const ChainPoint &a = points[first_break], &b = points[first_break + kRun - 1];
+      const double length = std::hypot(b.X - a.X, b.Y - a.Y);
+      if (!(length > 0)) continue;
+      const double dx = (b.X - a.X) / length, dy = (b.Y - a.Y) / length;
+      bool straight = true;
+      for (std::size_t m = first_break; m < first_break + kRun; ++m)
+        straight = straight && std::abs((points[m].X - a.X) * dy - (points[m].Y - a.Y) * dx) <= kLegStraightness_mm;
+      const double across = along_u ? dy : dx;  // the sine between the edge and the lattice line
+      if (!straight || !(std::abs(across) > kLegMinSine)) continue;
+      ChainPoint meet{corner, true};
+      if (along_u) {
+        meet.Y = lattice.Y(corner.v), meet.X = a.X + (meet.Y - a.Y) / dy * dx, meet.on_lattice_v = corner.v;
+      } else {
+        meet.X = lattice.X(corner.u), meet.Y = a.Y + (meet.X - a.X) / dx * dy, meet.on_lattice_u = corner.u;
+      }
+      // Where the edge meets the lattice line at a shallow angle, the pixels leave the corner up to
+      // a pixel over the sine away along it (a 30-degree roof edge: 1.5 pixels).
+      const double reach_px = std::min(kJunctionMove_px / std::abs(across), 2.0);
+      if (!(std::hypot(meet.X - lattice.X(corner.u), meet.Y - lattice.Y(corner.v)) <= reach_px * lattice.px_mm))
+        continue;
+      // The edge's points past the meeting point (seen from the edge's run) go.
+      const std::size_t inward = edge_first ? first_break : first_break + kRun - 1;
+      const auto ahead = [&](const ChainPoint& p) {
+        return (p.X - meet.X) * (points[inward].X - meet.X) + (p.Y - meet.Y) * (points[inward].Y - meet.Y) > 0;
+      };
+      if (edge_first) {
+        std::size_t keep_to = k + 1;  // points[first_break .. k] are the edge's; drop those not ahead
+        while (keep_to > first_break && !ahead(points[keep_to - 1])) --keep_to;
+        points.erase(points.begin() + static_cast<std::ptrdiff_t>(keep_to), points.begin() + static_cast<std::ptrdiff_t>(k + 1));
+        fixed.erase(fixed.begin() + static_cast<std::ptrdiff_t>(keep_to), fixed.begin() + static_cast<std::ptrdiff_t>(k + 1));
+        points.insert(points.begin() + static_cast<std::ptrdiff_t>(keep_to), meet);
+        fixed.insert(fixed.begin() + static_cast<std::ptrdiff_t>(keep_to), true);
+        k = keep_to;
+      } else {
+        std::size_t drop_to = k + 1;  // points[k + 1 ..] are the edge's; drop those not ahead
+        while (drop_to < first_break + kRun && !ahead(points[drop_to])) ++drop_to;
+        points.erase(points.begin() + static_cast<std::ptrdiff_t>(k + 1), points.begin() + static_cast<std::ptrdiff_t>(drop_to));
+        fixed.erase(fixed.begin() + static_cast<std::ptrdiff_t>(k + 1), fixed.begin() + static_cast<std::ptrdiff_t>(drop_to));
+        points.insert(points.begin() + static_cast<std::ptrdiff_t>(k + 1), meet);
+        fixed.insert(fixed.begin() + static_cast<std::ptrdiff_t>(k + 1), true);
+        k = k + 1;
+      }
+      break;
+    }
+  }
+}
+
+}  // namespace
+
+DrawnChain simplified(const Chain& chain, const LatticeScale& lattice, const PictureBreaks& breaks, double lattice_mm,
+                      double break_mm, const MovedEnds& moved_ends) {
+  std::vector<ChainPoint> points;
+  if (lattice_mm <= 0) {
+    for (const LatticePoint corner : chain.corners) points.push_back({corner});
+    return {points};
+  }
+  points.push_back({chain.corners.front()});
+  for (std::size_t i = 1; i < chain.corners.size(); ++i)
+    points.push_back(edge_point(chain.corners[i - 1], chain.corners[i], lattice, breaks));
+  points.push_back({chain.corners.back()});
+  // A boundary follows the model's edge only along runs of kMinBreakRun edges the picture breaks
+  // across; shorter runs are a slice's end touching a crease here and there, and stay on the
+  // lattice, as their neighbours do, rather than notch the boundary by half a pixel.
+  for (std::size_t k = 0; k < points.size();) {
+    std::size_t end = k;
+    while (end < points.size() && points[end].on_break) ++end;
+    if (end - k < kMinBreakRun)
+      for (std::size_t m = k; m < end; ++m) points[m].on_break = false;
+    k = end + 1;
+  }
+  std::vector<bool> fixed(points.size(), false);
+  fixed.front() = fixed.back() = true;
+  insert_corners(lattice, points, fixed);
+  std::vector<std::array<double, 2>> at;
+  for (const ChainPoint& p : points)
+    at.push_back(p.on_break ? std::array{p.X, p.Y} : std::array{lattice.X(p.lattice.u), lattice.Y(p.lattice.v)});
+  if (moved_ends[0]) at.front() = *moved_ends[0];
+  if (moved_ends[1]) at.back() = *moved_ends[1];
+  std::vector<bool> beyond(points.size(), false);
+  const std::size_t n = points.size(), reach = std::min<std::size_t>(6, n - 1);
+  for (const bool front : {true, false}) {
+    if (!moved_ends[front ? 0 : 1]) continue;
+    const auto index = [&](std::size_t k) { return front ? k : n - 1 - k; };
+    const std::array<double, 2> end = at[index(0)], inward = at[index(reach)];
+    for (std::size_t k = 1; k < reach; ++k) {
+      const std::array<double, 2> p = at[index(k)];
+      beyond[index(k)] = (p[0] - end[0]) * (inward[0] - end[0]) + (p[1] - end[1]) * (inward[1] - end[1]) <= 0;
+    }
+  }
+  for (std::size_t k = n; k-- > 0;)
+    if (beyond[k] && !fixed[k]) {
+      points.erase(points.begin() + static_cast<std::ptrdiff_t>(k));
+      at.erase(at.begin() + static_cast<std::ptrdiff_t>(k));
+      fixed.erase(fixed.begin() + static_cast<std::ptrdiff_t>(k));
+    }
+  const auto X = [&](std::size_t k) { return at[k][0]; };
+  const auto Y = [&](std::size_t k) { return at[k][1]; };
+  std::vector<bool> keep = fixed;
+  std::vector<std::pair<std::size_t, std::size_t>> stack;
+  for (std::size_t k = 0, previous = 0; k < points.size(); ++k)
+    if (k > 0 && fixed[k]) stack.emplace_back(std::exchange(previous, k), k);
+  while (!stack.empty()) {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    if (j <= i + 1) continue;
+    const double ax = X(i), ay = Y(i);
+    const double dx = X(j) - ax, dy = Y(j) - ay, length = std::hypot(dx, dy);
+    // The point farthest off as a share of its tolerance; of points as far off (a straight run
+    // parallel to the chord), the one nearest the middle, so a chain walked the other way (the
+    // model mirrored) keeps the same points.
+    double worst = 1;
+    std::size_t worst_k = i;
+    const auto off_middle = [&](std::size_t k) { return k + k > i + j ? k + k - i - j : i + j - k - k; };
+    for (std::size_t k = i + 1; k < j; ++k) {
+      const double px = X(k) - ax, py = Y(k) - ay;
+      const double distance = length > 0 ? std::abs(dx * py - dy * px) / length : std::hypot(px, py);
+      const double share = distance / (points[k].on_break ? break_mm : lattice_mm);
+      const bool as_far = std::abs(share - worst) <= 1e-9 && worst_k != i;
+      if ((share > worst && !as_far) || (as_far && off_middle(k) < off_middle(worst_k))) worst = std::max(worst, share), worst_k = k;
+    }
+    if (worst_k != i) {
+      keep[worst_k] = true;
+      stack.emplace_back(i, worst_k);
+      stack.emplace_back(worst_k, j);
+    }
+  }
+  // A kept point whose neighbours' segment passes every point between them within its tolerance is
+  // dropped (the middle of a straight run, kept for a chord the run was parallel to).
+  std::vector<std::size_t> kept;
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (keep[k]) kept.push_back(k);
+  const auto spans = [&](std::size_t a, std::size_t b) {
+    const double ax = X(a), ay = Y(a), dx = X(b) - ax, dy = Y(b) - ay, length = std::hypot(dx, dy);
+    for (std::size_t k = a + 1; k < b; ++k) {
+      const double px = X(k) - ax, py = Y(k) - ay;
+      const double distance = length > 0 ? std::abs(dx * py - dy * px) / length : std::hypot(px, py);
+      if (distance > (points[k].on_break ? break_mm : lattice_mm)) return false;
+    }
+    return true;
+  };
+  for (std::size_t m = 1; m + 1 < kept.size();)
+    if (!fixed[kept[m]] && spans(kept[m - 1], kept[m + 1]))
+      kept.erase(kept.begin() + static_cast<std::ptrdiff_t>(m));
+    else
+      ++m;
+  DrawnChain drawn;
+  for (std::size_t m = 0; m < kept.size(); ++m) {
+    drawn.points.push_back(points[kept[m]]);
+    if (m == 0) continue;
+    const std::size_t a = kept[m - 1], b = kept[m];
+    const double ax = X(a), ay = Y(a), dx = X(b) - ax, dy = Y(b) - ay, l2 = dx * dx + dy * dy;
+    for (std::size_t k = a + 1; k < b; ++k) {
+      if (!points[k].on_break) continue;
+      const double t = l2 > 0 ? std::clamp(((X(k) - ax) * dx + (Y(k) - ay) * dy) / l2, 0.0, 1.0) : 0.0;
+      drawn.off_edge_mm = std::max(drawn.off_edge_mm, std::hypot(ax + t * dx - X(k), ay + t * dy - Y(k)));
+    }
+  }
+  return drawn;
+}
+
+}  // namespace origamic::chains

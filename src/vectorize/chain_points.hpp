@@ -1,0 +1,84 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Internal: where a traced chain's points are drawn. On the pixel lattice, simplified; or, where the
+// model's picture breaks across the chain's pixel edges (its silhouette, one surface in front of
+// another, a crease: RasterMaps::break_right and break_below), on the model's edge itself, with the
+// junctions and corners where such edges meet other lines moved to where they meet. No CGAL here.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "boundary_chains.hpp"
+#include "origamic/grid.hpp"
+
+namespace origamic::chains {
+
+/// Where the model's picture breaks between neighbouring pixel centres (RasterMaps::break_right and
+/// break_below): empty grids if not known.
+struct PictureBreaks {
+  const Grid<float>& right;
+  const Grid<float>& below;
+};
+
+/// A point of a simplified chain: a lattice point, or an edge's midpoint moved across the edge onto
+/// the model's break (plan mm).
+struct ChainPoint {
+  LatticePoint lattice;
+  bool on_break = false;
+  double X = 0, Y = 0;  // where on_break
+  // A corner where a run on the model's edge meets a straight lattice run, moved onto the edge: on
+  // the lattice run's line exactly (its X is the lattice's X(u), or its Y the lattice's Y(v)).
+  int on_lattice_u = -1, on_lattice_v = -1;
+};
+
+/// Where the chain's straight start on the picture's break at its front (or back) end crosses the
+/// plan line Y: a model edge meeting a fold there. Only within a pixel of that end's corner.
+std::optional<double> leg_meets_line(const Chain& chain, bool front, double Y, const LatticeScale& lattice,
+                                     const PictureBreaks& breaks);
+
+/// Where a chain's end corners are drawn if their junctions moved (junctions_on_breaks).
+using MovedEnds = std::array<std::optional<std::array<double, 2>>, 2>;
+
+/// Douglas-Peucker over the chain's edge midpoints between its two fixed end corners: a midpoint
+/// whose pixel edge the picture breaks across is moved onto the break and kept within `break_mm`
+/// of the result, any other within `lattice_mm`. Ends whose junctions moved are measured where
+/// they moved to, and a midpoint beyond such an end (its last pixel edge ran past where the model
+/// edge meets the other line) is dropped.
+struct DrawnChain {
+  std::vector<ChainPoint> points;
+  double off_edge_mm = 0;  // the farthest the drawing passes from the chain's points on the model's edge
+};
+DrawnChain simplified(const Chain& chain, const LatticeScale& lattice, const PictureBreaks& breaks, double lattice_mm,
+                      double break_mm, const MovedEnds& moved_ends = {});
+
+/// A junction moved off the lattice onto the model's edge: where a chain on the picture's break
+/// meets another boundary's line (another such chain, or a straight run along the lattice, on which
+/// it stays exactly: its coordinate across the run is the lattice's).
+struct MovedJunction {
+  LatticePoint corner;
+  double X = 0, Y = 0;
+  int u_on_lattice = -1, v_on_lattice = -1;  // X is the lattice's X(u) (Y its Y(v)) where >= 0
+  std::int32_t on_fold_of = -1;               // Y is this chain's fold line, exactly, where >= 0
+};
+
+/// What a chain's ends allow its junctions: none moves if `pinned` (the chain keeps its raster
+/// contour); an end that snaps onto the chain's fold line (at plan Y) moves only along that line.
+struct ChainEnds {
+  bool pinned = false;
+  std::array<std::optional<double>, 2> fold_Y;  // front, back
+};
+
+struct JunctionMoves {
+  std::vector<MovedJunction> moved;
+  std::vector<bool> collapsed;  // per chain: a short chain whose ends moved to one point: no line
+};
+
+/// The junctions that chains on breaks place on the model's edge, each moved less than a pixel.
+/// Junctions joined by chains of one pixel edge move as one, to one point, and those chains
+/// vanish. `ends` has each chain's rule for its ends.
+JunctionMoves junctions_on_breaks(const std::vector<Chain>& chains, const LatticeScale& lattice,
+                                  const PictureBreaks& breaks, const std::vector<ChainEnds>& ends);
+
+}  // namespace origamic::chains
