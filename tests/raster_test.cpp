@@ -59,7 +59,9 @@ TEST(Raster, TheBoxsEdgesBreakThePictureBetweenPixelCentres) {
   const RasterMaps maps = box_maps();
   const PixelGrid& grid = maps.grid;
   // The row (column) whose centre is the last above Y (left of X).
-  const auto row_at = [&](double Y) { return static_cast<int>(std::floor(grid.rows_above_fold - Y * grid.px_per_mm - 0.5)); };
+  const auto row_at = [&](double Y) {
+    return static_cast<int>(std::floor(grid.rows_above_fold - Y * grid.px_per_mm - 0.5));
+  };
   const auto col_at = [&](double X) { return static_cast<int>(std::floor(X * grid.px_per_mm - 0.5)); };
   const double step = 1.0 / 1024;  // the bisection's resolution, of the way between centres
   ASSERT_DOUBLE_EQ(grid.X(col_at(40.2)), 40.125);

@@ -48,7 +48,8 @@ struct PlanFace {
 
 struct PlanOptions {
   // Cut contours are simplified within this distance (and never more than one pixel) of the raster
-  // contour; folds and junctions are not moved by it.
+  // contour; where they run on the model's own edge, within 0.02 mm of it, and their junctions and
+  // corners move onto it (chain_points.hpp). Zero keeps every chain on its pixel contour.
   double simplify_mm = 0.1;
   // A V/H boundary within this fraction of W (plus one pixel) of its fold line Y = h - d becomes
   // that fold (§4.5: the faces are extended or trimmed to meet on it); farther off it is a cut.

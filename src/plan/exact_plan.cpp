@@ -25,8 +25,8 @@ namespace origamic {
 namespace {
 
 using chains::Chain;
-using chains::junctions_on_breaks;
 using chains::ChainPoint;
+using chains::junctions_on_breaks;
 using chains::labels_inside_sheet;
 using chains::LatticePoint;
 using chains::simplified;
@@ -89,19 +89,19 @@ class Junctions {
       FT Y = m.v_on_lattice >= 0 ? lattice.Y_of_v[static_cast<std::size_t>(m.v_on_lattice)] : FT(m.Y);
       if (m.on_fold_of >= 0) {
         const Chain& chain = chains[static_cast<std::size_t>(m.on_fold_of)];
-        const RasterFace &a = faces[static_cast<std::size_t>(chain.left)], &b = faces[static_cast<std::size_t>(chain.right)];
+        const RasterFace &a = faces[static_cast<std::size_t>(chain.left)],
+                         &b = faces[static_cast<std::size_t>(chain.right)];
         Y = fold_line_Y(a.orientation, FT(a.depth_mm), FT(b.depth_mm));
       }
-      at_.emplace(std::pair{m.corner.u, m.corner.v},
-                  PieceEnd{Point(X, Y), {CGAL::to_double(X), CGAL::to_double(Y)}});
+      at_.emplace(std::pair{m.corner.u, m.corner.v}, PieceEnd{Point(X, Y), {CGAL::to_double(X), CGAL::to_double(Y)}});
     }
   }
-  /// Where a corner is drawn if its junction moved.
+  // Where a corner is drawn if its junction moved.
   std::optional<PieceEnd> moved(LatticePoint corner) const {
     const auto moved = at_.find({corner.u, corner.v});
     return moved != at_.end() ? std::optional(moved->second) : std::nullopt;
   }
-  /// The point a corner is drawn at.
+  // The point a corner is drawn at.
   Point operator()(LatticePoint corner, const Lattice& lattice) const {
     const auto moved = at_.find({corner.u, corner.v});
     return moved != at_.end() ? moved->second.exact : lattice.exact(corner.u, corner.v);
@@ -118,26 +118,25 @@ struct Curves {
   std::vector<Point> fold_ends;            // where snapped folds end: T-contacts meant to be
   std::int32_t chain = kNoLabel;           // the chain whose segments are being added
   int folds_snapped = 0;
-  double off_model_edges_mm = 0;           // the farthest a cut passes from the model's edge it follows
+  double off_model_edges_mm = 0;  // the farthest a cut passes from the model's edge it follows
 
   // A segment with `left` on its left walking p -> q; stored from its lexicographically smaller end.
-  void add(const Point& p, const Point& q, std::int32_t left, std::int32_t right) {
+  // False for a point: nothing is added.
+  bool add(const Point& p, const Point& q, std::int32_t left, std::int32_t right) {
     const CGAL::Comparison_result order = CGAL::compare_xy(p, q);
-    if (order == CGAL::EQUAL) return;
+    if (order == CGAL::EQUAL) return false;
     const auto data = static_cast<std::int32_t>(sides.size());
     const bool forward = order == CGAL::SMALLER;
     sides.push_back(forward ? Sides{left, right, chain} : Sides{right, left, chain});
     ends.push_back(forward ? std::array{p, q} : std::array{q, p});
     curves.emplace_back(forward ? Kernel::Segment_2(p, q) : Kernel::Segment_2(q, p), data);
+    return true;
   }
 };
 
 // Cuts moved onto the model's own edges (where the picture breaks) are kept this close to them: a
 // 96-sided drum's rim, 35 mm across, bulges 0.019 mm from its chords.
 constexpr double kSimplifyOnBreaks_mm = 0.02;
-// A fold's end moved less than this onto the model's edge keeps its corner's X: the rays' float
-// rounding (about 3e-5 mm on the house) would leave a sliver beside the corner.
-constexpr double kLeastMove_mm = 1e-3;
 
 // How much of the vectorization a chain keeps: a chain that crossed another is first left
 // unsimplified, then also unsnapped (its pixel contour, which crosses nothing).
@@ -149,11 +148,10 @@ void add_cut(const Chain& chain, std::size_t from, std::size_t to, const Lattice
   const Chain piece{chain.left, chain.right, {chain.corners.begin() + from, chain.corners.begin() + to + 1}};
   if (!ends[0]) ends[0] = junctions.moved(piece.corners.front());
   if (!ends[1]) ends[1] = junctions.moved(piece.corners.back());
-  const auto near = [](const std::optional<PieceEnd>& end) {
-    return end ? std::optional(end->near) : std::nullopt;
-  };
-  const chains::DrawnChain drawn = simplified(piece, lattice, lattice.breaks, simplify_mm,
-                                              std::min(simplify_mm, kSimplifyOnBreaks_mm), {near(ends[0]), near(ends[1])});
+  const auto near = [](const std::optional<PieceEnd>& end) { return end ? std::optional(end->near) : std::nullopt; };
+  const chains::DrawnChain drawn =
+      simplified(piece, lattice, lattice.breaks, simplify_mm, std::min(simplify_mm, kSimplifyOnBreaks_mm),
+                 {near(ends[0]), near(ends[1])});
   const std::vector<ChainPoint>& points = drawn.points;
   curves.off_model_edges_mm = std::max(curves.off_model_edges_mm, drawn.off_edge_mm);
   const auto exact = [&](std::size_t k) {
@@ -216,21 +214,32 @@ void add_chain(const Chain& chain, Fallback fallback, const std::vector<RasterFa
       if (!X) return std::nullopt;
       // A move under a micrometre is the corner's own X, in the rays' rounding.
       const LatticePoint corner = chain.corners[front ? from : to];
-      if (std::abs(*X - lattice.X(corner.u)) < kLeastMove_mm)
+      if (std::abs(*X - lattice.X(corner.u)) < chains::kLeastMove_mm)
         return PieceEnd{Point(lattice.exact(corner.u, corner.v).x(), exact_Y), {lattice.X(corner.u), fold_Y}};
       return PieceEnd{Point(FT(*X), exact_Y), {*X, fold_Y}};
     };
-    const std::optional<PieceEnd> start_on_edge = on_edge(cut_from, i, false);
-    add_cut(chain, cut_from, i, lattice, junctions, simplify_mm, curves, {cut_from_end, start_on_edge});
+    std::optional<PieceEnd> start_on_edge = on_edge(cut_from, i, false);
     std::size_t next_cut_to = j + 1;  // the cut after the run ends at the next run or the chain's end
     while (next_cut_to <= last && !near(next_cut_to)) ++next_cut_to;
-    const std::optional<PieceEnd> end_on_edge = on_edge(j, std::min(next_cut_to, last), true);
+    std::optional<PieceEnd> end_on_edge = on_edge(j, std::min(next_cut_to, last), true);
     const LatticePoint start = chain.corners[i], end = chain.corners[j];
     const Point s = junctions(start, lattice), e = junctions(end, lattice);
+    // Ends moved onto the model's edge must leave the fold running the way the run did: on a run a
+    // pixel or two long they could meet or cross. Then the fold keeps its corners' X, and if moved
+    // junctions still turn it round, the run stays a cut.
+    const auto keeps_its_way = [&](const Point& from, const Point& to) {
+      return CGAL::compare_x(from, to) == (end.u > start.u ? CGAL::SMALLER : CGAL::LARGER);
+    };
+    if (!keeps_its_way(start_on_edge ? start_on_edge->exact : s, end_on_edge ? end_on_edge->exact : e))
+      start_on_edge.reset(), end_on_edge.reset();
+    if (!keeps_its_way(s, e)) {
+      i = j + 1;
+      continue;
+    }
+    add_cut(chain, cut_from, i, lattice, junctions, simplify_mm, curves, {cut_from_end, start_on_edge});
     const Point s_on = start_on_edge ? start_on_edge->exact : Point(s.x(), exact_Y);
     const Point e_on = end_on_edge ? end_on_edge->exact : Point(e.x(), exact_Y);
-    curves.add(s_on, e_on, chain.left, chain.right);
-    curves.sides.back().fold = true;
+    if (curves.add(s_on, e_on, chain.left, chain.right)) curves.sides.back().fold = true;
     const std::int32_t owner = std::exchange(curves.chain, kNoLabel);  // connectors lie along other cuts
     if (!start_on_edge) curves.add(s, s_on, kNoLabel, kNoLabel);
     if (!end_on_edge) curves.add(e, e_on, kNoLabel, kNoLabel);
@@ -257,16 +266,18 @@ double ccb_area(Arrangement::Ccb_halfedge_const_circulator first) {
   return twice / 2;
 }
 
-// What each chain's ends allow its junctions: a chain that falls back to its raster contour keeps
-// them on the lattice; an end that may snap onto its fold (add_chain) moves only along the fold.
+// What each chain's ends allow its junctions: a chain drawn on its raster contour (fallen back, or
+// nothing simplified) keeps them on the lattice; an end that may snap onto its fold (add_chain)
+// moves only along the fold.
 std::vector<chains::ChainEnds> chain_ends(const std::vector<Chain>& chains, const std::vector<Fallback>& fallback,
                                           const std::vector<RasterFace>& faces, const Lattice& lattice,
-                                          double fold_tolerance) {
+                                          double simplify_mm, double fold_tolerance) {
   std::vector<chains::ChainEnds> ends(chains.size());
   for (std::size_t i = 0; i < chains.size(); ++i) {
     const Chain& chain = chains[i];
-    const RasterFace &a = faces[static_cast<std::size_t>(chain.left)], &b = faces[static_cast<std::size_t>(chain.right)];
-    if (fallback[i] != Fallback::None) {
+    const RasterFace &a = faces[static_cast<std::size_t>(chain.left)],
+                     &b = faces[static_cast<std::size_t>(chain.right)];
+    if (fallback[i] != Fallback::None || simplify_mm <= 0) {
       ends[i].pinned = true;
     } else if (a.orientation != b.orientation && !a.hole && !b.hole) {
       const double fold_Y = fold_line_Y(a.orientation, a.depth_mm, b.depth_mm);
@@ -283,8 +294,8 @@ void build_arrangement(const std::vector<Chain>& chains, const std::vector<Fallb
                        const std::vector<RasterFace>& faces, const Lattice& lattice, const Sheet& sheet,
                        double simplify_mm, double fold_tolerance, Built& built) {
   Curves curves;
-  const chains::JunctionMoves moves =
-      junctions_on_breaks(chains, lattice, lattice.breaks, chain_ends(chains, fallback, faces, lattice, fold_tolerance));
+  const chains::JunctionMoves moves = junctions_on_breaks(
+      chains, lattice, lattice.breaks, chain_ends(chains, fallback, faces, lattice, simplify_mm, fold_tolerance));
   const Junctions junctions(moves.moved, lattice, chains, faces);
   for (std::size_t i = 0; i < chains.size(); ++i) {
     if (moves.collapsed[i]) continue;

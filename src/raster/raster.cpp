@@ -2,20 +2,19 @@
 #include "origamic/raster.hpp"
 
 #include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <cstdio>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <tuple>
-
-#include <glm/common.hpp>
-#include <glm/geometric.hpp>
-#include <glm/vec2.hpp>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include "embree_scene.hpp"
 #include "origamic/error.hpp"
@@ -75,9 +74,9 @@ struct Hit {
   double d = 0;
 };
 
-// A key step between neighbouring pixel centres larger than this may be a jump, and is bisected:
-// a surface at 45 degrees to the rays steps 0.5 mm a pixel at 4 px/mm.
-constexpr double kBreakJump_mm = 1.0;
+// A key step between neighbouring pixel centres larger than this many pixels may be a jump, and is
+// bisected: a surface at 45 degrees to the rays steps 2 pixels' worth of h + d a pixel.
+constexpr double kBreakJump_px = 4.0;
 // Facings more than 20 degrees apart between neighbouring pixel centres may be a crease; finer
 // facets (a 96-sided drum turns 3.75 degrees from facet to facet) are the model's curve.
 constexpr double kCreaseCosine = 0.9397;
@@ -101,7 +100,6 @@ Hit intersect_exactly(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3
   return {Y + d, d};
 }
 
-
 struct Traced {
   HitKind kind = HitKind::Outside;
   Hit hit;
@@ -116,7 +114,7 @@ struct Tracer {
   const RayScene::Impl& scene;
   double start_d;  // rays start on this vertical plane, in front of the model and the floor's edge
 
-  /// The unit normal of a triangle's plane, turned to face the viewer (+h, +d).
+  // The unit normal of a triangle's plane, turned to face the viewer (+h, +d).
   glm::dvec3 facing(std::int32_t primitive) const {
     const auto& t = scene.mesh.triangles[static_cast<std::size_t>(primitive)];
     const glm::dvec3& p = scene.mesh.positions[t[0]];
@@ -126,10 +124,11 @@ struct Tracer {
     return (n.y + n.z < 0 ? -n : n) / length;
   }
 
-  Traced trace(double X, double Y, bool with_normal) const {
+  Traced trace(double X, double Y, bool with_normal, bool coherent = false) const {
     const double t_plane = Y >= 0 ? start_d : start_d + Y;
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
+    if (coherent) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // a row's rays, side by side
     RTCRayHit ray{};
     ray.ray.org_x = static_cast<float>(X);
     ray.ray.org_y = static_cast<float>(Y + start_d);
@@ -149,8 +148,8 @@ struct Tracer {
       traced.kind = HitKind::Model;
       traced.primitive = static_cast<std::int32_t>(ray.hit.primID);
       const auto& t = scene.mesh.triangles[ray.hit.primID];
-      traced.hit = intersect_exactly(scene.mesh.positions[t[0]], scene.mesh.positions[t[1]],
-                                     scene.mesh.positions[t[2]], X, Y, start_d - ray.ray.tfar);
+      traced.hit = intersect_exactly(scene.mesh.positions[t[0]], scene.mesh.positions[t[1]], scene.mesh.positions[t[2]],
+                                     X, Y, start_d - ray.ray.tfar);
       if (!with_normal) return traced;
       const auto* n = &scene.mesh.corner_normals[3 * static_cast<std::size_t>(ray.hit.primID)];
       glm::vec3 normal = glm::normalize((1 - ray.hit.u - ray.hit.v) * n[0] + ray.hit.u * n[1] + ray.hit.v * n[2]);
@@ -206,10 +205,11 @@ float break_between(const Tracer& tracer, glm::dvec2 a, glm::dvec2 b, const Trac
     return range.lo == 0.5 || range.hi == 0.5 ? 0.5f : static_cast<float>((range.lo + range.hi) / 2);
   };
   if (model_a != model_b)
-    return middle(bisect(tracer, a, b, at_a, at_b, [&](const Traced& t) { return (t.kind == HitKind::Model) == model_a; }));
+    return middle(
+        bisect(tracer, a, b, at_a, at_b, [&](const Traced& t) { return (t.kind == HitKind::Model) == model_a; }));
   if (!model_a) return none;
   const double jump = key_of(at_b) - key_of(at_a);
-  if (std::abs(jump) > kBreakJump_mm) {
+  if (std::abs(jump) > kBreakJump_px * glm::length(b - a)) {
     const Bisected range = bisect(tracer, a, b, at_a, at_b, [&](const Traced& t) {
       return t.kind == HitKind::Model && std::abs(key_of(t) - key_of(at_a)) < std::abs(key_of(t) - key_of(at_b));
     });
@@ -240,9 +240,10 @@ void trace_breaks(const Tracer& tracer, RasterMaps& maps) {
       for (int col = 0; col < grid.cols; ++col) {
         if (maps.kind(col, row) == HitKind::Outside) continue;
         const glm::dvec2 a(grid.X(col), grid.Y(row));
-        const Traced at_a{maps.kind(col, row), {maps.h_mm(col, row), maps.d_mm(col, row)}, {}, maps.primitive(col, row)};
-        for (const auto& [c, r, out] : {std::tuple{col + 1, row, &maps.break_right},
-                                         std::tuple{col, row + 1, &maps.break_below}}) {
+        const Traced at_a{
+            maps.kind(col, row), {maps.h_mm(col, row), maps.d_mm(col, row)}, {}, maps.primitive(col, row)};
+        for (const auto& [c, r, out] :
+             {std::tuple{col + 1, row, &maps.break_right}, std::tuple{col, row + 1, &maps.break_below}}) {
           if (!maps.kind.contains(c, r) || maps.kind(c, r) == HitKind::Outside) continue;
           const Traced at_b{maps.kind(c, r), {maps.h_mm(c, r), maps.d_mm(c, r)}, {}, maps.primitive(c, r)};
           (*out)(col, row) = break_between(tracer, a, a + glm::dvec2(c - col, row - r) * px_mm, at_a, at_b);
@@ -303,7 +304,7 @@ RasterMaps raster(const RayScene& scene, const Sheet& sheet, const RasterOptions
       for (int col = 0; col < cols; ++col) {
         const double X = maps.grid.X(col);
         if (X > sheet.max_X()) continue;
-        const Traced traced = tracer.trace(X, Y, true);
+        const Traced traced = tracer.trace(X, Y, true, true);
         const Hit& hit = traced.hit;
         maps.kind(col, row) = traced.kind;
         maps.h_mm(col, row) = hit.h;

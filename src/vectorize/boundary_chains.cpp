@@ -10,6 +10,7 @@
 #include "bands.hpp"
 
 namespace origamic::chains {
+
 Grid<std::int32_t> labels_inside_sheet(Grid<std::int32_t> labels) {
   // The pixels inside that border one outside, row by row, found in bands in parallel.
   std::array<std::vector<std::pair<int, int>>, kBands> band_rings;

@@ -31,9 +31,6 @@ constexpr std::size_t kMinBreakRun = 8;
 // A fold's end moves along its line to the model's edge by at most this: a 30-degree edge meets
 // the line up to 1.5 pixels from where the traced run reached it.
 constexpr double kFoldEndMove_px = 2.0;
-// A junction moved less than this stays on its corner: the rays' float rounding (about 3e-5 mm on
-// the house) would leave a sliver beside a corner that is on the model's edge already.
-constexpr double kLeastMove_mm = 1e-3;
 
 // The midpoint of the pixel edge from corner a to corner b, on the picture's break across it if
 // there is one.
@@ -74,7 +71,15 @@ std::optional<Leg> leg_of(const Chain& chain, bool front, const LatticeScale& la
   std::vector<ChainPoint> points;
   for (std::size_t k = 0; k < edges; ++k) points.push_back(edge_point(corner(k), corner(k + 1), lattice, breaks));
   const LatticePoint j = corner(0);
+  // On the model's edge only as simplified draws it: a run of kMinBreakRun edges from the end.
+  const auto on_edge_run = [&] {
+    if (n - 1 < kMinBreakRun) return false;
+    for (std::size_t k = 0; k < kMinBreakRun; ++k)
+      if (!edge_point(corner(k), corner(k + 1), lattice, breaks).on_break) return false;
+    return true;
+  };
   if (std::ranges::all_of(points, &ChainPoint::on_break)) {
+    if (!on_edge_run()) return std::nullopt;
     const ChainPoint &a = points.front(), &b = points.back();
     const double length = std::hypot(b.X - a.X, b.Y - a.Y);
     if (!(length > 0)) return std::nullopt;
@@ -117,6 +122,210 @@ std::optional<MovedJunction> meeting_point(const std::vector<Leg>& legs) {
       best = at;
     }
   return best;
+}
+
+// Where a run of points on the model's edge meets a straight run along one lattice line (a support's
+// side leaving a roof's edge), the corner between them moves onto the edge: the two lines' meeting
+// point, on the lattice line exactly, if it is within a pixel of the corner; it is inserted, fixed,
+// and the edge's points beyond it go.
+void insert_corners(const LatticeScale& lattice, std::vector<ChainPoint>& points, std::vector<bool>& fixed) {
+  // The corner two consecutive pixel edges share, from their midpoints (a corner's coordinates are
+  // even, a midpoint's odd across its edge).
+  const auto shared_corner = [](LatticePoint m1, LatticePoint m2) {
+    const auto pick = [](int a, int b) { return a % 2 == 0 ? a : b % 2 == 0 ? b : (a + b) / 2; };
+    return LatticePoint{pick(m1.u, m2.u), pick(m1.v, m2.v)};
+  };
+  constexpr std::size_t kRun = 3;  // points on each side that must make the two straight lines
+  for (std::size_t k = kRun; k + kRun < points.size(); ++k) {
+    // points[k] and points[k + 1], where both are edges' midpoints, are either side of a corner.
+    for (const bool edge_first : {true, false}) {
+      const std::size_t first_break = edge_first ? k + 1 - kRun : k + 1,
+                        first_lattice = edge_first ? k + 1 : k + 1 - kRun;
+      const auto all = [&](std::size_t from, bool on_break) {
+        for (std::size_t m = from; m < from + kRun; ++m)
+          if (points[m].on_break != on_break || fixed[m]) return false;
+        return true;
+      };
+      if (!all(first_break, true) || !all(first_lattice, false)) continue;
+      // The lattice run: its edges on one lattice line through the corner.
+      const LatticePoint corner = shared_corner(points[k].lattice, points[k + 1].lattice);
+      bool along_u = true, along_v = true;
+      for (std::size_t m = first_lattice; m < first_lattice + kRun; ++m)
+        along_u = along_u && points[m].lattice.v == corner.v, along_v = along_v && points[m].lattice.u == corner.u;
+      if (along_u == along_v) continue;
+      const ChainPoint &a = points[first_break], &b = points[first_break + kRun - 1];
+      const double length = std::hypot(b.X - a.X, b.Y - a.Y);
+      if (!(length > 0)) continue;
+      const double dx = (b.X - a.X) / length, dy = (b.Y - a.Y) / length;
+      bool straight = true;
+      for (std::size_t m = first_break; m < first_break + kRun; ++m)
+        straight = straight && std::abs((points[m].X - a.X) * dy - (points[m].Y - a.Y) * dx) <= kLegStraightness_mm;
+      const double across = along_u ? dy : dx;  // the sine between the edge and the lattice line
+      if (!straight || !(std::abs(across) > kLegMinSine)) continue;
+      ChainPoint meet{corner, true};
+      if (along_u) {
+        meet.Y = lattice.Y(corner.v), meet.X = a.X + (meet.Y - a.Y) / dy * dx, meet.on_lattice_v = corner.v;
+      } else {
+        meet.X = lattice.X(corner.u), meet.Y = a.Y + (meet.X - a.X) / dx * dy, meet.on_lattice_u = corner.u;
+      }
+      // Where the edge meets the lattice line at a shallow angle, the pixels leave the corner up to
+      // a pixel over the sine away along it (a 30-degree roof edge: 1.5 pixels).
+      const double reach_px = std::min(kJunctionMove_px / std::abs(across), 2.0);
+      if (!(std::hypot(meet.X - lattice.X(corner.u), meet.Y - lattice.Y(corner.v)) <= reach_px * lattice.px_mm))
+        continue;
+      // The edge's points past the meeting point (seen from the edge's run) go.
+      const std::size_t inward = edge_first ? first_break : first_break + kRun - 1;
+      const auto ahead = [&](const ChainPoint& p) {
+        return (p.X - meet.X) * (points[inward].X - meet.X) + (p.Y - meet.Y) * (points[inward].Y - meet.Y) > 0;
+      };
+      if (edge_first) {
+        std::size_t keep_to = k + 1;  // points[first_break .. k] are the edge's; drop those not ahead
+        while (keep_to > first_break && !ahead(points[keep_to - 1])) --keep_to;
+        points.erase(points.begin() + static_cast<std::ptrdiff_t>(keep_to),
+                     points.begin() + static_cast<std::ptrdiff_t>(k + 1));
+        fixed.erase(fixed.begin() + static_cast<std::ptrdiff_t>(keep_to),
+                    fixed.begin() + static_cast<std::ptrdiff_t>(k + 1));
+        points.insert(points.begin() + static_cast<std::ptrdiff_t>(keep_to), meet);
+        fixed.insert(fixed.begin() + static_cast<std::ptrdiff_t>(keep_to), true);
+        k = keep_to;
+      } else {
+        std::size_t drop_to = k + 1;  // points[k + 1 ..] are the edge's; drop those not ahead
+        while (drop_to < first_break + kRun && !ahead(points[drop_to])) ++drop_to;
+        points.erase(points.begin() + static_cast<std::ptrdiff_t>(k + 1),
+                     points.begin() + static_cast<std::ptrdiff_t>(drop_to));
+        fixed.erase(fixed.begin() + static_cast<std::ptrdiff_t>(k + 1),
+                    fixed.begin() + static_cast<std::ptrdiff_t>(drop_to));
+        points.insert(points.begin() + static_cast<std::ptrdiff_t>(k + 1), meet);
+        fixed.insert(fixed.begin() + static_cast<std::ptrdiff_t>(k + 1), true);
+        k = k + 1;
+      }
+      break;
+    }
+  }
+}
+
+// A chain's points being simplified: where each is drawn, and which must stay.
+struct Candidates {
+  std::vector<ChainPoint> points;
+  std::vector<std::array<double, 2>> at;
+  std::vector<bool> fixed;
+
+  void erase(std::size_t k) {
+    points.erase(points.begin() + static_cast<std::ptrdiff_t>(k));
+    at.erase(at.begin() + static_cast<std::ptrdiff_t>(k));
+    fixed.erase(fixed.begin() + static_cast<std::ptrdiff_t>(k));
+  }
+  double tolerance(std::size_t k, double lattice_mm, double break_mm) const {
+    return points[k].on_break ? break_mm : lattice_mm;
+  }
+  // The distance of point k from the line through points a and b.
+  double off_line(std::size_t k, std::size_t a, std::size_t b) const {
+    const double ax = at[a][0], ay = at[a][1], dx = at[b][0] - ax, dy = at[b][1] - ay, length = std::hypot(dx, dy);
+    const double px = at[k][0] - ax, py = at[k][1] - ay;
+    return length > 0 ? std::abs(dx * py - dy * px) / length : std::hypot(px, py);
+  }
+};
+
+// The chain's ends and its edges' midpoints, on the picture's breaks along runs of kMinBreakRun
+// edges or more: shorter runs are a slice's end touching a crease here and there, and stay on the
+// lattice, as their neighbours do, rather than notch the boundary by half a pixel.
+std::vector<ChainPoint> edge_points(const Chain& chain, const LatticeScale& lattice, const PictureBreaks& breaks) {
+  std::vector<ChainPoint> points = {{chain.corners.front()}};
+  for (std::size_t i = 1; i < chain.corners.size(); ++i)
+    points.push_back(edge_point(chain.corners[i - 1], chain.corners[i], lattice, breaks));
+  points.push_back({chain.corners.back()});
+  for (std::size_t k = 0; k < points.size();) {
+    std::size_t end = k;
+    while (end < points.size() && points[end].on_break) ++end;
+    if (end - k < kMinBreakRun)
+      for (std::size_t m = k; m < end; ++m) points[m].on_break = false;
+    k = end + 1;
+  }
+  return points;
+}
+
+// Ends whose junctions moved are drawn there, and the points near such an end that lie beyond it
+// (its last pixel edge ran past where the model's edge meets the other line) go.
+void move_ends(const MovedEnds& moved_ends, Candidates& c) {
+  if (moved_ends[0]) c.at.front() = *moved_ends[0];
+  if (moved_ends[1]) c.at.back() = *moved_ends[1];
+  const std::size_t n = c.points.size(), reach = std::min<std::size_t>(6, n - 1);
+  std::vector<bool> beyond(n, false);
+  for (const bool front : {true, false}) {
+    if (!moved_ends[front ? 0 : 1]) continue;
+    const auto index = [&](std::size_t k) { return front ? k : n - 1 - k; };
+    const std::array<double, 2> end = c.at[index(0)], inward = c.at[index(reach)];
+    for (std::size_t k = 1; k < reach; ++k) {
+      const std::array<double, 2> p = c.at[index(k)];
+      beyond[index(k)] = (p[0] - end[0]) * (inward[0] - end[0]) + (p[1] - end[1]) * (inward[1] - end[1]) <= 0;
+    }
+  }
+  for (std::size_t k = n; k-- > 0;)
+    if (beyond[k] && !c.fixed[k]) c.erase(k);
+}
+
+// Douglas-Peucker between the fixed points: the indices kept.
+std::vector<std::size_t> douglas_peucker(const Candidates& c, double lattice_mm, double break_mm) {
+  std::vector<bool> keep = c.fixed;
+  std::vector<std::pair<std::size_t, std::size_t>> stack;
+  for (std::size_t k = 0, previous = 0; k < c.points.size(); ++k)
+    if (k > 0 && c.fixed[k]) stack.emplace_back(std::exchange(previous, k), k);
+  while (!stack.empty()) {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    if (j <= i + 1) continue;
+    // The point farthest off as a share of its tolerance; of points as far off (a straight run
+    // parallel to the chord), the one nearest the middle, so a chain walked the other way (the
+    // model mirrored) keeps the same points.
+    double worst = 1;
+    std::size_t worst_k = i;
+    const auto off_middle = [&](std::size_t k) { return k + k > i + j ? k + k - i - j : i + j - k - k; };
+    for (std::size_t k = i + 1; k < j; ++k) {
+      const double share = c.off_line(k, i, j) / c.tolerance(k, lattice_mm, break_mm);
+      const bool as_far = std::abs(share - worst) <= 1e-9 && worst_k != i;
+      if ((share > worst && !as_far) || (as_far && off_middle(k) < off_middle(worst_k)))
+        worst = std::max(worst, share), worst_k = k;
+    }
+    if (worst_k != i) {
+      keep[worst_k] = true;
+      stack.emplace_back(i, worst_k);
+      stack.emplace_back(worst_k, j);
+    }
+  }
+  std::vector<std::size_t> kept;
+  for (std::size_t k = 0; k < keep.size(); ++k)
+    if (keep[k]) kept.push_back(k);
+  // A kept point whose neighbours' segment passes every point between them within its tolerance
+  // goes (the middle of a straight run, kept for a chord the run was parallel to).
+  const auto spans = [&](std::size_t a, std::size_t b) {
+    for (std::size_t k = a + 1; k < b; ++k)
+      if (c.off_line(k, a, b) > c.tolerance(k, lattice_mm, break_mm)) return false;
+    return true;
+  };
+  for (std::size_t m = 1; m + 1 < kept.size();)
+    if (!c.fixed[kept[m]] && spans(kept[m - 1], kept[m + 1]))
+      kept.erase(kept.begin() + static_cast<std::ptrdiff_t>(m));
+    else
+      ++m;
+  return kept;
+}
+
+// The kept points, and the farthest the segments between them pass from the points on breaks.
+DrawnChain drawing(const Candidates& c, const std::vector<std::size_t>& kept) {
+  DrawnChain drawn;
+  for (std::size_t m = 0; m < kept.size(); ++m) {
+    drawn.points.push_back(c.points[kept[m]]);
+    if (m == 0) continue;
+    const std::array<double, 2> a = c.at[kept[m - 1]], b = c.at[kept[m]];
+    const double dx = b[0] - a[0], dy = b[1] - a[1], l2 = dx * dx + dy * dy;
+    for (std::size_t k = kept[m - 1] + 1; k < kept[m]; ++k) {
+      if (!c.points[k].on_break) continue;
+      const double px = c.at[k][0] - a[0], py = c.at[k][1] - a[1];
+      const double t = l2 > 0 ? std::clamp((px * dx + py * dy) / l2, 0.0, 1.0) : 0.0;
+      drawn.off_edge_mm = std::max(drawn.off_edge_mm, std::hypot(t * dx - px, t * dy - py));
+    }
+  }
+  return drawn;
 }
 
 }  // namespace
@@ -176,7 +385,8 @@ JunctionMoves junctions_on_breaks(const std::vector<Chain>& chains, const Lattic
     const auto root = static_cast<std::size_t>(clusters.root(static_cast<std::int32_t>(j)));
     if (!moved_to[root]) continue;
     const MovedJunction& at = *moved_to[root];
-    farthest[root] = std::max(farthest[root], std::hypot(at.X - lattice.X(corner_of[j].u), at.Y - lattice.Y(corner_of[j].v)));
+    farthest[root] =
+        std::max(farthest[root], std::hypot(at.X - lattice.X(corner_of[j].u), at.Y - lattice.Y(corner_of[j].v)));
   }
   // A cluster moves whole or not at all; by a pixel at most, and not by the rays' rounding alone.
   for (std::size_t c = 0; c < corner_of.size(); ++c)
@@ -196,194 +406,21 @@ JunctionMoves junctions_on_breaks(const std::vector<Chain>& chains, const Lattic
   return result;
 }
 
-namespace {
-
-// Where a run of points on the model's edge meets a straight run along one lattice line (a support's
-// side leaving a roof's edge), the corner between them moves onto the edge: the two lines' meeting
-// point, on the lattice line exactly, if it is within a pixel of the corner; it is inserted, fixed,
-// and the edge's points beyond it go.
-void insert_corners(const LatticeScale& lattice, std::vector<ChainPoint>& points, std::vector<bool>& fixed) {
-  // The corner two consecutive pixel edges share, from their midpoints (a corner's coordinates are
-  // even, a midpoint's odd across its edge).
-  const auto shared_corner = [](LatticePoint m1, LatticePoint m2) {
-    const auto pick = [](int a, int b) { return a % 2 == 0 ? a : b % 2 == 0 ? b : (a + b) / 2; };
-    return LatticePoint{pick(m1.u, m2.u), pick(m1.v, m2.v)};
-  };
-  constexpr std::size_t kRun = 3;  // points on each side that must make the two straight lines
-  for (std::size_t k = kRun; k + kRun < points.size(); ++k) {
-    // points[k] and points[k + 1], where both are edges' midpoints, are either side of a corner.
-    for (const bool edge_first : {true, false}) {
-      const std::size_t first_break = edge_first ? k + 1 - kRun : k + 1, first_lattice = edge_first ? k + 1 : k + 1 - kRun;
-      const auto all = [&](std::size_t from, bool on_break) {
-        for (std::size_t m = from; m < from + kRun; ++m)
-          if (points[m].on_break != on_break || fixed[m]) return false;
-        return true;
-      };
-      if (!all(first_break, true) || !all(first_lattice, false)) continue;
-      // The lattice run: its edges on one lattice line through the corner.
-      const LatticePoint corner = shared_corner(points[k].lattice, points[k + 1].lattice);
-      bool along_u = true, along_v = true;
-      for (std::size_t m = first_lattice; m < first_lattice + kRun; ++m)
-        along_u = along_u && points[m].lattice.v == corner.v, along_v = along_v && points[m].lattice.u == corner.u;
-      if (along_u == along_v) continue;
-      const ChainPoint &a = points[first_break], &b = points[first_break + kRun - 1];
-      const double length = std::hypot(b.X - a.X, b.Y - a.Y);
-      if (!(length > 0)) continue;
-      const double dx = (b.X - a.X) / length, dy = (b.Y - a.Y) / length;
-      bool straight = true;
-      for (std::size_t m = first_break; m < first_break + kRun; ++m)
-        straight = straight && std::abs((points[m].X - a.X) * dy - (points[m].Y - a.Y) * dx) <= kLegStraightness_mm;
-      const double across = along_u ? dy : dx;  // the sine between the edge and the lattice line
-      if (!straight || !(std::abs(across) > kLegMinSine)) continue;
-      ChainPoint meet{corner, true};
-      if (along_u) {
-        meet.Y = lattice.Y(corner.v), meet.X = a.X + (meet.Y - a.Y) / dy * dx, meet.on_lattice_v = corner.v;
-      } else {
-        meet.X = lattice.X(corner.u), meet.Y = a.Y + (meet.X - a.X) / dx * dy, meet.on_lattice_u = corner.u;
-      }
-      // Where the edge meets the lattice line at a shallow angle, the pixels leave the corner up to
-      // a pixel over the sine away along it (a 30-degree roof edge: 1.5 pixels).
-      const double reach_px = std::min(kJunctionMove_px / std::abs(across), 2.0);
-      if (!(std::hypot(meet.X - lattice.X(corner.u), meet.Y - lattice.Y(corner.v)) <= reach_px * lattice.px_mm))
-        continue;
-      // The edge's points past the meeting point (seen from the edge's run) go.
-      const std::size_t inward = edge_first ? first_break : first_break + kRun - 1;
-      const auto ahead = [&](const ChainPoint& p) {
-        return (p.X - meet.X) * (points[inward].X - meet.X) + (p.Y - meet.Y) * (points[inward].Y - meet.Y) > 0;
-      };
-      if (edge_first) {
-        std::size_t keep_to = k + 1;  // points[first_break .. k] are the edge's; drop those not ahead
-        while (keep_to > first_break && !ahead(points[keep_to - 1])) --keep_to;
-        points.erase(points.begin() + static_cast<std::ptrdiff_t>(keep_to), points.begin() + static_cast<std::ptrdiff_t>(k + 1));
-        fixed.erase(fixed.begin() + static_cast<std::ptrdiff_t>(keep_to), fixed.begin() + static_cast<std::ptrdiff_t>(k + 1));
-        points.insert(points.begin() + static_cast<std::ptrdiff_t>(keep_to), meet);
-        fixed.insert(fixed.begin() + static_cast<std::ptrdiff_t>(keep_to), true);
-        k = keep_to;
-      } else {
-        std::size_t drop_to = k + 1;  // points[k + 1 ..] are the edge's; drop those not ahead
-        while (drop_to < first_break + kRun && !ahead(points[drop_to])) ++drop_to;
-        points.erase(points.begin() + static_cast<std::ptrdiff_t>(k + 1), points.begin() + static_cast<std::ptrdiff_t>(drop_to));
-        fixed.erase(fixed.begin() + static_cast<std::ptrdiff_t>(k + 1), fixed.begin() + static_cast<std::ptrdiff_t>(drop_to));
-        points.insert(points.begin() + static_cast<std::ptrdiff_t>(k + 1), meet);
-        fixed.insert(fixed.begin() + static_cast<std::ptrdiff_t>(k + 1), true);
-        k = k + 1;
-      }
-      break;
-    }
-  }
-}
-
-}  // namespace
-
 DrawnChain simplified(const Chain& chain, const LatticeScale& lattice, const PictureBreaks& breaks, double lattice_mm,
                       double break_mm, const MovedEnds& moved_ends) {
-  std::vector<ChainPoint> points;
   if (lattice_mm <= 0) {
-    for (const LatticePoint corner : chain.corners) points.push_back({corner});
-    return {points};
+    DrawnChain contour;
+    for (const LatticePoint corner : chain.corners) contour.points.push_back({corner});
+    return contour;
   }
-  points.push_back({chain.corners.front()});
-  for (std::size_t i = 1; i < chain.corners.size(); ++i)
-    points.push_back(edge_point(chain.corners[i - 1], chain.corners[i], lattice, breaks));
-  points.push_back({chain.corners.back()});
-  // A boundary follows the model's edge only along runs of kMinBreakRun edges the picture breaks
-  // across; shorter runs are a slice's end touching a crease here and there, and stay on the
-  // lattice, as their neighbours do, rather than notch the boundary by half a pixel.
-  for (std::size_t k = 0; k < points.size();) {
-    std::size_t end = k;
-    while (end < points.size() && points[end].on_break) ++end;
-    if (end - k < kMinBreakRun)
-      for (std::size_t m = k; m < end; ++m) points[m].on_break = false;
-    k = end + 1;
-  }
-  std::vector<bool> fixed(points.size(), false);
-  fixed.front() = fixed.back() = true;
-  insert_corners(lattice, points, fixed);
-  std::vector<std::array<double, 2>> at;
-  for (const ChainPoint& p : points)
-    at.push_back(p.on_break ? std::array{p.X, p.Y} : std::array{lattice.X(p.lattice.u), lattice.Y(p.lattice.v)});
-  if (moved_ends[0]) at.front() = *moved_ends[0];
-  if (moved_ends[1]) at.back() = *moved_ends[1];
-  std::vector<bool> beyond(points.size(), false);
-  const std::size_t n = points.size(), reach = std::min<std::size_t>(6, n - 1);
-  for (const bool front : {true, false}) {
-    if (!moved_ends[front ? 0 : 1]) continue;
-    const auto index = [&](std::size_t k) { return front ? k : n - 1 - k; };
-    const std::array<double, 2> end = at[index(0)], inward = at[index(reach)];
-    for (std::size_t k = 1; k < reach; ++k) {
-      const std::array<double, 2> p = at[index(k)];
-      beyond[index(k)] = (p[0] - end[0]) * (inward[0] - end[0]) + (p[1] - end[1]) * (inward[1] - end[1]) <= 0;
-    }
-  }
-  for (std::size_t k = n; k-- > 0;)
-    if (beyond[k] && !fixed[k]) {
-      points.erase(points.begin() + static_cast<std::ptrdiff_t>(k));
-      at.erase(at.begin() + static_cast<std::ptrdiff_t>(k));
-      fixed.erase(fixed.begin() + static_cast<std::ptrdiff_t>(k));
-    }
-  const auto X = [&](std::size_t k) { return at[k][0]; };
-  const auto Y = [&](std::size_t k) { return at[k][1]; };
-  std::vector<bool> keep = fixed;
-  std::vector<std::pair<std::size_t, std::size_t>> stack;
-  for (std::size_t k = 0, previous = 0; k < points.size(); ++k)
-    if (k > 0 && fixed[k]) stack.emplace_back(std::exchange(previous, k), k);
-  while (!stack.empty()) {
-    const auto [i, j] = stack.back();
-    stack.pop_back();
-    if (j <= i + 1) continue;
-    const double ax = X(i), ay = Y(i);
-    const double dx = X(j) - ax, dy = Y(j) - ay, length = std::hypot(dx, dy);
-    // The point farthest off as a share of its tolerance; of points as far off (a straight run
-    // parallel to the chord), the one nearest the middle, so a chain walked the other way (the
-    // model mirrored) keeps the same points.
-    double worst = 1;
-    std::size_t worst_k = i;
-    const auto off_middle = [&](std::size_t k) { return k + k > i + j ? k + k - i - j : i + j - k - k; };
-    for (std::size_t k = i + 1; k < j; ++k) {
-      const double px = X(k) - ax, py = Y(k) - ay;
-      const double distance = length > 0 ? std::abs(dx * py - dy * px) / length : std::hypot(px, py);
-      const double share = distance / (points[k].on_break ? break_mm : lattice_mm);
-      const bool as_far = std::abs(share - worst) <= 1e-9 && worst_k != i;
-      if ((share > worst && !as_far) || (as_far && off_middle(k) < off_middle(worst_k))) worst = std::max(worst, share), worst_k = k;
-    }
-    if (worst_k != i) {
-      keep[worst_k] = true;
-      stack.emplace_back(i, worst_k);
-      stack.emplace_back(worst_k, j);
-    }
-  }
-  // A kept point whose neighbours' segment passes every point between them within its tolerance is
-  // dropped (the middle of a straight run, kept for a chord the run was parallel to).
-  std::vector<std::size_t> kept;
-  for (std::size_t k = 0; k < points.size(); ++k)
-    if (keep[k]) kept.push_back(k);
-  const auto spans = [&](std::size_t a, std::size_t b) {
-    const double ax = X(a), ay = Y(a), dx = X(b) - ax, dy = Y(b) - ay, length = std::hypot(dx, dy);
-    for (std::size_t k = a + 1; k < b; ++k) {
-      const double px = X(k) - ax, py = Y(k) - ay;
-      const double distance = length > 0 ? std::abs(dx * py - dy * px) / length : std::hypot(px, py);
-      if (distance > (points[k].on_break ? break_mm : lattice_mm)) return false;
-    }
-    return true;
-  };
-  for (std::size_t m = 1; m + 1 < kept.size();)
-    if (!fixed[kept[m]] && spans(kept[m - 1], kept[m + 1]))
-      kept.erase(kept.begin() + static_cast<std::ptrdiff_t>(m));
-    else
-      ++m;
-  DrawnChain drawn;
-  for (std::size_t m = 0; m < kept.size(); ++m) {
-    drawn.points.push_back(points[kept[m]]);
-    if (m == 0) continue;
-    const std::size_t a = kept[m - 1], b = kept[m];
-    const double ax = X(a), ay = Y(a), dx = X(b) - ax, dy = Y(b) - ay, l2 = dx * dx + dy * dy;
-    for (std::size_t k = a + 1; k < b; ++k) {
-      if (!points[k].on_break) continue;
-      const double t = l2 > 0 ? std::clamp(((X(k) - ax) * dx + (Y(k) - ay) * dy) / l2, 0.0, 1.0) : 0.0;
-      drawn.off_edge_mm = std::max(drawn.off_edge_mm, std::hypot(ax + t * dx - X(k), ay + t * dy - Y(k)));
-    }
-  }
-  return drawn;
+  Candidates c{edge_points(chain, lattice, breaks)};
+  c.fixed.assign(c.points.size(), false);
+  c.fixed.front() = c.fixed.back() = true;
+  insert_corners(lattice, c.points, c.fixed);
+  for (const ChainPoint& p : c.points)
+    c.at.push_back(p.on_break ? std::array{p.X, p.Y} : std::array{lattice.X(p.lattice.u), lattice.Y(p.lattice.v)});
+  move_ends(moved_ends, c);
+  return drawing(c, douglas_peucker(c, lattice_mm, break_mm));
 }
 
 }  // namespace origamic::chains

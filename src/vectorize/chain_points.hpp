@@ -15,6 +15,10 @@
 
 namespace origamic::chains {
 
+/// A junction or fold end moved less than this onto the model's edge stays on its corner: the
+/// rays' float rounding (about 3e-5 mm on the house) would leave a sliver beside it.
+inline constexpr double kLeastMove_mm = 1e-3;
+
 /// Where the model's picture breaks between neighbouring pixel centres (RasterMaps::break_right and
 /// break_below): empty grids if not known.
 struct PictureBreaks {
@@ -41,15 +45,15 @@ std::optional<double> leg_meets_line(const Chain& chain, bool front, double Y, c
 /// Where a chain's end corners are drawn if their junctions moved (junctions_on_breaks).
 using MovedEnds = std::array<std::optional<std::array<double, 2>>, 2>;
 
+struct DrawnChain {
+  std::vector<ChainPoint> points;
+  double off_edge_mm = 0;  // the farthest the drawing passes from the chain's points on the model's edge
+};
 /// Douglas-Peucker over the chain's edge midpoints between its two fixed end corners: a midpoint
 /// whose pixel edge the picture breaks across is moved onto the break and kept within `break_mm`
 /// of the result, any other within `lattice_mm`. Ends whose junctions moved are measured where
 /// they moved to, and a midpoint beyond such an end (its last pixel edge ran past where the model
 /// edge meets the other line) is dropped.
-struct DrawnChain {
-  std::vector<ChainPoint> points;
-  double off_edge_mm = 0;  // the farthest the drawing passes from the chain's points on the model's edge
-};
 DrawnChain simplified(const Chain& chain, const LatticeScale& lattice, const PictureBreaks& breaks, double lattice_mm,
                       double break_mm, const MovedEnds& moved_ends = {});
 
@@ -60,7 +64,7 @@ struct MovedJunction {
   LatticePoint corner;
   double X = 0, Y = 0;
   int u_on_lattice = -1, v_on_lattice = -1;  // X is the lattice's X(u) (Y its Y(v)) where >= 0
-  std::int32_t on_fold_of = -1;               // Y is this chain's fold line, exactly, where >= 0
+  std::int32_t on_fold_of = -1;              // Y is this chain's fold line, exactly, where >= 0
 };
 
 /// What a chain's ends allow its junctions: none moves if `pinned` (the chain keeps its raster

@@ -127,7 +127,6 @@ TEST(ModelEdges, TheBackEdgesOfABoxTurned30DegreesAreDrawnOnTheirLines) {
     floor.push_back({105 + c * u - s * v, 70 + s * u + c * v});
   const Plan plan = design_in_place(prism(floor, height));
   const std::vector<Segment> segments = drawn_segments(plan);
-  EXPECT_GT(plan.off_model_edges_mm, 0) << "cuts were drawn on the model's edges";
   EXPECT_LE(plan.off_model_edges_mm, 0.02);
   // The back corner (smallest d) and the edges leaving it.
   const std::size_t back = static_cast<std::size_t>(

@@ -1,0 +1,117 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// A traced chain drawn on the model's edge (chain_points.hpp): its points moved onto the picture's
+// breaks, its junctions to where the model's edge meets the line beside it.
+#include "chain_points.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <vector>
+
+namespace origamic {
+namespace {
+
+using chains::Chain;
+using chains::LatticePoint;
+
+// A staircase of 12 steps right and down on a lattice of 1 mm pixels whose pixel edges the picture
+// breaks across a quarter pixel off them, all on one straight model edge X + Y = c; and, from its
+// last corner, a straight run of 7 pixel edges along its lattice row.
+struct StaircaseOnAnEdge {
+  static constexpr int steps = 12;
+  chains::LatticeScale lattice{20, 1.0};
+  Grid<float> right{40, 40, std::numeric_limits<float>::quiet_NaN()}, below = right;
+  Chain stairs{2, 3, {}}, row{2, 4, {}};
+  double c = 0;
+
+  StaircaseOnAnEdge() {
+    for (int k = 1; k <= steps; ++k) {
+      stairs.corners.push_back({2 * k, 2 * k});
+      stairs.corners.push_back({2 * k + 2, 2 * k});
+      below(k, k - 1) = 0.25f;  // the edge at v = 2k: a quarter down from row k - 1's centre
+      right(k, k) = 0.75f;      // the edge at u = 2k + 2: three quarters right from column k's centre
+    }
+    const LatticePoint last{2 * steps + 2, 2 * steps + 2};
+    stairs.corners.push_back(last);
+    for (int k = 0; k <= 7; ++k) row.corners.push_back({last.u + 2 * k, last.v});
+    c = lattice.X(3) + lattice.Y(2) + lattice.px_mm / 4;  // through u = 2k + 1.5 at v = 2k
+  }
+  chains::PictureBreaks breaks() const { return {right, below}; }
+  double off_edge(double X, double Y) const { return std::abs(X + Y - c) / std::sqrt(2.0); }
+  // A corner moved across to the edge, along X.
+  std::array<double, 2> on_edge(LatticePoint corner) const {
+    const double Y = lattice.Y(corner.v);
+    return {c - Y, Y};
+  }
+};
+
+// Its points move onto the edge, and with its ends moved onto it too the chain is that one segment,
+// drawn exactly.
+TEST(ChainPoints, AStaircaseOnTheModelsEdgeIsItsStraightEdge) {
+  const StaircaseOnAnEdge s;
+  const chains::DrawnChain drawn = chains::simplified(s.stairs, s.lattice, s.breaks(), 0.1, 0.02);
+  ASSERT_GE(drawn.points.size(), 3u);
+  EXPECT_LE(drawn.off_edge_mm, 0.02);
+  for (std::size_t k = 1; k + 1 < drawn.points.size(); ++k) {
+    ASSERT_TRUE(drawn.points[k].on_break) << k;
+    EXPECT_LE(s.off_edge(drawn.points[k].X, drawn.points[k].Y), 1e-9) << k;
+  }
+  const chains::DrawnChain straight =
+      chains::simplified(s.stairs, s.lattice, s.breaks(), 0.1, 0.02,
+                         {s.on_edge(s.stairs.corners.front()), s.on_edge(s.stairs.corners.back())});
+  EXPECT_EQ(straight.points.size(), 2u);
+  EXPECT_LE(straight.off_edge_mm, 1e-9);
+}
+
+// A run of breaks shorter than 8 pixel edges (a slice's end touching a crease) stays on the lattice.
+TEST(ChainPoints, AShortRunOfBreaksStaysOnTheLattice) {
+  StaircaseOnAnEdge s;
+  s.stairs.corners.resize(7);  // 6 pixel edges, all across breaks
+  for (const chains::ChainPoint& p : chains::simplified(s.stairs, s.lattice, s.breaks(), 0.1, 0.02).points)
+    EXPECT_FALSE(p.on_break);
+  s = StaircaseOnAnEdge{};
+  s.stairs.corners.resize(10);  // 9 pixel edges: a run long enough is drawn on the edge
+  const std::vector<chains::ChainPoint> points = chains::simplified(s.stairs, s.lattice, s.breaks(), 0.1, 0.02).points;
+  EXPECT_TRUE(std::ranges::any_of(points, &chains::ChainPoint::on_break));
+}
+
+// The staircase's last corner, where the lattice row leaves it, moves along the row to where the
+// model's edge crosses it: on the row exactly, at X = c - Y. Pinned, it stays.
+TEST(ChainPoints, AJunctionMovesToWhereTheModelsEdgeMeetsTheLineBesideIt) {
+  const StaircaseOnAnEdge s;
+  const std::vector<Chain> chains = {s.stairs, s.row};
+  const chains::JunctionMoves moves = chains::junctions_on_breaks(chains, s.lattice, s.breaks(), {{}, {}});
+  ASSERT_EQ(moves.moved.size(), 1u);
+  const chains::MovedJunction& m = moves.moved[0];
+  EXPECT_EQ(m.corner.u, s.row.corners.front().u);
+  EXPECT_EQ(m.corner.v, s.row.corners.front().v);
+  EXPECT_EQ(m.v_on_lattice, m.corner.v);
+  EXPECT_NEAR(m.X, s.c - s.lattice.Y(m.corner.v), 1e-9);
+  EXPECT_EQ(moves.collapsed, (std::vector<bool>{false, false}));
+  const chains::JunctionMoves pinned =
+      chains::junctions_on_breaks(chains, s.lattice, s.breaks(), {{.pinned = true}, {}});
+  EXPECT_TRUE(pinned.moved.empty());
+  // A fold snapping onto Y = 7.1 at the row's end: the junction moves along the fold's line.
+  const chains::JunctionMoves on_fold =
+      chains::junctions_on_breaks(chains, s.lattice, s.breaks(), {{}, {.fold_Y = {7.1, std::nullopt}}});
+  ASSERT_EQ(on_fold.moved.size(), 1u);
+  EXPECT_EQ(on_fold.moved[0].on_fold_of, 1);
+  EXPECT_NEAR(on_fold.moved[0].X, s.c - 7.1, 1e-9);
+  EXPECT_DOUBLE_EQ(on_fold.moved[0].Y, 7.1);
+}
+
+// Where the staircase's edge meets a fold's line near its end, within two pixels.
+TEST(ChainPoints, ALegMeetsAFoldLineOnTheModelsEdge) {
+  const StaircaseOnAnEdge s;
+  const std::optional<double> X = chains::leg_meets_line(s.stairs, false, 7.1, s.lattice, s.breaks());
+  ASSERT_TRUE(X.has_value());
+  EXPECT_NEAR(*X, s.c - 7.1, 1e-9);
+  EXPECT_FALSE(chains::leg_meets_line(s.stairs, false, 12.0, s.lattice, s.breaks()).has_value()) << "5 mm off";
+}
+
+}  // namespace
+}  // namespace origamic
