@@ -2,6 +2,7 @@
 #include "chain_points.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -343,6 +344,7 @@ std::optional<double> leg_meets_line(const Chain& chain, bool front, double Y, c
 
 JunctionMoves junctions_on_breaks(const std::vector<Chain>& chains, const LatticeScale& lattice,
                                   const PictureBreaks& breaks, const std::vector<ChainEnds>& ends) {
+  assert(ends.size() == chains.size());
   JunctionMoves result;
   result.collapsed.assign(chains.size(), false);
   if (breaks.right.size() == 0) return result;

@@ -38,7 +38,8 @@ struct ChainPoint {
 };
 
 /// Where the chain's straight start on the picture's break at its front (or back) end crosses the
-/// plan line Y: a model edge meeting a fold there. Only within a pixel of that end's corner.
+/// plan line Y: a model edge meeting a fold there. Only within two pixels of that end's corner.
+/// \pre the chain has at least 2 corners.
 std::optional<double> leg_meets_line(const Chain& chain, bool front, double Y, const LatticeScale& lattice,
                                      const PictureBreaks& breaks);
 
@@ -54,6 +55,7 @@ struct DrawnChain {
 /// of the result, any other within `lattice_mm`. Ends whose junctions moved are measured where
 /// they moved to, and a midpoint beyond such an end (its last pixel edge ran past where the model
 /// edge meets the other line) is dropped.
+/// \pre the chain has at least 2 corners.
 DrawnChain simplified(const Chain& chain, const LatticeScale& lattice, const PictureBreaks& breaks, double lattice_mm,
                       double break_mm, const MovedEnds& moved_ends = {});
 
@@ -81,7 +83,7 @@ struct JunctionMoves {
 
 /// The junctions that chains on breaks place on the model's edge, each moved less than a pixel.
 /// Junctions joined by chains of one pixel edge move as one, to one point, and those chains
-/// vanish. `ends` has each chain's rule for its ends.
+/// vanish. `ends` has each chain's rule for its ends. \pre ends.size() == chains.size().
 JunctionMoves junctions_on_breaks(const std::vector<Chain>& chains, const LatticeScale& lattice,
                                   const PictureBreaks& breaks, const std::vector<ChainEnds>& ends);
 
