@@ -57,9 +57,10 @@ struct RasterMaps {
   Grid<glm::vec3> normal;           // unit shading normal, OA axes
   Grid<std::int32_t> primitive;     // triangle index on model pixels, -1 elsewhere
   // Where the model's picture breaks between two neighbouring pixel centres (its silhouette against
-  // the back plane or floor, or one surface passing in front of another): the fraction of the way
-  // from the first centre to the second, to 1/1024, found by bisection with rays between them; NaN
-  // where it does not break. Empty if not traced (maps made by hand).
+  // the back plane or floor, one surface passing in front of another, or a sharp crease of its
+  // surface): the fraction of the way from the first centre to the second, to 1/1024, found by
+  // bisection with rays between them; NaN where it does not break. Empty if not traced (maps made
+  // by hand).
   Grid<float> break_right;  // between (col, row) and (col + 1, row)
   Grid<float> break_below;  // between (col, row) and (col, row + 1)
   std::size_t model_pixels = 0;

@@ -70,6 +70,10 @@ struct Lattice : chains::LatticeScale {
   }
 
   Point exact(int u, int v) const { return {X_of_u[static_cast<std::size_t>(u)], Y_of_v[static_cast<std::size_t>(v)]}; }
+  // A point off the lattice, from its doubles, but on a lattice line exactly where u (v) is >= 0.
+  Point exact(double X, double Y, int u, int v) const {
+    return {u >= 0 ? X_of_u[static_cast<std::size_t>(u)] : FT(X), v >= 0 ? Y_of_v[static_cast<std::size_t>(v)] : FT(Y)};
+  }
 };
 
 // Where a cut piece's end is drawn when not at its corner: a junction moved onto the model's edge,
@@ -85,15 +89,14 @@ class Junctions {
   Junctions(const std::vector<chains::MovedJunction>& moved, const Lattice& lattice, const std::vector<Chain>& chains,
             const std::vector<RasterFace>& faces) {
     for (const chains::MovedJunction& m : moved) {
-      const FT X = m.u_on_lattice >= 0 ? lattice.X_of_u[static_cast<std::size_t>(m.u_on_lattice)] : FT(m.X);
-      FT Y = m.v_on_lattice >= 0 ? lattice.Y_of_v[static_cast<std::size_t>(m.v_on_lattice)] : FT(m.Y);
+      Point at = lattice.exact(m.X, m.Y, m.u_on_lattice, m.v_on_lattice);
       if (m.on_fold_of >= 0) {
         const Chain& chain = chains[static_cast<std::size_t>(m.on_fold_of)];
         const RasterFace &a = faces[static_cast<std::size_t>(chain.left)],
                          &b = faces[static_cast<std::size_t>(chain.right)];
-        Y = fold_line_Y(a.orientation, FT(a.depth_mm), FT(b.depth_mm));
+        at = Point(at.x(), fold_line_Y(a.orientation, FT(a.depth_mm), FT(b.depth_mm)));
       }
-      at_.emplace(std::pair{m.corner.u, m.corner.v}, PieceEnd{Point(X, Y), {CGAL::to_double(X), CGAL::to_double(Y)}});
+      at_.emplace(std::pair{m.corner.u, m.corner.v}, PieceEnd{at, {CGAL::to_double(at.x()), CGAL::to_double(at.y())}});
     }
   }
   // Where a corner is drawn if its junction moved.
@@ -103,8 +106,8 @@ class Junctions {
   }
   // The point a corner is drawn at.
   Point operator()(LatticePoint corner, const Lattice& lattice) const {
-    const auto moved = at_.find({corner.u, corner.v});
-    return moved != at_.end() ? moved->second.exact : lattice.exact(corner.u, corner.v);
+    const std::optional<PieceEnd> end = moved(corner);
+    return end ? end->exact : lattice.exact(corner.u, corner.v);
   }
 
  private:
@@ -158,9 +161,8 @@ void add_cut(const Chain& chain, std::size_t from, std::size_t to, const Lattice
     if (k == 0 && ends[0]) return ends[0]->exact;
     if (k + 1 == points.size() && ends[1]) return ends[1]->exact;
     const ChainPoint& p = points[k];
-    if (!p.on_break) return lattice.exact(p.lattice.u, p.lattice.v);
-    return Point(p.on_lattice_u >= 0 ? lattice.X_of_u[static_cast<std::size_t>(p.on_lattice_u)] : FT(p.X),
-                 p.on_lattice_v >= 0 ? lattice.Y_of_v[static_cast<std::size_t>(p.on_lattice_v)] : FT(p.Y));
+    return p.on_break ? lattice.exact(p.X, p.Y, p.on_lattice_u, p.on_lattice_v)
+                      : lattice.exact(p.lattice.u, p.lattice.v);
   };
   Point from_point = exact(0);
   for (std::size_t k = 1; k < points.size(); ++k) {

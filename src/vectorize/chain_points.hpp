@@ -50,11 +50,14 @@ struct DrawnChain {
   std::vector<ChainPoint> points;
   double off_edge_mm = 0;  // the farthest the drawing passes from the chain's points on the model's edge
 };
+
 /// Douglas-Peucker over the chain's edge midpoints between its two fixed end corners: a midpoint
-/// whose pixel edge the picture breaks across is moved onto the break and kept within `break_mm`
-/// of the result, any other within `lattice_mm`. Ends whose junctions moved are measured where
-/// they moved to, and a midpoint beyond such an end (its last pixel edge ran past where the model
-/// edge meets the other line) is dropped.
+/// whose pixel edge the picture breaks across, in a run of 8 or more such edges, is moved onto the
+/// break and kept within `break_mm` of the result, any other within `lattice_mm`. Where such a run
+/// meets a straight lattice run, the corner between them moves to where their lines meet and is
+/// kept. Ends whose junctions moved are measured where they moved to, and a midpoint beyond such an
+/// end (its last pixel edge ran past where the model edge meets the other line) is dropped.
+/// `lattice_mm` <= 0 gives the chain's own corners.
 /// \pre the chain has at least 2 corners.
 DrawnChain simplified(const Chain& chain, const LatticeScale& lattice, const PictureBreaks& breaks, double lattice_mm,
                       double break_mm, const MovedEnds& moved_ends = {});
