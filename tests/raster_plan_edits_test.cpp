@@ -50,7 +50,7 @@ TEST(RasterPlanEdits, AFoldMovesToThePixelEdgeNearestItsLine) {
     for (int r = 3; r < 10; ++r) s.face(c, r) = 3;
   }
   s.faces[2].pixels = 3 * grid.cols, s.faces[3].pixels = 7 * grid.cols, s.faces[1].pixels = 2 * grid.cols;
-  align_folds_to_lines(s, grid, 1.0);
+  s = align_folds_to_lines(std::move(s), grid, 1.0);
   for (int c = 0; c < grid.cols; ++c) {
     for (int r = 0; r < 5; ++r) EXPECT_EQ(s.face(c, r), 2) << c << ", " << r;
     for (int r = 5; r < 10; ++r) EXPECT_EQ(s.face(c, r), 3) << c << ", " << r;
@@ -60,7 +60,7 @@ TEST(RasterPlanEdits, AFoldMovesToThePixelEdgeNearestItsLine) {
   // Farther off than the tolerance, a boundary stays where it is.
   RasterPlan far = s;
   far.faces[2].depth_mm = 13;  // its line is now 3 mm above: 12 rows
-  align_folds_to_lines(far, grid, 1.0);
+  far = align_folds_to_lines(std::move(far), grid, 1.0);
   EXPECT_EQ(far.face.values, s.face.values);
 }
 

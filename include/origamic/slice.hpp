@@ -77,7 +77,7 @@ std::vector<FacePart> split_disconnected_faces(RasterPlan& result, const std::ve
 /// that line, column by column, as long as both faces keep a pixel in the column. The exact plan
 /// then moves it onto the line by under half a pixel and cannot cross a neighbouring boundary on
 /// the way. Pixel counts are kept up to date.
-void align_folds_to_lines(RasterPlan& result, const PixelGrid& grid, double tolerance_mm);
+RasterPlan align_folds_to_lines(RasterPlan plan, const PixelGrid& grid, double tolerance_mm);
 
 /// The smaller side, in pixels, of the oriented bounding box (principal axes) of a pixel set.
 double oriented_box_min_side_px(const std::vector<std::pair<int, int>>& pixels);

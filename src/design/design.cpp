@@ -55,8 +55,8 @@ void design_loaded(LoadedMesh loaded, const std::filesystem::path& model_file, c
     throw InputError((model_file.empty() ? std::string("the model") : model_file.string()) +
                      ": the model leaves no face on the card (it is smaller than a strip width W or seen edge on: "
                      "a larger scale, a smaller W or another up axis may help)");
-  align_folds_to_lines(result.slices, result.maps.grid,
-                       fold_snap_tolerance_mm(options.plan, result.slices, result.maps.grid));
+  const double fold_snap_mm = fold_snap_tolerance_mm(options.plan, result.slices, result.maps.grid);
+  result.slices = align_folds_to_lines(std::move(result.slices), result.maps.grid, fold_snap_mm);
   clock.lap("slice");
   const double W = options.slice.min_strip_mm;
   result.sliced_likeness =

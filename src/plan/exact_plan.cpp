@@ -145,16 +145,36 @@ constexpr double kSimplifyOnBreaks_mm = 0.02;
 // unsimplified, then also unsnapped (its pixel contour, which crosses nothing).
 enum class Fallback : std::uint8_t { None, Unsimplified, PixelContour };
 
-void add_cut(const Chain& chain, std::size_t from, std::size_t to, const Lattice& lattice, const Junctions& junctions,
-             double simplify_mm, Curves& curves, std::array<std::optional<PieceEnd>, 2> ends = {}) {
-  if (to <= from) return;
-  const Chain piece{chain.left, chain.right, {chain.corners.begin() + from, chain.corners.begin() + to + 1}};
-  if (!ends[0]) ends[0] = junctions.moved(piece.corners.front());
-  if (!ends[1]) ends[1] = junctions.moved(piece.corners.back());
+// What drawing a chain reads besides the chain: the faces on its sides, the lattice with the
+// picture's breaks, where junctions moved, and the two tolerances.
+struct ChainDrawing {
+  const std::vector<RasterFace>& faces;
+  const Lattice& lattice;
+  const Junctions& junctions;
+  double simplify_mm;     // drawn within this of its pixel contour; 0: on it
+  double fold_tolerance;  // a V/H boundary this near its fold line snaps onto it
+};
+
+// A chain's corners [from, to].
+struct CornerSpan {
+  std::size_t from = 0, to = 0;
+};
+
+Chain piece_of(const Chain& chain, CornerSpan span) {
+  return {chain.left, chain.right, {chain.corners.begin() + span.from, chain.corners.begin() + span.to + 1}};
+}
+
+void add_cut(const Chain& chain, CornerSpan span, const ChainDrawing& drawing, Curves& curves,
+             std::array<std::optional<PieceEnd>, 2> ends = {}) {
+  if (span.to <= span.from) return;
+  const Chain piece = piece_of(chain, span);
+  const Lattice& lattice = drawing.lattice;
+  if (!ends[0]) ends[0] = drawing.junctions.moved(piece.corners.front());
+  if (!ends[1]) ends[1] = drawing.junctions.moved(piece.corners.back());
   const auto near = [](const std::optional<PieceEnd>& end) { return end ? std::optional(end->near) : std::nullopt; };
   const chains::DrawnChain drawn =
-      simplified(piece, lattice, lattice.breaks, simplify_mm, std::min(simplify_mm, kSimplifyOnBreaks_mm),
-                 {near(ends[0]), near(ends[1])});
+      simplified(piece, lattice, lattice.breaks, drawing.simplify_mm,
+                 std::min(drawing.simplify_mm, kSimplifyOnBreaks_mm), {near(ends[0]), near(ends[1])});
   const std::vector<ChainPoint>& points = drawn.points;
   curves.off_model_edges_mm = std::max(curves.off_model_edges_mm, drawn.off_edge_mm);
   const auto exact = [&](std::size_t k) {
@@ -172,60 +192,79 @@ void add_cut(const Chain& chain, std::size_t from, std::size_t to, const Lattice
   }
 }
 
+// A fold line, as a double and exactly.
+struct FoldAt {
+  double Y;
+  FT exact_Y;
+};
+
+// Where the cut piece `span` of a chain comes in on the model's edge at its front end (front) or
+// its back end, the fold ends where that edge meets its line, and the cut runs to it: no connector.
+std::optional<PieceEnd> fold_end_on_edge(const Chain& chain, CornerSpan span, bool front, const FoldAt& fold,
+                                         const Lattice& lattice) {
+  if (span.to <= span.from) return std::nullopt;
+  const std::optional<double> X = chains::leg_meets_line(piece_of(chain, span), front, fold.Y, lattice, lattice.breaks);
+  if (!X) return std::nullopt;
+  // A move under a micrometre is the corner's own X, in the rays' rounding.
+  const LatticePoint corner = chain.corners[front ? span.from : span.to];
+  if (std::abs(*X - lattice.X(corner.u)) < chains::kLeastMove_mm)
+    return PieceEnd{Point(lattice.exact(corner.u, corner.v).x(), fold.exact_Y), {lattice.X(corner.u), fold.Y}};
+  return PieceEnd{Point(FT(*X), fold.exact_Y), {*X, fold.Y}};
+}
+
+// The last corner of the longest X-monotone run of corners near the fold line from corner i.
+std::size_t monotone_run_end(const Chain& chain, const std::vector<bool>& near, std::size_t i) {
+  std::size_t j = i;
+  int direction = 0;
+  while (j + 1 < chain.corners.size() && near[j + 1]) {
+    const int du = chain.corners[j + 1].u - chain.corners[j].u;
+    if (du * direction < 0) break;
+    if (du != 0) direction = du > 0 ? 1 : -1;
+    ++j;
+  }
+  return j;
+}
+
 // §4.5: where a boundary between V(d) and H(h) runs within `tolerance` of the fold line Y = h - d,
 // monotonically along X, that run becomes one exact segment on the line: the faces are extended or
 // trimmed to meet on it. Short vertical cuts join its ends to the corners the run had (they name no
 // face; the arrangement finds their sides). The rest of the boundary is a cut.
-void add_chain(const Chain& chain, Fallback fallback, const std::vector<RasterFace>& faces, const Lattice& lattice,
-               const Junctions& junctions, double simplify_mm, double tolerance, Curves& curves) {
+void add_chain(const Chain& chain, Fallback fallback, ChainDrawing drawing, Curves& curves) {
   const std::size_t last = chain.corners.size() - 1;
-  if (fallback != Fallback::None) simplify_mm = 0;
-  const RasterFace &a = faces[static_cast<std::size_t>(chain.left)], &b = faces[static_cast<std::size_t>(chain.right)];
+  if (fallback != Fallback::None) drawing.simplify_mm = 0;
+  const Lattice& lattice = drawing.lattice;
+  const RasterFace &a = drawing.faces[static_cast<std::size_t>(chain.left)],
+                   &b = drawing.faces[static_cast<std::size_t>(chain.right)];
   if (fallback == Fallback::PixelContour || a.orientation == b.orientation || a.hole || b.hole)
-    return add_cut(chain, 0, last, lattice, junctions, simplify_mm, curves);
-  const double fold_Y = fold_line_Y(a.orientation, a.depth_mm, b.depth_mm);
-  if (!(std::abs(fold_Y) < lattice.half_mm)) return add_cut(chain, 0, last, lattice, junctions, simplify_mm, curves);
-  const FT exact_Y = fold_line_Y(a.orientation, FT(a.depth_mm), FT(b.depth_mm));
-  auto near = [&](std::size_t i) { return std::abs(lattice.Y(chain.corners[i].v) - fold_Y) <= tolerance; };
+    return add_cut(chain, {0, last}, drawing, curves);
+  const FoldAt fold{fold_line_Y(a.orientation, a.depth_mm, b.depth_mm),
+                    fold_line_Y(a.orientation, FT(a.depth_mm), FT(b.depth_mm))};
+  if (!(std::abs(fold.Y) < lattice.half_mm)) return add_cut(chain, {0, last}, drawing, curves);
+  std::vector<bool> near(chain.corners.size());
+  for (std::size_t i = 0; i <= last; ++i)
+    near[i] = std::abs(lattice.Y(chain.corners[i].v) - fold.Y) <= drawing.fold_tolerance;
+  const auto on_edge = [&](CornerSpan span, bool front) -> std::optional<PieceEnd> {
+    if (fallback != Fallback::None) return std::nullopt;
+    return fold_end_on_edge(chain, span, front, fold, lattice);
+  };
   std::size_t cut_from = 0, i = 0;
   std::optional<PieceEnd> cut_from_end;  // where the cut from cut_from starts, if not at its corner
   while (i <= last) {
-    if (!near(i)) {
+    if (!near[i]) {
       ++i;
       continue;
     }
-    // The longest X-monotone run of near corners from i.
-    std::size_t j = i;
-    int direction = 0;
-    while (j < last && near(j + 1)) {
-      const int du = chain.corners[j + 1].u - chain.corners[j].u;
-      if (du * direction < 0) break;
-      if (du != 0) direction = du > 0 ? 1 : -1;
-      ++j;
-    }
+    const std::size_t j = monotone_run_end(chain, near, i);
     if (chain.corners[i].u == chain.corners[j].u) {
       i = j + 1;
       continue;
     }
-    // Where the cut before the run (after it) comes in on the model's edge, the fold ends where
-    // that edge meets its line, and the cut runs to it: no connector.
-    const auto on_edge = [&](std::size_t from, std::size_t to, bool front) -> std::optional<PieceEnd> {
-      if (fallback != Fallback::None || to <= from) return std::nullopt;
-      const Chain piece{chain.left, chain.right, {chain.corners.begin() + from, chain.corners.begin() + to + 1}};
-      const std::optional<double> X = chains::leg_meets_line(piece, front, fold_Y, lattice, lattice.breaks);
-      if (!X) return std::nullopt;
-      // A move under a micrometre is the corner's own X, in the rays' rounding.
-      const LatticePoint corner = chain.corners[front ? from : to];
-      if (std::abs(*X - lattice.X(corner.u)) < chains::kLeastMove_mm)
-        return PieceEnd{Point(lattice.exact(corner.u, corner.v).x(), exact_Y), {lattice.X(corner.u), fold_Y}};
-      return PieceEnd{Point(FT(*X), exact_Y), {*X, fold_Y}};
-    };
-    std::optional<PieceEnd> start_on_edge = on_edge(cut_from, i, false);
+    std::optional<PieceEnd> start_on_edge = on_edge({cut_from, i}, false);
     std::size_t next_cut_to = j + 1;  // the cut after the run ends at the next run or the chain's end
-    while (next_cut_to <= last && !near(next_cut_to)) ++next_cut_to;
-    std::optional<PieceEnd> end_on_edge = on_edge(j, std::min(next_cut_to, last), true);
+    while (next_cut_to <= last && !near[next_cut_to]) ++next_cut_to;
+    std::optional<PieceEnd> end_on_edge = on_edge({j, std::min(next_cut_to, last)}, true);
     const LatticePoint start = chain.corners[i], end = chain.corners[j];
-    const Point s = junctions(start, lattice), e = junctions(end, lattice);
+    const Point s = drawing.junctions(start, lattice), e = drawing.junctions(end, lattice);
     // Ends moved onto the model's edge must leave the fold running the way the run did: on a run a
     // pixel or two long they could meet or cross. Then the fold keeps its corners' X, and if moved
     // junctions still turn it round, the run stays a cut.
@@ -238,9 +277,9 @@ void add_chain(const Chain& chain, Fallback fallback, const std::vector<RasterFa
       i = j + 1;
       continue;
     }
-    add_cut(chain, cut_from, i, lattice, junctions, simplify_mm, curves, {cut_from_end, start_on_edge});
-    const Point s_on = start_on_edge ? start_on_edge->exact : Point(s.x(), exact_Y);
-    const Point e_on = end_on_edge ? end_on_edge->exact : Point(e.x(), exact_Y);
+    add_cut(chain, {cut_from, i}, drawing, curves, {cut_from_end, start_on_edge});
+    const Point s_on = start_on_edge ? start_on_edge->exact : Point(s.x(), fold.exact_Y);
+    const Point e_on = end_on_edge ? end_on_edge->exact : Point(e.x(), fold.exact_Y);
     if (curves.add(s_on, e_on, chain.left, chain.right)) curves.sides.back().fold = true;
     const std::int32_t owner = std::exchange(curves.chain, kNoLabel);  // connectors lie along other cuts
     if (!start_on_edge) curves.add(s, s_on, kNoLabel, kNoLabel);
@@ -253,7 +292,7 @@ void add_chain(const Chain& chain, Fallback fallback, const std::vector<RasterFa
     cut_from_end = end_on_edge;
     i = j + 1;
   }
-  add_cut(chain, cut_from, last, lattice, junctions, simplify_mm, curves, {cut_from_end, std::nullopt});
+  add_cut(chain, {cut_from, last}, drawing, curves, {cut_from_end, std::nullopt});
 }
 
 // Signed area of a boundary cycle from its vertices' nearest doubles: areas are reported, never
@@ -268,55 +307,64 @@ double ccb_area(Arrangement::Ccb_halfedge_const_circulator first) {
   return twice / 2;
 }
 
+// What the arrangement is built of: the traced chains, the faces on their sides, the lattice, the
+// sheet and the tolerances.
+struct ArrangementInput {
+  const std::vector<Chain>& chains;
+  const std::vector<RasterFace>& faces;
+  const Lattice& lattice;
+  const Sheet& sheet;
+  double simplify_mm;
+  double fold_tolerance;
+};
+
 // What each chain's ends allow its junctions: a chain drawn on its raster contour (fallen back, or
 // nothing simplified) keeps them on the lattice; an end that may snap onto its fold (add_chain)
 // moves only along the fold.
-std::vector<chains::ChainEnds> chain_ends(const std::vector<Chain>& chains, const std::vector<Fallback>& fallback,
-                                          const std::vector<RasterFace>& faces, const Lattice& lattice,
-                                          double simplify_mm, double fold_tolerance) {
-  std::vector<chains::ChainEnds> ends(chains.size());
-  for (std::size_t i = 0; i < chains.size(); ++i) {
-    const Chain& chain = chains[i];
-    const RasterFace &a = faces[static_cast<std::size_t>(chain.left)],
-                     &b = faces[static_cast<std::size_t>(chain.right)];
-    if (fallback[i] != Fallback::None || simplify_mm <= 0) {
+std::vector<chains::ChainEnds> chain_ends(const ArrangementInput& in, const std::vector<Fallback>& fallback) {
+  std::vector<chains::ChainEnds> ends(in.chains.size());
+  for (std::size_t i = 0; i < in.chains.size(); ++i) {
+    const Chain& chain = in.chains[i];
+    const RasterFace &a = in.faces[static_cast<std::size_t>(chain.left)],
+                     &b = in.faces[static_cast<std::size_t>(chain.right)];
+    if (fallback[i] != Fallback::None || in.simplify_mm <= 0) {
       ends[i].pinned = true;
     } else if (a.orientation != b.orientation && !a.hole && !b.hole) {
       const double fold_Y = fold_line_Y(a.orientation, a.depth_mm, b.depth_mm);
-      if (!(std::abs(fold_Y) < lattice.half_mm)) continue;
+      if (!(std::abs(fold_Y) < in.lattice.half_mm)) continue;
       const LatticePoint corners[2] = {chain.corners.front(), chain.corners.back()};
       for (const int end : {0, 1})
-        if (std::abs(lattice.Y(corners[end].v) - fold_Y) <= fold_tolerance) ends[i].fold_Y[end] = fold_Y;
+        if (std::abs(in.lattice.Y(corners[end].v) - fold_Y) <= in.fold_tolerance) ends[i].fold_Y[end] = fold_Y;
     }
   }
   return ends;
 }
 
-void build_arrangement(const std::vector<Chain>& chains, const std::vector<Fallback>& fallback,
-                       const std::vector<RasterFace>& faces, const Lattice& lattice, const Sheet& sheet,
-                       double simplify_mm, double fold_tolerance, Built& built) {
+// Every chain's segments, their junctions moved onto the model's edges, and the sheet's outline.
+Curves chain_curves(const ArrangementInput& in, const std::vector<Fallback>& fallback) {
   Curves curves;
-  const chains::JunctionMoves moves = junctions_on_breaks(
-      chains, lattice, lattice.breaks, chain_ends(chains, fallback, faces, lattice, simplify_mm, fold_tolerance));
-  const Junctions junctions(moves.moved, lattice, chains, faces);
-  for (std::size_t i = 0; i < chains.size(); ++i) {
+  const chains::JunctionMoves moves =
+      junctions_on_breaks(in.chains, in.lattice, in.lattice.breaks, chain_ends(in, fallback));
+  const Junctions junctions(moves.moved, in.lattice, in.chains, in.faces);
+  const ChainDrawing drawing{in.faces, in.lattice, junctions, in.simplify_mm, in.fold_tolerance};
+  for (std::size_t i = 0; i < in.chains.size(); ++i) {
     if (moves.collapsed[i]) continue;
     curves.chain = static_cast<std::int32_t>(i);
-    add_chain(chains[i], fallback[i], faces, lattice, junctions, simplify_mm, fold_tolerance, curves);
+    add_chain(in.chains[i], fallback[i], drawing, curves);
   }
   curves.chain = kNoLabel;
-  const FT W(sheet.width_mm), H(sheet.half_height_mm());
+  const FT W(in.sheet.width_mm), H(in.sheet.half_height_mm());
   const Point corners[4] = {{0, -H}, {W, -H}, {W, H}, {0, H}};
   for (int i = 0; i < 4; ++i) curves.add(corners[i], corners[(i + 1) % 4], kNoLabel, kNoLabel);
-  built.folds_snapped = curves.folds_snapped;
-  built.off_model_edges_mm = curves.off_model_edges_mm;
-  built.sides = std::move(curves.sides);
-  CGAL::insert(built.arrangement, curves.curves.begin(), curves.curves.end());
+  return curves;
+}
 
-  // Topology check, exact: a segment that runs through a vertex it does not end at crosses or
-  // touches another boundary there, unless that vertex is the end of a snapped fold (a fold meets a
-  // cut in a T by design), or a snapped fold crosses there a boundary that shares one of its
-  // junctions: a slanted cut leaving the fold's corner, which the fold's move trims or extends.
+// Topology check, exact: per chain, whether a segment of it runs through a vertex it does not end
+// at. It crosses or touches another boundary there, unless that vertex is the end of a snapped fold
+// (a fold meets a cut in a T by design), or a snapped fold crosses there a boundary that shares one
+// of its junctions: a slanted cut leaving the fold's corner, which the fold's move trims or extends.
+std::vector<bool> crossed_chains(const Arrangement& arrangement, const std::vector<Sides>& sides, Curves& curves,
+                                 const std::vector<Chain>& chains, const std::vector<Fallback>& fallback) {
   auto lexicographic = [](const Point& a, const Point& b) { return CGAL::compare_xy(a, b) == CGAL::SMALLER; };
   std::sort(curves.fold_ends.begin(), curves.fold_ends.end(), lexicographic);
   auto neighbours = [&](std::int32_t a, std::int32_t b) {
@@ -325,9 +373,9 @@ void build_arrangement(const std::vector<Chain>& chains, const std::vector<Fallb
     return same(x.corners.front(), y.corners.front()) || same(x.corners.front(), y.corners.back()) ||
            same(x.corners.back(), y.corners.front()) || same(x.corners.back(), y.corners.back());
   };
-  built.crossed.assign(chains.size(), false);
+  std::vector<bool> crossed(chains.size(), false);
   std::vector<std::int32_t> through, folds_through;
-  for (auto v = built.arrangement.vertices_begin(); v != built.arrangement.vertices_end(); ++v) {
+  for (auto v = arrangement.vertices_begin(); v != arrangement.vertices_end(); ++v) {
     if (v->is_isolated() ||
         std::binary_search(curves.fold_ends.begin(), curves.fold_ends.end(), v->point(), lexicographic))
       continue;
@@ -337,13 +385,14 @@ void build_arrangement(const std::vector<Chain>& chains, const std::vector<Fallb
     do {
       for (const std::int32_t d : he->curve().data()) {
         const auto i = static_cast<std::size_t>(d);
-        const std::int32_t chain = built.sides[i].chain;
+        const std::int32_t chain = sides[i].chain;
         if (chain < 0 || v->point() == curves.ends[i][0] || v->point() == curves.ends[i][1]) continue;
         through.push_back(chain);
-        if (built.sides[i].fold) folds_through.push_back(chain);
+        if (sides[i].fold) folds_through.push_back(chain);
       }
     } while (++he != first);
-    if (!folds_through.empty() && std::ranges::count(folds_through, folds_through[0]) == std::ssize(folds_through)) {  // one fold
+    if (!folds_through.empty() &&
+        std::ranges::count(folds_through, folds_through[0]) == std::ssize(folds_through)) {  // one fold
       const std::int32_t fold = folds_through[0];
       if (std::ranges::all_of(through, [&](std::int32_t c) { return c == fold || neighbours(c, fold); })) continue;
     }
@@ -354,14 +403,18 @@ void build_arrangement(const std::vector<Chain>& chains, const std::vector<Fallb
       return !is_fold(c) && fallback[static_cast<std::size_t>(c)] != Fallback::PixelContour;
     });
     for (const std::int32_t chain : through)
-      if (!(cuts_yield && is_fold(chain))) built.crossed[static_cast<std::size_t>(chain)] = true;
+      if (!(cuts_yield && is_fold(chain))) crossed[static_cast<std::size_t>(chain)] = true;
   }
+  return crossed;
+}
 
-  // Each face takes the label that most of its boundary length names. Sides moved by a snapped fold
-  // still name the face that was there before: a short minority, outvoted.
-  built.conflicts = 0;
+// Each face takes the label that most of its boundary length names. Sides moved by a snapped fold
+// still name the face that was there before: a short minority, outvoted. Returns the faces no label
+// has a majority of.
+int label_faces(Arrangement& arrangement, const std::vector<Sides>& sides) {
+  int conflicts = 0;
   std::vector<std::pair<std::int32_t, double>> votes;  // a face's few labels: a map per face cost more
-  for (auto f = built.arrangement.faces_begin(); f != built.arrangement.faces_end(); ++f) {
+  for (auto f = arrangement.faces_begin(); f != arrangement.faces_end(); ++f) {
     f->set_data(kNoLabel);
     if (f->is_unbounded()) continue;
     votes.clear();
@@ -371,7 +424,7 @@ void build_arrangement(const std::vector<Chain>& chains, const std::vector<Fallb
       do {
         const double length = length_of(he);
         for (const std::int32_t d : he->curve().data()) {
-          const Sides& s = built.sides[static_cast<std::size_t>(d)];
+          const Sides& s = sides[static_cast<std::size_t>(d)];
           const std::int32_t label = he->direction() == CGAL::ARR_LEFT_TO_RIGHT ? s.left : s.right;
           if (label < 0) continue;
           const auto known = std::ranges::find(votes, label, &std::pair<std::int32_t, double>::first);
@@ -387,9 +440,20 @@ void build_arrangement(const std::vector<Chain>& chains, const std::vector<Fallb
     for (const auto& [label, weight] : votes)  // ties to the smallest label
       if (weight > best_votes || (weight == best_votes && best != kNoLabel && label < best))
         best = label, best_votes = weight;
-    if (best == kNoLabel || best_votes * 2 <= total) ++built.conflicts;
+    if (best == kNoLabel || best_votes * 2 <= total) ++conflicts;
     f->set_data(best);
   }
+  return conflicts;
+}
+
+void build_arrangement(const ArrangementInput& in, const std::vector<Fallback>& fallback, Built& built) {
+  Curves curves = chain_curves(in, fallback);
+  built.folds_snapped = curves.folds_snapped;
+  built.off_model_edges_mm = curves.off_model_edges_mm;
+  built.sides = std::move(curves.sides);
+  CGAL::insert(built.arrangement, curves.curves.begin(), curves.curves.end());
+  built.crossed = crossed_chains(built.arrangement, built.sides, curves, in.chains, fallback);
+  built.conflicts = label_faces(built.arrangement, built.sides);
 }
 
 // Paper stays on the card: an H(h) face holds plan points up to Y = h (depth h - Y >= 0), a V(d)
@@ -486,79 +550,74 @@ ExactPlan::ExactPlan(const RasterMaps& maps, const RasterPlan& sliced, const She
 }
 
 // Built in place: the handles read off the arrangement stay valid.
-void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& sliced, const Sheet& sheet,
-                      const PlanOptions& options) {
-  state.grid = maps.grid;
-  // §4.5 in two steps: the raster boundaries move to the pixel row nearest their fold line where
-  // they can (align_folds_to_lines; a no-op on plans already aligned), then only those within half a
-  // pixel snap onto it. Snapping farther could carry a fold across a neighbouring boundary, which
-  // forced the whole chain back to its pixel contour and lost the fold.
-  RasterPlan slices;  // the fields a plan is built of (a field it comes to read must be copied here)
-  slices.min_strip_mm = sliced.min_strip_mm;
-  slices.block_px = sliced.block_px;
-  slices.face = sliced.face;
-  slices.faces = sliced.faces;
-  align_folds_to_lines(slices, maps.grid, fold_snap_tolerance_mm(options, slices, maps.grid));
-  const Lattice lattice(maps, sheet);
-  state.labels = labels_inside_sheet(std::move(slices.face));  // the face map is not read again
-  const Grid<std::int32_t>& labels = state.labels;
-  const std::vector<Chain> chains = trace_chains(labels);
-  const double px_mm = 1 / maps.grid.px_per_mm;
-  const double simplify_mm = std::min(options.simplify_mm, px_mm);
-  const double fold_tolerance = aligned_fold_tolerance_mm(maps.grid);
+namespace {
 
-  Plan& plan = state.plan;
-  plan.sheet = sheet;
-  // Simplification or snapping that makes two boundaries cross would change the plan's topology:
-  // the chains involved fall back a step (unsimplified, then their pixel contour) until none does.
-  std::vector<Fallback> fallback(chains.size(), Fallback::None);
-  Built& built = state.built;
+// The faces the plan is built from, their V/H boundaries moved to the pixel row nearest their fold
+// line where they can (§4.5's first step; a no-op on a plan already aligned).
+RasterPlan aligned_faces(const RasterPlan& sliced, const PixelGrid& grid, const PlanOptions& options) {
+  RasterPlan faces;  // the fields a plan is built of (a field it comes to read must be copied here)
+  faces.min_strip_mm = sliced.min_strip_mm;
+  faces.block_px = sliced.block_px;
+  faces.face = sliced.face;
+  faces.faces = sliced.faces;
+  const double tolerance = fold_snap_tolerance_mm(options, faces, grid);
+  return align_folds_to_lines(std::move(faces), grid, tolerance);
+}
+
+// Simplification or snapping that makes two boundaries cross would change the plan's topology:
+// the chains involved fall back a step (unsimplified, then their pixel contour) until none does.
+// Returns how far each chain fell back; `unresolved` counts chains that cross on their contour.
+std::vector<Fallback> arrangement_without_crossings(const ArrangementInput& in, Built& built, int& unresolved) {
+  std::vector<Fallback> fallback(in.chains.size(), Fallback::None);
   for (;;) {
     built = Built{};
-    build_arrangement(chains, fallback, slices.faces, lattice, sheet, simplify_mm, fold_tolerance, built);
+    build_arrangement(in, fallback, built);
     bool again = false;
-    plan.unresolved_crossings = 0;
-    for (std::size_t i = 0; i < chains.size(); ++i) {
+    unresolved = 0;
+    for (std::size_t i = 0; i < fallback.size(); ++i) {
       if (!built.crossed[i]) continue;
       if (fallback[i] == Fallback::PixelContour) {
-        ++plan.unresolved_crossings;
+        ++unresolved;
         continue;
       }
       fallback[i] = fallback[i] == Fallback::None ? Fallback::Unsimplified : Fallback::PixelContour;
       again = true;
     }
-    if (!again) break;
+    if (!again) return fallback;
   }
-  plan.raw_chains = static_cast<int>(std::ranges::count(fallback, Fallback::Unsimplified));
-  plan.unsnapped_chains = static_cast<int>(std::ranges::count(fallback, Fallback::PixelContour));
-  plan.simplified = plan.raw_chains + plan.unsnapped_chains == 0;
-  plan.trimmed_to_card = keep_faces_on_the_card(slices.faces, built);
-  const Arrangement& arr = built.arrangement;
-  plan.arrangement_valid = arr.is_valid();
-  plan.label_conflicts = built.conflicts;
-  plan.folds_snapped = built.folds_snapped;
-  plan.off_model_edges_mm = built.off_model_edges_mm;
+}
 
-  // Faces: exact areas per label, and the tiling check.
-  const std::size_t n = slices.faces.size();
-  std::vector<double>& area = state.area;
-  area.assign(n, 0.0);
+// Areas from the arrangement's faces: per raster face's label, per piece of paper, in all.
+struct Areas {
+  std::vector<double> of_label, of_piece;
   double total = 0;
-  state.pieces = pieces_of(arr);
-  const Pieces& pieces = state.pieces;
-  std::vector<double> piece_area(pieces.label.size(), 0.0);
+  int arrangement_faces = 0;  // bounded ones, labelled or not
+};
+
+Areas areas_of(const Arrangement& arr, const Pieces& pieces, std::size_t labels) {
+  Areas areas{std::vector<double>(labels, 0.0), std::vector<double>(pieces.label.size(), 0.0)};
   for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
     if (f->is_unbounded()) continue;
-    ++plan.arrangement_faces;
+    ++areas.arrangement_faces;
     double a = 0;
     for (auto ccb = f->outer_ccbs_begin(); ccb != f->outer_ccbs_end(); ++ccb) a += ccb_area(*ccb);
     for (auto ccb = f->inner_ccbs_begin(); ccb != f->inner_ccbs_end(); ++ccb) a += ccb_area(*ccb);  // clockwise: negative
     if (f->data() < 0) continue;  // an unlabelled face leaves a hole in the tiling
-    total += a;
-    area[static_cast<std::size_t>(f->data())] += a;
-    piece_area[static_cast<std::size_t>(pieces.of.at(f))] += a;
+    areas.total += a;
+    areas.of_label[static_cast<std::size_t>(f->data())] += a;
+    areas.of_piece[static_cast<std::size_t>(pieces.of.at(f))] += a;
   }
-  // Validity is decided on pieces of paper: the back plane and the floor are their largest pieces.
+  return areas;
+}
+
+// The face graph's nodes: validity is decided on pieces of paper, and the back plane and the floor
+// are their largest pieces (nodes 0 and 1); every other piece is a node of its own.
+struct PieceNodes {
+  std::vector<std::int32_t> of_piece;
+  std::int32_t count = 2;
+};
+
+PieceNodes piece_nodes(const Pieces& pieces, const std::vector<double>& piece_area) {
   std::vector<std::int32_t> node(pieces.label.size(), -1);
   std::int32_t nodes = 2;
   for (const std::int32_t card : {0, 1}) {
@@ -570,20 +629,23 @@ void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& sl
   }
   for (auto& id : node)
     if (id < 0) id = nodes++;
-  // The arrangement is a subdivision by construction; this guards the labelling and the outline.
-  const double sheet_area = sheet.width_mm * sheet.height_mm;
-  plan.faces_tile_sheet = std::abs(total - sheet_area) <= 1e-9 * sheet_area;
+  return {std::move(node), nodes};
+}
 
-  // Edges: vanish inside a face, folds on their exact line, cuts elsewhere.
+// What the plan's edges are: each inner edge's line kind, the folds between nodes, and which
+// raster faces have a fold on their top or bottom side.
+struct EdgeReading {
+  std::vector<std::pair<Arrangement::Halfedge_const_handle, LineKind>> edges;  // upper face first
+  std::vector<Fold> folds;
+  std::vector<bool> fold_on_top, fold_on_bottom;
+};
+
+// Edges vanish inside a face, are folds on their exact line and cuts elsewhere.
+EdgeReading read_edges(const Arrangement& arr, const std::vector<RasterFace>& faces, const Pieces& pieces,
+                       const std::vector<std::int32_t>& node) {
+  EdgeReading reading{{}, {}, std::vector<bool>(faces.size(), false), std::vector<bool>(faces.size(), false)};
   std::map<FT, std::int32_t> fold_line_ids;
-  FaceGraph graph;
-  graph.faces = nodes;
-  graph.holes.assign(static_cast<std::size_t>(nodes), 0);
-  for (std::size_t p = 0; p < pieces.label.size(); ++p)
-    graph.holes[static_cast<std::size_t>(node[p])] = slices.faces[static_cast<std::size_t>(pieces.label[p])].hole;
   auto node_of = [&](Arrangement::Face_const_handle f) { return node[static_cast<std::size_t>(pieces.of.at(f))]; };
-  std::vector<bool> fold_on_top(n, false), fold_on_bottom(n, false);
-  auto& edges = state.edges;
   for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
     Arrangement::Halfedge_const_handle he = e;
     if (he->direction() != CGAL::ARR_LEFT_TO_RIGHT) he = he->twin();  // he->face() is above or left
@@ -591,7 +653,7 @@ void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& sl
     const std::int32_t upper = he->face()->data(), lower = he->twin()->face()->data();
     if (upper == lower || upper < 0 || lower < 0) continue;
     const Point &p = he->source()->point(), &q = he->target()->point();
-    const RasterFace &fu = slices.faces[static_cast<std::size_t>(upper)], &fl = slices.faces[static_cast<std::size_t>(lower)];
+    const RasterFace &fu = faces[static_cast<std::size_t>(upper)], &fl = faces[static_cast<std::size_t>(lower)];
     LineKind kind = LineKind::Cut;
     if (CGAL::compare_y(p, q) == CGAL::EQUAL && fu.orientation != fl.orientation && !fu.hole && !fl.hole &&
         !negligible(he)) {
@@ -599,36 +661,93 @@ void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& sl
         // Going up the plan: V then H is a mountain fold, H then V a valley fold.
         kind = fu.orientation == Orientation::H ? LineKind::Mountain : LineKind::Valley;
         const auto [it, fresh] = fold_line_ids.try_emplace(p.y(), static_cast<std::int32_t>(fold_line_ids.size()));
-        graph.folds.push_back({node_of(he->face()), node_of(he->twin()->face()), it->second});
-        fold_on_top[static_cast<std::size_t>(lower)] = true;
-        fold_on_bottom[static_cast<std::size_t>(upper)] = true;
+        reading.folds.push_back({node_of(he->face()), node_of(he->twin()->face()), it->second});
+        reading.fold_on_top[static_cast<std::size_t>(lower)] = true;
+        reading.fold_on_bottom[static_cast<std::size_t>(upper)] = true;
       }
     }
     if (fu.hole || fl.hole) kind = LineKind::CutOut;
-    edges.push_back({he, kind});
+    reading.edges.push_back({he, kind});
   }
   // Folds under kFoldLineTolerance_mm apart are one line, as validate reads them: the face between
   // them swings about it. (Depths reached along different paths can differ in a double's last bits.)
-  {
-    std::vector<std::int32_t> line_of(fold_line_ids.size());
-    std::int32_t line = -1;
-    const FT* previous = nullptr;
-    for (const auto& [Y, id] : fold_line_ids) {
-      if (!previous || Y - *previous > FT(kFoldLineTolerance_mm)) ++line;
-      line_of[static_cast<std::size_t>(id)] = line;
-      previous = &Y;
-    }
-    for (Fold& fold : graph.folds) fold.line = line_of[static_cast<std::size_t>(fold.line)];
+  std::vector<std::int32_t> line_of(fold_line_ids.size());
+  std::int32_t line = -1;
+  const FT* previous = nullptr;
+  for (const auto& [Y, id] : fold_line_ids) {
+    if (!previous || Y - *previous > FT(kFoldLineTolerance_mm)) ++line;
+    line_of[static_cast<std::size_t>(id)] = line;
+    previous = &Y;
   }
-  std::vector<std::uint8_t> among_holes(pieces.label.size(), 1);
+  for (Fold& fold : reading.folds) fold.line = line_of[static_cast<std::size_t>(fold.line)];
+  return reading;
+}
+
+// Per piece: whether it borders only holes (and pieces of its own label).
+std::vector<std::uint8_t> among_holes(const Arrangement& arr, const Pieces& pieces,
+                                      const std::vector<RasterFace>& faces) {
+  std::vector<std::uint8_t> among(pieces.label.size(), 1);
   for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e)
     for (const auto& [side, other] : {std::pair{e->face(), e->twin()->face()}, {e->twin()->face(), e->face()}}) {
       if (side->is_unbounded() || side->data() < 0 || side->data() == other->data()) continue;
-      if (other->is_unbounded() || other->data() < 0 || !slices.faces[static_cast<std::size_t>(other->data())].hole)
-        among_holes[static_cast<std::size_t>(pieces.of.at(side))] = 0;
+      if (other->is_unbounded() || other->data() < 0 || !faces[static_cast<std::size_t>(other->data())].hole)
+        among[static_cast<std::size_t>(pieces.of.at(side))] = 0;
     }
-  const PieceVerdict verdict =
-      face_validity(validity_of(graph), pieces, node, piece_area, among_holes, n, slices.min_strip_mm);
+  return among;
+}
+
+}  // namespace
+
+void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& sliced, const Sheet& sheet,
+                      const PlanOptions& options) {
+  state.grid = maps.grid;
+  // §4.5 in two steps: the raster boundaries move to the pixel row nearest their fold line where
+  // they can, then only those within half a pixel snap onto it. Snapping farther could carry a fold
+  // across a neighbouring boundary, which forced the whole chain back to its pixel contour and lost
+  // the fold.
+  RasterPlan aligned = aligned_faces(sliced, maps.grid, options);
+  const std::vector<RasterFace>& faces = aligned.faces;
+  const Lattice lattice(maps, sheet);
+  state.labels = labels_inside_sheet(std::move(aligned.face));  // the face map is not read again
+  const std::vector<Chain> chains = trace_chains(state.labels);
+  const double simplify_mm = std::min(options.simplify_mm, 1 / maps.grid.px_per_mm);
+
+  Plan& plan = state.plan;
+  plan.sheet = sheet;
+  Built& built = state.built;
+  const std::vector<Fallback> fallback =
+      arrangement_without_crossings({chains, faces, lattice, sheet, simplify_mm, aligned_fold_tolerance_mm(maps.grid)},
+                                    built, plan.unresolved_crossings);
+  plan.raw_chains = static_cast<int>(std::ranges::count(fallback, Fallback::Unsimplified));
+  plan.unsnapped_chains = static_cast<int>(std::ranges::count(fallback, Fallback::PixelContour));
+  plan.simplified = plan.raw_chains + plan.unsnapped_chains == 0;
+  plan.trimmed_to_card = keep_faces_on_the_card(faces, built);
+  const Arrangement& arr = built.arrangement;
+  plan.arrangement_valid = arr.is_valid();
+  plan.label_conflicts = built.conflicts;
+  plan.folds_snapped = built.folds_snapped;
+  plan.off_model_edges_mm = built.off_model_edges_mm;
+
+  state.pieces = pieces_of(arr);
+  const Pieces& pieces = state.pieces;
+  const std::size_t n = faces.size();
+  Areas areas = areas_of(arr, pieces, n);
+  plan.arrangement_faces = areas.arrangement_faces;
+  // The arrangement is a subdivision by construction; this guards the labelling and the outline.
+  const double sheet_area = sheet.width_mm * sheet.height_mm;
+  plan.faces_tile_sheet = std::abs(areas.total - sheet_area) <= 1e-9 * sheet_area;
+
+  const auto [node, nodes] = piece_nodes(pieces, areas.of_piece);
+  FaceGraph graph;
+  graph.faces = nodes;
+  graph.holes.assign(static_cast<std::size_t>(graph.faces), 0);
+  for (std::size_t p = 0; p < pieces.label.size(); ++p)
+    graph.holes[static_cast<std::size_t>(node[p])] = faces[static_cast<std::size_t>(pieces.label[p])].hole;
+  EdgeReading reading = read_edges(arr, faces, pieces, node);
+  graph.folds = std::move(reading.folds);
+  state.edges = std::move(reading.edges);
+  const PieceVerdict verdict = face_validity(validity_of(graph), pieces, node, areas.of_piece,
+                                             among_holes(arr, pieces, faces), n, aligned.min_strip_mm);
   plan.validity = verdict.validity;
   plan.loose_card_pieces = verdict.loose_card_pieces;
   plan.crumbs_cut_out = static_cast<int>(std::ranges::count(verdict.cut_out, 1));
@@ -636,16 +755,17 @@ void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& sl
   plan.faces.resize(n);
   for (std::size_t f = 0; f < n; ++f) {
     PlanFace& face = plan.faces[f];
-    face.orientation = slices.faces[f].orientation;
-    face.depth_mm = slices.faces[f].depth_mm;
-    face.area_mm2 = area[f];
-    face.fold_on_top = fold_on_top[f];
-    face.fold_on_bottom = fold_on_bottom[f];
-    face.support = slices.faces[f].support;
+    face.orientation = faces[f].orientation;
+    face.depth_mm = faces[f].depth_mm;
+    face.area_mm2 = areas.of_label[f];
+    face.fold_on_top = reading.fold_on_top[f];
+    face.fold_on_bottom = reading.fold_on_bottom[f];
+    face.support = faces[f].support;
     face.status = plan.validity.status[f];
   }
+  state.area = std::move(areas.of_label);
   state.cut_out = verdict.cut_out;
-  state.faces = std::move(slices.faces);
+  state.faces = std::move(aligned.faces);
 }
 
 ExactPlan::~ExactPlan() {

@@ -206,28 +206,34 @@ std::vector<FacePart> split_disconnected_faces(RasterPlan& result, const std::ve
 
 namespace {
 
-// Where faces a (row r) and b (row r + 1 below it) should meet: their fold line Y = h - d lies
-// between rows t and t + 1, Y = (rows_above_fold - t - 1) / px_per_mm. -1 when they meet on no fold
-// within tolerance_mm of their boundary (and for a line above the sheet, which nothing can reach).
-int fold_row(const RasterPlan& result, const PixelGrid& grid, double tolerance_mm, std::int32_t a, std::int32_t b,
-             int r) {
-  if (a == b || a < 0 || b < 0) return -1;
-  const RasterFace &fa = result.faces[static_cast<std::size_t>(a)], &fb = result.faces[static_cast<std::size_t>(b)];
-  if (fa.orientation == fb.orientation || fa.hole || fb.hole) return -1;
-  const double fold_Y = fold_line_Y(fa.orientation, fa.depth_mm, fb.depth_mm);
-  const double edge_Y = grid.Y(r) - 0.5 / grid.px_per_mm;
-  if (!(std::abs(edge_Y - fold_Y) <= tolerance_mm)) return -1;
-  return static_cast<int>(std::lround(grid.rows_above_fold - 1 - fold_Y * grid.px_per_mm));
-}
+// Where the raster plan's V/H boundaries belong: the pixel row edge nearest each fold line.
+struct FoldRows {
+  const PixelGrid& grid;
+  double tolerance_mm;
+
+  // Where faces a (row r) and b (row r + 1 below it) should meet: their fold line Y = h - d lies
+  // between rows t and t + 1, Y = (rows_above_fold - t - 1) / px_per_mm. -1 when they meet on no
+  // fold within tolerance_mm of their boundary (and for a line above the sheet, which nothing can
+  // reach).
+  int row(const RasterPlan& plan, std::int32_t a, std::int32_t b, int r) const {
+    if (a == b || a < 0 || b < 0) return -1;
+    const RasterFace &fa = plan.faces[static_cast<std::size_t>(a)], &fb = plan.faces[static_cast<std::size_t>(b)];
+    if (fa.orientation == fb.orientation || fa.hole || fb.hole) return -1;
+    const double fold_Y = fold_line_Y(fa.orientation, fa.depth_mm, fb.depth_mm);
+    const double edge_Y = grid.Y(r) - 0.5 / grid.px_per_mm;
+    if (!(std::abs(edge_Y - fold_Y) <= tolerance_mm)) return -1;
+    return static_cast<int>(std::lround(grid.rows_above_fold - 1 - fold_Y * grid.px_per_mm));
+  }
+};
 
 // One sweep of align_folds_to_lines over one column; returns how many pixels changed face.
-std::int64_t align_column(RasterPlan& result, const PixelGrid& grid, double tolerance_mm, int col) {
+std::int64_t align_column(RasterPlan& result, const FoldRows& folds, int col) {
   std::int64_t moved = 0;
   Grid<std::int32_t>& face = result.face;
   auto count = [&](std::int32_t f, int delta) { result.faces[static_cast<std::size_t>(f)].pixels += delta; };
   for (int r = 0; r + 1 < face.rows; ++r) {
     const std::int32_t a = face(col, r), b = face(col, r + 1);  // a above, b below
-    const int t = fold_row(result, grid, tolerance_mm, a, b, r);
+    const int t = folds.row(result, a, b, r);
     if (t == -1 || t == r) continue;
     if (t < r) {  // up: b takes rows t + 1 .. r if they are all a and a keeps row t
       bool free = t >= 0 && face(col, t) == a;
@@ -248,7 +254,7 @@ std::int64_t align_column(RasterPlan& result, const PixelGrid& grid, double tole
 // The first sweep of align_folds_to_lines; returns the columns in which pixels changed face.
 // Columns are independent, so only those with a boundary off its line are walked: a row-major scan
 // finds them far faster than walking every column down.
-std::vector<int> align_sweep(RasterPlan& result, const PixelGrid& grid, double tolerance_mm) {
+std::vector<int> align_sweep(RasterPlan& result, const FoldRows& folds) {
   const Grid<std::int32_t>& face = result.face;
   std::vector<std::uint8_t> off_line(static_cast<std::size_t>(face.cols), 0);
   for (int r = 0; r + 1 < face.rows; ++r) {
@@ -258,7 +264,7 @@ std::vector<int> align_sweep(RasterPlan& result, const PixelGrid& grid, double t
     for (int col = 0; col < face.cols; ++col) {
       if (above[col] == below[col]) continue;
       if (col == 0 || above[col] != above[col - 1] || below[col] != below[col - 1]) {
-        const int t = fold_row(result, grid, tolerance_mm, above[col], below[col], r);
+        const int t = folds.row(result, above[col], below[col], r);
         last_off = t != -1 && t != r;
       }
       off_line[static_cast<std::size_t>(col)] |= last_off;
@@ -266,20 +272,21 @@ std::vector<int> align_sweep(RasterPlan& result, const PixelGrid& grid, double t
   }
   std::vector<int> moved;
   for (int col = 0; col < face.cols; ++col)
-    if (off_line[static_cast<std::size_t>(col)] && align_column(result, grid, tolerance_mm, col) > 0)
-      moved.push_back(col);
+    if (off_line[static_cast<std::size_t>(col)] && align_column(result, folds, col) > 0) moved.push_back(col);
   return moved;
 }
 
 }  // namespace
 
-void align_folds_to_lines(RasterPlan& result, const PixelGrid& grid, double tolerance_mm) {
+RasterPlan align_folds_to_lines(RasterPlan plan, const PixelGrid& grid, double tolerance_mm) {
   // A moved boundary can free another one in its column: sweep those columns again until nothing
   // moves, so that aligning an aligned plan changes nothing (build_plan aligns what it is given).
   // Columns are independent, so one in which nothing moved would not move on a later sweep.
-  std::vector<int> moved = align_sweep(result, grid, tolerance_mm);
+  const FoldRows folds{grid, tolerance_mm};
+  std::vector<int> moved = align_sweep(plan, folds);
   for (int sweep = 1; sweep < 8 && !moved.empty(); ++sweep)
-    std::erase_if(moved, [&](int col) { return align_column(result, grid, tolerance_mm, col) == 0; });
+    std::erase_if(moved, [&](int col) { return align_column(plan, folds, col) == 0; });
+  return plan;
 }
 
 }  // namespace origamic

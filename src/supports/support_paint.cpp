@@ -86,7 +86,7 @@ void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid,
       if (std::int32_t& f = face.values[i]; f >= 0) f = into[static_cast<std::size_t>(f)];
   });
   merge_coplanar_faces(slices);
-  align_folds_to_lines(slices, grid, tolerance);
+  slices = align_folds_to_lines(std::move(slices), grid, tolerance);
   split_into_pieces(slices, crumb_px);
 }
 

@@ -440,7 +440,7 @@ SupportedPlan FaceOrderRun::run() {
     }
     // The rounds resume with the holes.
     merge_coplanar_faces(slices_);
-    align_folds_to_lines(slices_, setting_.maps.grid, tolerance_);
+    slices_ = align_folds_to_lines(std::move(slices_), setting_.maps.grid, tolerance_);
     settle();
   }
   return finish();
