@@ -65,7 +65,7 @@ std::vector<Candidate> nearest(const std::vector<Candidate>& leaving) {
 SupportChoice choose(const RasterMaps& maps, const RasterPlan& slices, const ExactPlan& build,
                      const FaceVerdicts& standing, const std::vector<std::int32_t>& invalid, SupportReach reach = {}) {
   const std::vector<FoldEdge> folds = raster_folds(maps.grid, slices, aligned_fold_tolerance_mm(maps.grid));
-  return choose_supports(maps, slices, build, {}, standing, folds, invalid, SupportOptions{}, reach);
+  return choose_supports({maps, slices, build, {}, folds}, standing, invalid, SupportOptions{}, reach);
 }
 
 TEST(Supports, FloatingBoxIsSupportedAtTopAndBottom) {
@@ -147,7 +147,7 @@ TEST(Supports, RaysMeetFacesTheRasterPlanGainedSinceTheExactPlan) {
       if (grid.Y(r) > -30 && grid.Y(r) < -20 && grid.X(c) > 60.2 && grid.X(c) < 150.7) changed.face(c, r) = h20;
   const std::vector<std::int32_t> faces{front};
   const std::vector<Candidate> down =
-      nearest(leaving(support_candidates(maps, changed, build, {}, faces, SupportReach{}), front, false));
+      nearest(leaving(support_candidates({maps, changed, build, {}, {}}, faces, SupportReach{}), front, false));
   ASSERT_FALSE(down.empty());
   for (const Candidate& c : down) {
     if (c.c0 < 60.2 * grid.px_per_mm || c.c1 > 150.7 * grid.px_per_mm) continue;  // the band's columns
@@ -158,7 +158,7 @@ TEST(Supports, RaysMeetFacesTheRasterPlanGainedSinceTheExactPlan) {
   }
   // On the plan as built, the front reaches the floor, at Y = -47.1.
   const std::vector<Candidate> before =
-      nearest(leaving(support_candidates(maps, slices, build, {}, faces, SupportReach{}), front, false));
+      nearest(leaving(support_candidates({maps, slices, build, {}, {}}, faces, SupportReach{}), front, false));
   ASSERT_FALSE(before.empty());
   for (const Candidate& c : before) EXPECT_EQ(c.target, kFloorFace);
 }
@@ -174,7 +174,7 @@ TEST(Supports, AFaceWithNoPixelsLeftHasNoEdgeToHold) {
       std::exchange(joined.faces[static_cast<std::size_t>(box.top)].pixels, 0);
   const std::vector<std::int32_t> faces{box.top, box.front};
   const std::vector<Candidate> found =
-      support_candidates(box.maps, joined, box.build, {}, faces, SupportReach{true, true, true});
+      support_candidates({box.maps, joined, box.build, {}, {}}, faces, SupportReach{true, true, true});
   ASSERT_FALSE(found.empty());
   for (const Candidate& s : found) EXPECT_EQ(s.face, box.front);
 }
@@ -201,7 +201,7 @@ TEST(Supports, AFoldAtTheFarEndOfAFacesPieceLandsBeyondIt) {
   ASSERT_GE(s_top, 0);
   ASSERT_GE(g_front, 0);
   const std::vector<Candidate> up =
-      nearest(leaving(support_candidates(maps, slices, build, {}, {s_top}, SupportReach{}), s_top, true));
+      nearest(leaving(support_candidates({maps, slices, build, {}, {}}, {s_top}, SupportReach{}), s_top, true));
   ASSERT_FALSE(up.empty());
   for (const Candidate& c : up) {
     EXPECT_EQ(c.target, kBackFace);
@@ -233,7 +233,7 @@ TEST(Supports, AFoldOnARowEdgeLandsInTheRowBeforeWhereTheRowBeyondHoldsNoTarget)
   ASSERT_EQ(grid.Y(beyond), 78 + px_mm / 2);
   ASSERT_EQ(grid.Y(before), 78 - px_mm / 2);
   const std::vector<Candidate> plain =
-      nearest(leaving(support_candidates(maps, slices, build, {}, {top}, SupportReach{}), top, true));
+      nearest(leaving(support_candidates({maps, slices, build, {}, {}}, {top}, SupportReach{}), top, true));
   ASSERT_FALSE(plain.empty());
   for (const Candidate& c : plain) {
     EXPECT_EQ(c.target, kBackFace);
@@ -245,7 +245,7 @@ TEST(Supports, AFoldOnARowEdgeLandsInTheRowBeforeWhereTheRowBeyondHoldsNoTarget)
   for (int c = 0; c < cut.face.cols; ++c)
     if (cut.face(c, beyond) == kBackFace) cut.face(c, beyond) = hole;
   const std::vector<Candidate> chosen =
-      nearest(leaving(support_candidates(maps, cut, build, {}, {top}, SupportReach{}), top, true));
+      nearest(leaving(support_candidates({maps, cut, build, {}, {}}, {top}, SupportReach{}), top, true));
   ASSERT_FALSE(chosen.empty());
   for (const Candidate& c : chosen) {
     EXPECT_EQ(c.target, kBackFace);
@@ -474,7 +474,7 @@ TEST(Supports, ASupportThroughTheBackPlaneIsChosenOverAnEquallyLongOneAcrossAVis
   ASSERT_GE(c_top, 0);
   // Both kinds of candidate are there, as long, to the back plane.
   const std::vector<Candidate> up =
-      nearest(leaving(support_candidates(maps, slices, build, {}, {top}, SupportReach{}), top, true));
+      nearest(leaving(support_candidates({maps, slices, build, {}, {}}, {top}, SupportReach{}), top, true));
   const int c_from = static_cast<int>(65 * maps.grid.px_per_mm), c_to = static_cast<int>(105 * maps.grid.px_per_mm);
   const auto across_c = std::ranges::find_if(up, [&](const Candidate& c) { return c.c0 > c_from && c.c1 < c_to; });
   const auto bare = std::ranges::find_if(up, [&](const Candidate& c) { return c.c0 > c_to; });

@@ -96,20 +96,27 @@ void merge_coplanar_faces(RasterPlan& result) {
   result.faces = std::move(faces);
 }
 
-std::vector<FacePart> split_disconnected_faces(RasterPlan& result, const std::vector<std::int32_t>& faces,
-                                               std::int64_t min_part_px, int min_part_cols) {
-  Grid<std::int32_t>& face = result.face;
-  std::vector<std::uint8_t> wanted(result.faces.size(), 0);
-  for (const std::int32_t f : faces)
-    if (f >= 0 && !result.faces[static_cast<std::size_t>(f)].hole) wanted[static_cast<std::size_t>(f)] = 1;
+namespace {
+
+struct Run {
+  int row, c0, c1;  // pixels [c0, c1) of the row
+  std::int32_t face;
+};
+
+// The 4-connected parts of some faces, each as its runs, in the order of their first pixel.
+struct FaceParts {
+  std::vector<Run> runs;                            // row-major
+  std::vector<std::vector<std::uint32_t>> runs_of;  // per part
+  std::vector<std::int32_t> face;                   // per part
+  std::vector<std::int64_t> size;                   // per part, in pixels
+};
+
+FaceParts parts_of(const Grid<std::int32_t>& face, const std::vector<std::uint8_t>& wanted) {
   // The wanted faces as runs of pixels along the rows; runs of one face that overlap in
   // neighbouring rows are 4-connected. Union-find keeps the first run in row-major order as each
   // part's root, so the parts come out in the order of their first pixel.
-  struct Run {
-    int row, c0, c1;  // pixels [c0, c1) of the row
-    std::int32_t face;
-  };
-  std::vector<Run> runs;
+  FaceParts parts;
+  std::vector<Run>& runs = parts.runs;
   UnionFind<std::uint32_t> sets;
   std::size_t previous_row = 0;  // where the runs of the row above begin
   for (int row = 0; row < face.rows; ++row) {
@@ -134,56 +141,75 @@ std::vector<FacePart> split_disconnected_faces(RasterPlan& result, const std::ve
     }
     previous_row = this_row;
   }
-  // part_runs[i]: the runs of part i, in row-major order.
   std::vector<std::int32_t> part_of_root(runs.size(), -1);
-  std::vector<std::vector<std::uint32_t>> part_runs;
-  std::vector<std::int32_t> part_face;
-  std::vector<std::int64_t> part_size;
   for (std::uint32_t i = 0; i < runs.size(); ++i) {
     std::int32_t& part = part_of_root[sets.root(i)];
     if (part < 0) {
-      part = static_cast<std::int32_t>(part_runs.size());
-      part_runs.emplace_back();
-      part_face.push_back(runs[i].face);
-      part_size.push_back(0);
+      part = static_cast<std::int32_t>(parts.runs_of.size());
+      parts.runs_of.emplace_back();
+      parts.face.push_back(runs[i].face);
+      parts.size.push_back(0);
     }
-    part_runs[static_cast<std::size_t>(part)].push_back(i);
-    part_size[static_cast<std::size_t>(part)] += runs[i].c1 - runs[i].c0;
+    parts.runs_of[static_cast<std::size_t>(part)].push_back(i);
+    parts.size[static_cast<std::size_t>(part)] += runs[i].c1 - runs[i].c0;
   }
+  return parts;
+}
+
+// The face a part shares the most pixel sides with, neither its own nor a hole; -1 if none.
+std::int32_t most_sides_with(const RasterPlan& plan, const FaceParts& parts, std::size_t part) {
+  const Grid<std::int32_t>& face = plan.face;
+  const std::int32_t own = parts.face[part];
+  std::map<std::int32_t, int> sides;
+  for (const std::uint32_t k : parts.runs_of[part]) {
+    const Run& run = parts.runs[k];
+    for (int c = run.c0; c < run.c1; ++c)
+      for (const auto& [dc, dr] : kStep)
+        if (face.contains(c + dc, run.row + dr)) {
+          const std::int32_t g = face(c + dc, run.row + dr);
+          if (g >= 0 && g != own && !plan.faces[static_cast<std::size_t>(g)].hole) ++sides[g];
+        }
+  }
+  if (sides.empty()) return -1;
+  return std::ranges::max_element(sides, {}, [](const auto& s) { return s.second; })->first;
+}
+
+}  // namespace
+
+std::vector<FacePart> split_disconnected_faces(RasterPlan& result, const std::vector<std::int32_t>& faces,
+                                               std::int64_t min_part_px, int min_part_cols) {
+  Grid<std::int32_t>& face = result.face;
+  std::vector<std::uint8_t> wanted(result.faces.size(), 0);
+  for (const std::int32_t f : faces)
+    if (f >= 0 && !result.faces[static_cast<std::size_t>(f)].hole) wanted[static_cast<std::size_t>(f)] = 1;
+  const FaceParts parts = parts_of(face, wanted);
   const auto paint = [&](std::size_t part, std::int32_t id) {
-    for (const std::uint32_t k : part_runs[part])
-      std::fill_n(&face.values[face.index(runs[k].c0, runs[k].row)], runs[k].c1 - runs[k].c0, id);
+    for (const std::uint32_t k : parts.runs_of[part]) {
+      const Run& run = parts.runs[k];
+      std::fill_n(&face.values[face.index(run.c0, run.row)], run.c1 - run.c0, id);
+    }
   };
   // The largest part of each face keeps its id (the first of equals, for determinism).
   std::vector<std::int32_t> keeper(result.faces.size(), -1);
-  for (std::size_t i = 0; i < part_runs.size(); ++i) {
-    std::int32_t& k = keeper[static_cast<std::size_t>(part_face[i])];
-    if (k < 0 || part_size[i] > part_size[static_cast<std::size_t>(k)]) k = static_cast<std::int32_t>(i);
+  for (std::size_t i = 0; i < parts.runs_of.size(); ++i) {
+    std::int32_t& k = keeper[static_cast<std::size_t>(parts.face[i])];
+    if (k < 0 || parts.size[i] > parts.size[static_cast<std::size_t>(k)]) k = static_cast<std::int32_t>(i);
   }
   std::vector<FacePart> created;
-  for (std::size_t i = 0; i < part_runs.size(); ++i) {
-    const auto f = static_cast<std::size_t>(part_face[i]);
-    const std::int64_t size = part_size[i];
+  for (std::size_t i = 0; i < parts.runs_of.size(); ++i) {
+    const auto f = static_cast<std::size_t>(parts.face[i]);
+    const std::int64_t size = parts.size[i];
     const bool kept = keeper[f] == static_cast<std::int32_t>(i);
     if (kept && (f < 2 || size >= min_part_px)) {
       result.faces[f].pixels = size;
       continue;
     }
     int lo = INT_MAX, hi = -1;
-    for (const std::uint32_t k : part_runs[i]) lo = std::min(lo, runs[k].c0), hi = std::max(hi, runs[k].c1 - 1);
+    for (const std::uint32_t k : parts.runs_of[i])
+      lo = std::min(lo, parts.runs[k].c0), hi = std::max(hi, parts.runs[k].c1 - 1);
     if (size < min_part_px || (!kept && hi - lo + 1 < min_part_cols)) {
       // A crumb joins the face it shares the most pixel sides with.
-      std::map<std::int32_t, int> sides;
-      for (const std::uint32_t k : part_runs[i])
-        for (int c = runs[k].c0; c < runs[k].c1; ++c)
-          for (const auto& [dc, dr] : kStep)
-            if (face.contains(c + dc, runs[k].row + dr)) {
-              const std::int32_t g = face(c + dc, runs[k].row + dr);
-              if (g >= 0 && g != static_cast<std::int32_t>(f) && !result.faces[static_cast<std::size_t>(g)].hole)
-                ++sides[g];
-            }
-      if (!sides.empty()) {
-        const std::int32_t into = std::ranges::max_element(sides, {}, [](const auto& s) { return s.second; })->first;
+      if (const std::int32_t into = most_sides_with(result, parts, i); into >= 0) {
         paint(i, into);
         result.faces[static_cast<std::size_t>(into)].pixels += size;
         if (kept) result.faces[f].pixels = 0;

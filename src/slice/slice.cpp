@@ -77,111 +77,135 @@ struct Subsegment {
   Orientation orientation = Orientation::V;
 };
 
+// The subsegments as merge_thin_subsegments works on them, pass after pass.
+struct SubsegmentSet {
+  std::vector<Subsegment> subsegments;
+  std::vector<double> pixels;
+  // Each one's pixels in row-major order, and whether it is thin: kept from pass to pass for the
+  // subsegments no merge touched.
+  std::vector<std::vector<std::pair<int, int>>> members;
+  std::vector<std::uint8_t> thin;
+};
+
+bool is_thin(const std::vector<std::pair<int, int>>& pixels_of, double min_side_px) {
+  return !pixels_of.empty() && oriented_box_min_side_px(pixels_of) < min_side_px;
+}
+
+// Each thin subsegment's neighbour nearest in depth (ties: the lower id), into[k], or k itself.
+// Pairs merge, the thinnest first, each subsegment in at most one pair per pass: a run of slivers
+// becomes steps about W wide, not one wide step. `id_at` names the subsegment at a pixel.
+template <typename IdAt>
+std::vector<std::int32_t> thin_pairs(const SubsegmentSet& set, const Grid<std::int32_t>& segment, IdAt id_at) {
+  const std::vector<Subsegment>& subsegments = set.subsegments;
+  const std::size_t n = subsegments.size();
+  std::vector<std::int32_t> into(n);
+  std::iota(into.begin(), into.end(), 0);
+  std::vector<std::size_t> order;
+  for (std::size_t k = 0; k < n; ++k)
+    if (set.thin[k]) order.push_back(k);
+  std::ranges::stable_sort(order, {}, [&](std::size_t k) { return set.pixels[k]; });
+  std::vector<std::uint8_t> paired(n, 0);
+  for (const std::size_t k : order) {
+    if (paired[k]) continue;
+    auto gap = [&](std::int32_t x) {
+      // Of another orientation, a neighbour is as far as can be: chosen only when no other is.
+      const Subsegment& other = subsegments[static_cast<std::size_t>(x)];
+      return other.orientation != subsegments[k].orientation ? std::numeric_limits<double>::max()
+                                                             : std::abs(other.depth_mm - subsegments[k].depth_mm);
+    };
+    std::int32_t best = -1;
+    for (const auto& [col, row] : set.members[k])
+      for (const auto& [dc, dr] : kStep) {
+        if (!segment.contains(col + dc, row + dr)) continue;
+        const std::int32_t j = id_at(col + dc, row + dr);
+        if (j < 0 || static_cast<std::size_t>(j) == k || paired[static_cast<std::size_t>(j)] ||
+            segment(col + dc, row + dr) != subsegments[k].segment)
+          continue;
+        if (best < 0 || gap(j) < gap(best) || (gap(j) == gap(best) && j < best)) best = j;
+      }
+    if (best < 0) continue;
+    into[k] = best, paired[k] = paired[static_cast<std::size_t>(best)] = 1;
+  }
+  return into;
+}
+
+// Merges each subsegment k into into[k]; returns the new id of each old one (-1: none). A part of
+// another orientation takes the plane of the subsegment it joins: its depth does not count in the
+// mean, its pixels do in the size.
+std::vector<std::int32_t> merge_pairs(SubsegmentSet& set, const std::vector<std::int32_t>& into, double min_side_px) {
+  const std::size_t n = set.subsegments.size();
+  std::vector<double> sum(n, 0), count(n, 0), size(n, 0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto r = static_cast<std::size_t>(into[k]);
+    size[r] += set.pixels[k];
+    if (set.subsegments[k].orientation == set.subsegments[r].orientation)
+      sum[r] += set.subsegments[k].depth_mm * set.pixels[k], count[r] += set.pixels[k];
+  }
+  std::vector<std::int32_t> renumber(n, -1);
+  SubsegmentSet next;
+  for (std::size_t k = 0; k < n; ++k)
+    if (into[k] == static_cast<std::int32_t>(k) && count[k] > 0) {
+      renumber[k] = static_cast<std::int32_t>(next.subsegments.size());
+      next.subsegments.push_back({set.subsegments[k].segment, sum[k] / count[k], set.subsegments[k].orientation});
+      next.pixels.push_back(size[k]);
+    }
+  next.members.resize(next.subsegments.size());
+  next.thin.resize(next.subsegments.size());
+  std::vector<std::uint8_t> grown(next.subsegments.size(), 0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::int32_t r = renumber[static_cast<std::size_t>(into[k])];
+    if (r < 0) continue;
+    auto& to = next.members[static_cast<std::size_t>(r)];
+    if (to.empty()) {
+      to = std::move(set.members[k]);
+      next.thin[static_cast<std::size_t>(r)] = set.thin[k];
+    } else {
+      // Row-major again, as a scan of the grid would list them: the box's sums come out the same.
+      const auto middle = static_cast<std::ptrdiff_t>(to.size());
+      to.insert(to.end(), set.members[k].begin(), set.members[k].end());
+      std::ranges::inplace_merge(to, to.begin() + middle, {}, [](const std::pair<int, int>& p) {
+        return std::pair{p.second, p.first};
+      });
+      grown[static_cast<std::size_t>(r)] = 1;
+    }
+  }
+  for (std::size_t r = 0; r < next.subsegments.size(); ++r)
+    if (grown[r]) next.thin[r] = is_thin(next.members[r], min_side_px);
+  std::vector<std::int32_t> new_id(n, -1);
+  for (std::size_t k = 0; k < n; ++k) new_id[k] = renumber[static_cast<std::size_t>(into[k])];
+  set = std::move(next);
+  return new_id;
+}
+
 // Where a surface runs steeper than 45 degrees across the slicing direction, its levels are strips
 // narrower than W: each joins the neighbouring subsegment of its segment nearest in depth, pass after
 // pass, until it is W wide or has no such neighbour. Levels thus merge into wider steps exactly where
-// the surface is steep: the quantization adapts to it (seed Figure 4.6).
-void merge_thin_subsegments(const Grid<std::int32_t>& segment, double min_side_px, std::vector<double>& pixels,
-                            std::vector<Subsegment>& subsegments, Grid<std::int32_t>& subsegment) {
-  // Each subsegment's pixels in row-major order, and whether it is thin: kept from pass to pass for
-  // the subsegments no merge touched.
-  std::vector<std::vector<std::pair<int, int>>> members(subsegments.size());
+// the surface is steep: the quantization adapts to it (seed Figure 4.6). `subsegment` is the map of
+// their ids, renumbered to the merged ones.
+void merge_thin_subsegments(const Grid<std::int32_t>& segment, double min_side_px, SubsegmentSet& set,
+                            Grid<std::int32_t>& subsegment) {
+  set.members.assign(set.subsegments.size(), {});
   for (int row = 0; row < subsegment.rows; ++row)
     for (int col = 0; col < subsegment.cols; ++col)
       if (const std::int32_t k = subsegment(col, row); k >= 0)
-        members[static_cast<std::size_t>(k)].emplace_back(col, row);
-  auto is_thin = [&](const std::vector<std::pair<int, int>>& pixels_of) {
-    return !pixels_of.empty() && oriented_box_min_side_px(pixels_of) < min_side_px;
-  };
-  std::vector<std::uint8_t> thin(subsegments.size());
-  for (std::size_t k = 0; k < subsegments.size(); ++k) thin[k] = is_thin(members[k]);
+        set.members[static_cast<std::size_t>(k)].emplace_back(col, row);
+  set.thin.resize(set.subsegments.size());
+  for (std::size_t k = 0; k < set.subsegments.size(); ++k) set.thin[k] = is_thin(set.members[k], min_side_px);
   // The grid keeps its first ids until the end; `current` maps them to the ids of this pass.
-  std::vector<std::int32_t> current(subsegments.size());
+  std::vector<std::int32_t> current(set.subsegments.size());
   std::iota(current.begin(), current.end(), 0);
   auto id_at = [&](int col, int row) {
     const std::int32_t k = subsegment(col, row);
     return k < 0 ? k : current[static_cast<std::size_t>(k)];
   };
   for (;;) {
-    const std::size_t n = subsegments.size();
-    // Each thin subsegment's neighbour nearest in depth (ties: the lower id).
-    // Pairs merge, the thinnest first, each subsegment in at most one pair per pass: a run of slivers
-    // becomes steps about W wide, not one wide step.
-    std::vector<std::int32_t> into(n);
-    std::iota(into.begin(), into.end(), 0);
-    std::vector<std::size_t> order;
-    for (std::size_t k = 0; k < n; ++k)
-      if (thin[k]) order.push_back(k);
-    std::ranges::stable_sort(order, {}, [&](std::size_t k) { return pixels[k]; });
-    std::vector<std::uint8_t> paired(n, 0);
+    const std::vector<std::int32_t> into = thin_pairs(set, segment, id_at);
     bool merged = false;
-    for (const std::size_t k : order) {
-      if (paired[k]) continue;
-      auto gap = [&](std::int32_t x) {
-        // Of another orientation, a neighbour is as far as can be: chosen only when no other is.
-        const Subsegment& other = subsegments[static_cast<std::size_t>(x)];
-        return other.orientation != subsegments[k].orientation ? std::numeric_limits<double>::max()
-                                                               : std::abs(other.depth_mm - subsegments[k].depth_mm);
-      };
-      std::int32_t best = -1;
-      for (const auto& [col, row] : members[k])
-        for (const auto& [dc, dr] : kStep) {
-          if (!subsegment.contains(col + dc, row + dr)) continue;
-          const std::int32_t j = id_at(col + dc, row + dr);
-          if (j < 0 || static_cast<std::size_t>(j) == k || paired[static_cast<std::size_t>(j)] ||
-              segment(col + dc, row + dr) != subsegments[k].segment)
-            continue;
-          if (best < 0 || gap(j) < gap(best) || (gap(j) == gap(best) && j < best)) best = j;
-        }
-      if (best < 0) continue;
-      into[k] = best, paired[k] = paired[static_cast<std::size_t>(best)] = 1, merged = true;
-    }
+    for (std::size_t k = 0; k < into.size(); ++k) merged = merged || into[k] != static_cast<std::int32_t>(k);
     if (!merged) break;
-    // A part of another orientation takes the plane of the subsegment it joins: its depth does not
-    // count in the mean, its pixels do in the size.
-    std::vector<double> sum(n, 0), count(n, 0), size(n, 0);
-    for (std::size_t k = 0; k < n; ++k) {
-      const auto r = static_cast<std::size_t>(into[k]);
-      size[r] += pixels[k];
-      if (subsegments[k].orientation == subsegments[r].orientation)
-        sum[r] += subsegments[k].depth_mm * pixels[k], count[r] += pixels[k];
-    }
-    std::vector<std::int32_t> renumber(n, -1);
-    std::vector<Subsegment> next;
-    std::vector<double> next_pixels;
-    for (std::size_t k = 0; k < n; ++k)
-      if (into[k] == static_cast<std::int32_t>(k) && count[k] > 0) {
-        renumber[k] = static_cast<std::int32_t>(next.size());
-        next.push_back({subsegments[k].segment, sum[k] / count[k], subsegments[k].orientation});
-        next_pixels.push_back(size[k]);
-      }
+    const std::vector<std::int32_t> new_id = merge_pairs(set, into, min_side_px);
     for (auto& k : current)
-      if (k >= 0) k = renumber[static_cast<std::size_t>(into[static_cast<std::size_t>(k)])];
-    std::vector<std::vector<std::pair<int, int>>> next_members(next.size());
-    std::vector<std::uint8_t> next_thin(next.size()), grown(next.size(), 0);
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::int32_t r = renumber[static_cast<std::size_t>(into[k])];
-      if (r < 0) continue;
-      auto& to = next_members[static_cast<std::size_t>(r)];
-      if (to.empty()) {
-        to = std::move(members[k]);
-        next_thin[static_cast<std::size_t>(r)] = thin[k];
-      } else {
-        // Row-major again, as a scan of the grid would list them: the box's sums come out the same.
-        const auto middle = static_cast<std::ptrdiff_t>(to.size());
-        to.insert(to.end(), members[k].begin(), members[k].end());
-        std::ranges::inplace_merge(to, to.begin() + middle, {}, [](const std::pair<int, int>& p) {
-          return std::pair{p.second, p.first};
-        });
-        grown[static_cast<std::size_t>(r)] = 1;
-      }
-    }
-    for (std::size_t r = 0; r < next.size(); ++r)
-      if (grown[r]) next_thin[r] = is_thin(next_members[r]);
-    subsegments = std::move(next);
-    pixels = std::move(next_pixels);
-    members = std::move(next_members);
-    thin = std::move(next_thin);
+      if (k >= 0) k = new_id[static_cast<std::size_t>(k)];
   }
   for (auto& k : subsegment.values)
     if (k >= 0) k = current[static_cast<std::size_t>(k)];
@@ -238,8 +262,9 @@ std::vector<Subsegment> level_subsegments(const RasterMaps& maps, const Segmenta
           static_cast<std::int32_t>(std::min(levels[k] - 1, std::floor((depth_at(i) - nearest[k]) / step[k])));
     }
   subsegment = Grid<std::int32_t>(cols, seg.segment.rows, -1);
-  std::vector<Subsegment> subsegments;
-  std::vector<double> pixels;
+  SubsegmentSet set;
+  std::vector<Subsegment>& subsegments = set.subsegments;
+  std::vector<double>& pixels = set.pixels;
   std::vector<std::size_t> run;
   for (std::size_t i0 = 0; i0 < level.size(); ++i0) {
     if (level.values[i0] < 0 || subsegment.values[i0] >= 0) continue;
@@ -268,8 +293,8 @@ std::vector<Subsegment> level_subsegments(const RasterMaps& maps, const Segmenta
                            part_of[i0] ? Orientation::H : Orientation::V});
     pixels.push_back(static_cast<double>(run.size()));
   }
-  merge_thin_subsegments(seg.segment, W * maps.grid.px_per_mm, pixels, subsegments, subsegment);
-  return subsegments;
+  merge_thin_subsegments(seg.segment, W * maps.grid.px_per_mm, set, subsegment);
+  return std::move(set.subsegments);
 }
 
 // Pixels the slicing left without a face (removed thin faces, segments the sampling missed) take a

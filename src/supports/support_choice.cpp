@@ -33,6 +33,15 @@ constexpr int kTargetsPerRay = 3;
 // the shortest.
 constexpr double kCostPerLength = 0.25;
 
+// Where a support leaves the face it holds: the face, its row just outside the support, which way
+// the support runs (up the plan or down), and the OA point (h, d) of the face's edge there.
+struct SupportStart {
+  std::int32_t face;
+  int row;
+  bool up;
+  double h, d;
+};
+
 class CandidateFinder {
   struct Run {
     int row, c0, c1;  // pixels [c0, c1) of the row
@@ -52,21 +61,20 @@ class CandidateFinder {
   };
  public:
   // Candidates will be asked of the faces in `wanted` only.
-  CandidateFinder(const RasterMaps& maps, const RasterPlan& slices, const ExactPlan& exact,
-                  std::span<const Candidate> painted, const std::vector<std::int32_t>& wanted,
-                  const SupportPicture& picture, SupportReach reach)
-      : exact_(exact),
+  CandidateFinder(const SupportRound& round, const std::vector<std::int32_t>& wanted, const SupportPicture& picture,
+                  SupportReach reach)
+      : exact_(round.exact),
         picture_(picture),
-        painted_(painted),
-        grid_(maps.grid),
-        face_(slices.face),
-        faces_(slices.faces),
-        W_(slices.min_strip_mm),
+        painted_(round.painted),
+        grid_(round.maps.grid),
+        face_(round.slices.face),
+        faces_(round.slices.faces),
+        W_(round.slices.min_strip_mm),
         below_tips_(reach.below_tips),
         corners_(reach.corners),
-        px_mm_(1 / maps.grid.px_per_mm),
-        block_(slices.block_px),
-        slot_(slices.faces.size(), -1) {
+        px_mm_(1 / round.maps.grid.px_per_mm),
+        block_(round.slices.block_px),
+        slot_(round.slices.faces.size(), -1) {
     for (const std::int32_t f : wanted)
       if (int& k = slot_[static_cast<std::size_t>(f)]; k < 0)
         k = static_cast<int>(columns_.size()), columns_.push_back({INT_MAX, -1});
@@ -190,10 +198,11 @@ class CandidateFinder {
         if (!fills(taken)) continue;
         const int row = edge + taken * inward;  // f's row just outside the support
         const double edge_Y = grid_.Y(row) + (up ? px_mm_ / 2 : -px_mm_ / 2);
-        const double h = face.orientation == Orientation::V ? edge_Y + face.depth_mm : face.depth_mm;
-        const double d = face.orientation == Orientation::V ? face.depth_mm : face.depth_mm - edge_Y;
+        const SupportStart start{f, row, up,
+                                 face.orientation == Orientation::V ? edge_Y + face.depth_mm : face.depth_mm,
+                                 face.orientation == Orientation::V ? face.depth_mm : face.depth_mm - edge_Y};
         bool cuts_nothing = false;
-        for (Candidate& c : walk(f, column, row, up, h, d, memo)) {
+        for (Candidate& c : walk(start, column, memo)) {
           c.taken = taken;
           c.cost += extra_cost;
           cuts_nothing |= c.cuts.empty();
@@ -382,8 +391,8 @@ class CandidateFinder {
   // lattice the plan's vertices lie on). The raster, which may have split, merged or renumbered
   // faces since, names the face there: one in the plane the ray met, filling half the block, as a
   // support's far side needs.
-  std::vector<Candidate> walk(std::int32_t f, BlockColumn& column, int edge, bool up, double h, double d,
-                              SplitMemo& memo) const {
+  std::vector<Candidate> walk(const SupportStart& start, BlockColumn& column, SplitMemo& memo) const {
+    const auto [f, edge, up, h, d] = start;
     std::vector<Candidate> found;
     const int step = up ? -1 : 1;
     const int centre = (column.c0() + column.c1()) / 2;
@@ -413,7 +422,7 @@ class CandidateFinder {
         for (int between = edge + step; between != r; between += step)
           for (const std::int32_t x : column.faces(column.row(*this, between)))
             if (std::ranges::find(crossed, x) == crossed.end()) crossed.push_back(x);  // f too: taking its rows may cut it
-        found.push_back(candidate(f, row.centre, column, edge, r, up, h, d, std::move(crossed), memo));
+        found.push_back(candidate(start, {row.centre, r, std::move(crossed)}, column, memo));
         break;
       }
       if (static_cast<int>(found.size()) >= kTargetsPerRay || beyond < 0 || beyond >= face_.rows) break;
@@ -421,12 +430,23 @@ class CandidateFinder {
     return found;
   }
 
-  // The support from f's row `edge` to g's row `r` (both outside it), with its cost: the error it adds
-  // to the picture (SupportPicture, per W x W of plan: a support W wide and L long that shows the
-  // model 2 W off or more costs 2 L), a little for its length; and the faces it cuts in two among
-  // those it crosses.
-  Candidate candidate(std::int32_t f, std::int32_t g, const BlockColumn& column, int edge, int r, bool up, double h,
-                      double d, std::vector<std::int32_t> crossed, SplitMemo& memo) const {
+  // Where a walk found a face to fold onto: the face, its row just beyond the support, and the
+  // faces the support crosses on the way.
+  struct Landing {
+    std::int32_t target;
+    int row;
+    std::vector<std::int32_t> crossed;
+  };
+
+  // The support from its start to its landing (both rows outside it), with its cost: the error it
+  // adds to the picture (SupportPicture, per W x W of plan: a support W wide and L long that shows
+  // the model 2 W off or more costs 2 L), a little for its length; and the faces it cuts in two
+  // among those it crosses.
+  Candidate candidate(const SupportStart& start, Landing landing, const BlockColumn& column, SplitMemo& memo) const {
+    const auto [f, edge, up, h, d] = start;
+    const std::int32_t g = landing.target;
+    const int r = landing.row;
+    std::vector<std::int32_t>& crossed = landing.crossed;
     const int step = up ? -1 : 1;
     const int near = edge + step, far = r - step;  // rows the support covers, near to far
     Candidate s;
@@ -563,111 +583,139 @@ std::vector<Candidate> candidates_of(const CandidateFinder& finder, const std::v
 
 }  // namespace
 
-std::vector<Candidate> support_candidates(const RasterMaps& maps, const RasterPlan& slices, const ExactPlan& exact,
-                                          std::span<const Candidate> painted, const std::vector<std::int32_t>& faces,
+std::vector<Candidate> support_candidates(const SupportRound& round, const std::vector<std::int32_t>& faces,
                                           SupportReach reach) {
-  const SupportPicture picture(maps, slices);
-  return candidates_of(CandidateFinder(maps, slices, exact, painted, faces, picture, reach), faces, reach.split_faces);
+  const SupportPicture picture(round.maps, round.slices);
+  return candidates_of(CandidateFinder(round, faces, picture, reach), faces, reach.split_faces);
 }
 
-SupportChoice choose_supports(const RasterMaps& maps, const RasterPlan& slices, const ExactPlan& exact,
-                              std::span<const Candidate> painted, const FaceVerdicts& verdicts,
-                              std::span<const FoldEdge> folds, const std::vector<std::int32_t>& invalid,
-                              const SupportOptions& options, SupportReach reach) {
-  const SupportPicture picture(maps, slices);
-  const CandidateFinder finder(maps, slices, exact, painted, invalid, picture, reach);
-  const std::vector<Candidate> candidates = candidates_of(finder, invalid, reach.split_faces);
-  const std::size_t n = slices.faces.size();
-  std::vector<std::uint8_t> stands(n, 0), open(n, 0), usable(candidates.size(), 1);
-  for (std::size_t f = 0; f < n && f < verdicts.validity.status.size(); ++f)
-    stands[f] = verdicts.validity.status[f] == FaceStatus::Valid && !slices.faces[f].hole;
-  // A face is held only while that costs the picture no more than cutting it out.
-  std::vector<double> limit(n, 0);
-  const double W = slices.min_strip_mm;
-  for (const std::int32_t f : invalid) {
-    open[static_cast<std::size_t>(f)] = 1;
-    limit[static_cast<std::size_t>(f)] = std::max(0.0, picture.hole_error(f)) / (W * W);
-  }
-  // A support that cuts a face in two leaves a piece to hold: a face not yet held costs the split
-  // cost, one that stands ten times that (its pieces need holding anew).
-  const auto edges_now = [&] {
-    std::vector<SupportEdge> edges;
-    edges.reserve(candidates.size());
-    for (const Candidate& c : candidates) {
-      double cuts = 0;
-      for (const std::int32_t x : c.cuts)
-        cuts += (stands[static_cast<std::size_t>(x)] ? 10 : 1) * options.split_cost_mm;
-      edges.push_back({c.face, c.target, c.near.h - c.near.d, c.far.h - c.far.d, c.cost + cuts, c.cost, c.cuts});
+namespace {
+
+// Ear by ear, the hardest face's first: its faces stand from then on, and its supports claim their
+// pixels, which no later support may overlap.
+class EarTaker {
+ public:
+  EarTaker(const SupportRound& round, const FaceVerdicts& verdicts, const std::vector<std::int32_t>& invalid,
+           const SupportOptions& options, SupportReach reach)
+      : round_(round),
+        options_(options),
+        picture_(round.maps, round.slices),
+        finder_(round, invalid, picture_, reach),
+        candidates_(candidates_of(finder_, invalid, reach.split_faces)),
+        stands_(round.slices.faces.size(), 0),
+        open_(round.slices.faces.size(), 0),
+        usable_(candidates_.size(), 1),
+        limit_(round.slices.faces.size(), 0),
+        claims_(round.slices.face.cols, round.slices.face.rows) {
+    const std::vector<RasterFace>& faces = round.slices.faces;
+    for (std::size_t f = 0; f < faces.size() && f < verdicts.validity.status.size(); ++f)
+      stands_[f] = verdicts.validity.status[f] == FaceStatus::Valid && !faces[f].hole;
+    // A face is held only while that costs the picture no more than cutting it out.
+    const double W = round.slices.min_strip_mm;
+    for (const std::int32_t f : invalid) {
+      open_[static_cast<std::size_t>(f)] = 1;
+      limit_[static_cast<std::size_t>(f)] = std::max(0.0, picture_.hole_error(f)) / (W * W);
     }
-    return edges;
-  };
-  // Ear by ear, the hardest face's first: its faces stand from then on, and its supports claim their
-  // pixels, which no later support may overlap.
-  Claims claims(slices.face.cols, slices.face.rows);
-  SupportChoice choice;
-  std::vector<Candidate>& chosen = choice.supports;
+  }
+
   // First the ears that cut no standing face in two, as many as there are; only when there are
   // none, one ear that does, the cheapest: the faces it cuts are pieces for the next round to hold,
   // as it sees them, where ears taken after it here would assume them whole.
-  const auto cuts_standing = [&](const Candidate& c) {
-    return std::ranges::any_of(c.cuts, [&](std::int32_t x) { return stands[static_cast<std::size_t>(x)] != 0; });
-  };
+  SupportChoice choose() {
+    for (bool cutting = false;;) {
+      std::vector<std::uint8_t> allowed = usable_;
+      if (!cutting)
+        for (std::size_t k = 0; k < allowed.size(); ++k) allowed[k] &= !cuts_standing(candidates_[k]);
+      const EarSearch search(static_cast<std::int32_t>(stands_.size()), round_.folds, edges_now());
+      EarSearch::Choice next =
+          cutting ? search.cheapest(stands_, open_, limit_, allowed) : search.hardest(stands_, open_, limit_, allowed);
+      if (next.ears.empty()) {
+        if (!cutting && choice_.supports.empty()) {
+          cutting = true;
+          continue;
+        }
+        if (choice_.supports.empty())
+          for (const auto& [f, hold] : next.beyond_limit)
+            choice_.cut_out.push_back({f, hold, limit_[static_cast<std::size_t>(f)]});
+        break;
+      }
+      // The batch in order, each ear but those to be sought again; a cutting ear alone.
+      bool took = false;
+      for (const Ear& ear : next.ears) {
+        if (!admissible(ear)) continue;
+        take(ear);
+        took = true;
+        if (cutting) break;
+      }
+      if (cutting && took) break;
+    }
+    return std::move(choice_);
+  }
+
+ private:
+  // A support that cuts a face in two leaves a piece to hold: a face not yet held costs the split
+  // cost, one that stands ten times that (its pieces need holding anew).
+  std::vector<SupportEdge> edges_now() const {
+    std::vector<SupportEdge> edges;
+    edges.reserve(candidates_.size());
+    for (const Candidate& c : candidates_) {
+      double cuts = 0;
+      for (const std::int32_t x : c.cuts)
+        cuts += (stands_[static_cast<std::size_t>(x)] ? 10 : 1) * options_.split_cost_mm;
+      edges.push_back({c.face, c.target, c.near.h - c.near.d, c.far.h - c.far.d, c.cost + cuts, c.cost, c.cuts});
+    }
+    return edges;
+  }
+  bool cuts_standing(const Candidate& c) const {
+    return std::ranges::any_of(c.cuts, [&](std::int32_t x) { return stands_[static_cast<std::size_t>(x)] != 0; });
+  }
   // An ear's supports may interfere with each other or with those taken before (they were found
   // apart), or cut a face of their own ear in two: such a support is given up and the ear sought
   // again without it.
-  const auto admissible = [&](const Ear& ear) {
+  bool admissible(const Ear& ear) {
     bool all = true;
     for (std::size_t i = 0; i < ear.supports.size(); ++i) {
-      const Candidate& c = candidates[ear.supports[i]];
-      bool bad = !claims.fits(c);
-      for (std::size_t j = 0; j < i && !bad; ++j) bad = interfere(c, candidates[ear.supports[j]]);
+      const Candidate& c = candidates_[ear.supports[i]];
+      bool bad = !claims_.fits(c);
+      for (std::size_t j = 0; j < i && !bad; ++j) bad = interfere(c, candidates_[ear.supports[j]]);
       for (const std::int32_t x : c.cuts) bad = bad || std::ranges::find(ear.faces, x) != ear.faces.end();
-      if (bad) usable[ear.supports[i]] = 0, all = false;
+      if (bad) usable_[ear.supports[i]] = 0, all = false;
     }
     return all;
-  };
-  const auto take = [&](const Ear& ear) {
+  }
+  void take(const Ear& ear) {
+    std::vector<Candidate>& chosen = choice_.supports;
     const std::size_t first_new = chosen.size();
     for (const std::size_t k : ear.supports) {
-      Candidate s = candidates[k];
-      widen(slices.face, claims, picture, finder, s);
-      claims.claim(s);
+      Candidate s = candidates_[k];
+      widen(round_.slices.face, claims_, picture_, finder_, s);
+      claims_.claim(s);
       chosen.push_back(s);
     }
     for (const std::int32_t f : ear.faces)
-      stands[static_cast<std::size_t>(f)] = 1, open[static_cast<std::size_t>(f)] = 0;
-    for (std::size_t k = 0; k < candidates.size(); ++k)
-      for (std::size_t j = first_new; j < chosen.size() && usable[k]; ++j)
-        usable[k] = !interfere(candidates[k], chosen[j]);
-  };
-  for (bool cutting = false;;) {
-    std::vector<std::uint8_t> allowed = usable;
-    if (!cutting)
-      for (std::size_t k = 0; k < allowed.size(); ++k) allowed[k] &= !cuts_standing(candidates[k]);
-    const EarSearch search(static_cast<std::int32_t>(n), folds, edges_now());
-    EarSearch::Choice next =
-        cutting ? search.cheapest(stands, open, limit, allowed) : search.hardest(stands, open, limit, allowed);
-    if (next.ears.empty()) {
-      if (!cutting && chosen.empty()) {
-        cutting = true;
-        continue;
-      }
-      if (chosen.empty())
-        for (const auto& [f, hold] : next.beyond_limit)
-          choice.cut_out.push_back({f, hold, limit[static_cast<std::size_t>(f)]});
-      break;
-    }
-    // The batch in order, each ear but those to be sought again; a cutting ear alone.
-    bool took = false;
-    for (const Ear& ear : next.ears) {
-      if (!admissible(ear)) continue;
-      take(ear);
-      took = true;
-      if (cutting) break;
-    }
-    if (cutting && took) break;
+      stands_[static_cast<std::size_t>(f)] = 1, open_[static_cast<std::size_t>(f)] = 0;
+    for (std::size_t k = 0; k < candidates_.size(); ++k)
+      for (std::size_t j = first_new; j < chosen.size() && usable_[k]; ++j)
+        usable_[k] = !interfere(candidates_[k], chosen[j]);
   }
-  return choice;
+
+  const SupportRound& round_;
+  const SupportOptions& options_;
+  const SupportPicture picture_;
+  const CandidateFinder finder_;
+  const std::vector<Candidate> candidates_;
+  std::vector<std::uint8_t> stands_, open_, usable_;
+  std::vector<double> limit_;
+  Claims claims_;
+  SupportChoice choice_;
+};
+
+}  // namespace
+
+SupportChoice choose_supports(const SupportRound& round, const FaceVerdicts& verdicts,
+                              const std::vector<std::int32_t>& invalid, const SupportOptions& options,
+                              SupportReach reach) {
+  return EarTaker(round, verdicts, invalid, options, reach).choose();
 }
 
 }  // namespace origamic

@@ -62,18 +62,27 @@ struct SupportReach {
   bool corners = false;
 };
 
+// What a round of supports reads: the maps, the raster plan as it is now, the exact plan last built
+// of it, the supports painted since, and the raster plan's folds (raster_folds).
+struct SupportRound {
+  const RasterMaps& maps;
+  const RasterPlan& slices;
+  const ExactPlan& exact;
+  std::span<const Candidate> painted;
+  std::span<const FoldEdge> folds;
+};
+
 /// Supports for the invalid faces, chosen ear by ear (support_ears.hpp), the cheapest first, over
 /// the plan's folds and the candidates of both edges of every invalid face; widened, never
-/// overlapping; not yet painted. `exact` is the exact plan of `slices` before the supports `painted`
-/// since: the face each support reaches is found on it and them (ExactPlan::faces_reached). A
+/// overlapping; not yet painted. The face each support reaches is found on the round's exact plan
+/// and the supports painted since (ExactPlan::faces_reached). A
 /// candidate costs the error it adds to the picture and a little for its length (and much for
 /// each face it cuts in two). A face is held only where that costs no more than the error a hole
 /// in its place would add (seed §4.4 shows supports always exist; here they must also be worth it).
 /// The candidate supports from both edges of the faces (seed §4.4, a few per ray: the first faces
 /// it can fold onto), each with its cost and the faces it cuts in two; what choose_supports chooses
-/// among. `exact` and `painted` as there.
-std::vector<Candidate> support_candidates(const RasterMaps& maps, const RasterPlan& slices, const ExactPlan& exact,
-                                          std::span<const Candidate> painted, const std::vector<std::int32_t>& faces,
+/// among (the round's folds are not read).
+std::vector<Candidate> support_candidates(const SupportRound& round, const std::vector<std::int32_t>& faces,
                                           SupportReach reach);
 
 struct SupportChoice {
@@ -86,10 +95,9 @@ struct SupportChoice {
   };
   std::vector<CostlyFace> cut_out;
 };
-SupportChoice choose_supports(const RasterMaps& maps, const RasterPlan& slices, const ExactPlan& exact,
-                              std::span<const Candidate> painted, const FaceVerdicts& verdicts,
-                              std::span<const FoldEdge> folds, const std::vector<std::int32_t>& invalid,
-                              const SupportOptions& options, SupportReach reach);
+SupportChoice choose_supports(const SupportRound& round, const FaceVerdicts& verdicts,
+                              const std::vector<std::int32_t>& invalid, const SupportOptions& options,
+                              SupportReach reach);
 
 /// Makes every face of the raster plan one piece of paper, as the exact plan judges them: each
 /// 4-connected part of a face (a loose piece of the back plane or the floor too) becomes a face of

@@ -275,8 +275,8 @@ FaceOrderRun::Stopped FaceOrderRun::support_rounds() {
     round_reach.split_faces = allow_splits_ || split_rounds_left_-- > 0;
     const std::vector<FoldEdge> folds =
         raster_folds(setting_.maps.grid, slices_, aligned_fold_tolerance_mm(setting_.maps.grid));
-    const SupportChoice choice = choose_supports(setting_.maps, slices_, *last_build_, painted_since_, verdicts_, folds,
-                                                 invalid, setting_.options, round_reach);
+    const SupportChoice choice = choose_supports({setting_.maps, slices_, *last_build_, painted_since_, folds},
+                                                 verdicts_, invalid, setting_.options, round_reach);
     const std::vector<Candidate>& chosen = choice.supports;
     if (chosen.empty() && choice.cut_out.empty()) return {SupportStop::Unreachable, count};
     tally.supports += static_cast<int>(chosen.size());
