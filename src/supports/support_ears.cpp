@@ -60,13 +60,88 @@ EarSearch::Choice EarSearch::cheapest(const std::vector<std::uint8_t>& standing,
   return pick(standing, open, limit, usable, false);
 }
 
-EarSearch::Choice EarSearch::pick(const std::vector<std::uint8_t>& standing, const std::vector<std::uint8_t>& open,
-                                  const std::vector<double>& limit, const std::vector<std::uint8_t>& usable,
-                                  bool hardest) const {
-  Choice choice;
-  std::vector<Label> labels;
-  using Entry = std::pair<double, std::int64_t>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+// The search's paths (hardest's Dijkstra): its labels, and per state (a face and the line it is
+// entered on) the two cheapest labels of different sources.
+class EarSearch::Paths {
+ public:
+  Paths(const EarSearch& graph, const std::vector<std::uint8_t>& open, const std::vector<std::uint8_t>& usable)
+      : graph_(graph), open_(open), usable_(usable), states_of_(graph.arcs_.size()) {}
+
+  void run(const std::vector<std::uint8_t>& standing) {
+    for (std::size_t u = 0; u < graph_.arcs_.size(); ++u) {
+      if (!standing[u]) continue;
+      for (const Arc& arc : graph_.arcs_[u])
+        if (open_[static_cast<std::size_t>(arc.to)] && allowed(arc) && !breaks(-1, arc))
+          push({arc.cost, arc.picture, arc.to, arc.there_Y, static_cast<std::int32_t>(u), -1, arc.support,
+                !cuts_of(arc.support).empty()});
+    }
+    while (!queue_.empty()) {
+      const std::int64_t id = queue_.top().second;
+      queue_.pop();
+      const Label label = labels_[static_cast<std::size_t>(id)];
+      State& st = state_of(label.face, label.Y);
+      if (st.settled >= 2 || (st.best[0] != id && st.best[1] != id)) continue;  // superseded
+      if (st.settled == 1 && st.best[0] == id) continue;
+      if (st.best[st.settled] != id) std::swap(st.best[0], st.best[1]);  // the popped one is the next settled
+      ++st.settled;
+      for (const Arc& arc : graph_.arcs_[static_cast<std::size_t>(label.face)]) {
+        if (!allowed(arc) || same_line(arc.here_Y, label.Y)) continue;  // a face held on one line swings
+        // Straight back is no path; longer cycles cost more than their way round, and an ear found
+        // through one is passed over below.
+        const bool back = label.prev >= 0 && labels_[static_cast<std::size_t>(label.prev)].face == arc.to;
+        if (!open_[static_cast<std::size_t>(arc.to)] || back || breaks(id, arc)) continue;
+        const bool cutting = label.cutting || !cuts_of(arc.support).empty();
+        push({label.dist + arc.cost, label.picture + arc.picture, arc.to, arc.there_Y, label.source, id, arc.support,
+              cutting});
+      }
+    }
+  }
+
+  const Label& label(std::int64_t k) const { return labels_[static_cast<std::size_t>(k)]; }
+
+  // The labels settled at face f, by distance (then id).
+  std::vector<std::int64_t> settled_at(std::size_t f) const {
+    std::vector<std::int64_t> kept;
+    for (const std::uint32_t k : states_of_[f])
+      for (int i = 0; i < states_[k].settled; ++i) kept.push_back(states_[k].best[i]);
+    std::ranges::sort(kept, {}, [&](std::int64_t k) { return std::pair{label(k).dist, k}; });
+    return kept;
+  }
+
+  // Whether the two paths into a face together visit some face twice, or a support of one cuts a
+  // face of the other in two.
+  bool shares_face(std::int64_t a, std::int64_t b) const {
+    std::vector<std::int32_t> faces, cut;
+    for (std::int64_t k = label(a).prev; k >= 0; k = label(k).prev) faces.push_back(label(k).face);
+    for (std::int64_t k = b; k >= 0; k = label(k).prev) faces.push_back(label(k).face);
+    for (const std::int64_t end : {a, b})
+      if (label(end).cutting)
+        for (std::int64_t k = end; k >= 0; k = label(k).prev)
+          for (const std::int32_t x : cuts_of(label(k).support)) cut.push_back(x);
+    std::ranges::sort(faces);
+    if (std::ranges::adjacent_find(faces) != faces.end()) return true;
+    return std::ranges::any_of(cut, [&](std::int32_t x) { return std::ranges::binary_search(faces, x); });
+  }
+
+  // The ear of two labels into one face: the first path from its source to the face, then the
+  // second back from the face to its source.
+  Ear ear(double cost, std::pair<std::int64_t, std::int64_t> pair) const {
+    Ear ear;
+    ear.cost = cost;
+    ear.picture = label(pair.first).picture + label(pair.second).picture;
+    std::vector<std::int32_t> there;
+    for (std::int64_t k = pair.first; k >= 0; k = label(k).prev) {
+      there.push_back(label(k).face);
+      if (label(k).support >= 0) ear.supports.push_back(static_cast<std::size_t>(label(k).support));
+    }
+    ear.faces.assign(there.rbegin(), there.rend());
+    for (std::int64_t k = label(pair.second).prev; k >= 0; k = label(k).prev) ear.faces.push_back(label(k).face);
+    for (std::int64_t k = pair.second; k >= 0; k = label(k).prev)
+      if (label(k).support >= 0) ear.supports.push_back(static_cast<std::size_t>(label(k).support));
+    return ear;
+  }
+
+ private:
   // A state: a face and the line it is entered on. It keeps the two cheapest labels of different
   // sources seen so far (the first two settled are final); a label no better than those is dropped
   // before it is queued, so each state queues a few labels, not one per path into it.
@@ -75,33 +150,32 @@ EarSearch::Choice EarSearch::pick(const std::vector<std::uint8_t>& standing, con
     std::int64_t best[2] = {-1, -1};  // the two cheapest labels of different sources, cheaper first
     int settled = 0;                  // of them, popped
   };
+
   // States by face and line, the line to the fold tolerance (two lines a rounding apart may fall on
   // either side of a step and make two states: harmless, the hinge rule compares the lines).
-  std::vector<State> states;
-  std::vector<std::vector<std::uint32_t>> states_of(arcs_.size());
-  std::unordered_map<std::uint64_t, std::uint32_t> state_index;
-  const auto state_of = [&](std::int32_t face, double Y) -> State& {
+  State& state_of(std::int32_t face, double Y) {
     const auto step = static_cast<std::int64_t>(std::llround(Y / kFoldLineTolerance_mm));
     const std::uint64_t key =
         (static_cast<std::uint64_t>(face) << 40) ^ static_cast<std::uint64_t>(step & ((1LL << 40) - 1));
-    const auto [it, fresh] = state_index.try_emplace(key, static_cast<std::uint32_t>(states.size()));
+    const auto [it, fresh] = state_index_.try_emplace(key, static_cast<std::uint32_t>(states_.size()));
     if (fresh) {
-      states.push_back(State{Y});
-      states_of[static_cast<std::size_t>(face)].push_back(it->second);
+      states_.push_back(State{Y});
+      states_of_[static_cast<std::size_t>(face)].push_back(it->second);
     }
-    return states[it->second];
-  };
-  const auto allowed = [&](const Arc& arc) { return arc.support < 0 || usable[static_cast<std::size_t>(arc.support)]; };
-  const auto dist_of = [&](std::int64_t k) { return labels[static_cast<std::size_t>(k)].dist; };
-  const auto source_of = [&](std::int64_t k) { return labels[static_cast<std::size_t>(k)].source; };
+    return states_[it->second];
+  }
+
+  bool allowed(const Arc& arc) const { return arc.support < 0 || usable_[static_cast<std::size_t>(arc.support)]; }
+
   // Keeps the label if it is among its state's two cheapest of different sources, and queues it.
-  const auto push = [&](const Label& label) {
+  void push(const Label& label) {
     State& st = state_of(label.face, label.Y);
     std::int64_t* best = st.best;
-    const auto id = static_cast<std::int64_t>(labels.size());
+    const auto id = static_cast<std::int64_t>(labels_.size());
+    const auto dist_of = [&](std::int64_t k) { return labels_[static_cast<std::size_t>(k)].dist; };
     int same = -1;
     for (int i = 0; i < 2; ++i)
-      if (best[i] >= 0 && source_of(best[i]) == label.source) same = i;
+      if (best[i] >= 0 && labels_[static_cast<std::size_t>(best[i])].source == label.source) same = i;
     if (same >= 0) {
       if (same < st.settled || dist_of(best[same]) <= label.dist) return;
       best[same] = id;
@@ -114,94 +188,74 @@ EarSearch::Choice EarSearch::pick(const std::vector<std::uint8_t>& standing, con
     } else {
       return;
     }
-    labels.push_back(label);  // before the order below reads its distance
+    labels_.push_back(label);  // before the order below reads its distance
     if (st.settled == 0 && best[0] >= 0 && best[1] >= 0 && dist_of(best[1]) < dist_of(best[0]))
       std::swap(best[0], best[1]);
-    queue.emplace(label.dist, id);
-  };
+    queue_.emplace(label.dist, id);
+  }
+
+  const std::vector<std::int32_t>& cuts_of(std::int64_t support) const {
+    static const std::vector<std::int32_t> none;
+    return support < 0 ? none : graph_.cuts_[static_cast<std::size_t>(support)];
+  }
+
   // Whether a path would cut one of its own faces in two: the arc's support cuts a face of the path
   // or the one it enters, or a support on the path cuts the face it enters.
-  const auto cuts_of = [&](std::int64_t support) -> const std::vector<std::int32_t>& {
-    static const std::vector<std::int32_t> none;
-    return support < 0 ? none : cuts_[static_cast<std::size_t>(support)];
-  };
-  const auto breaks = [&](std::int64_t from, const Arc& arc) {
+  bool breaks(std::int64_t from, const Arc& arc) const {
     const std::vector<std::int32_t>& cuts = cuts_of(arc.support);
     if (std::ranges::find(cuts, arc.to) != cuts.end()) return true;
-    if (cuts.empty() && (from < 0 || !labels[static_cast<std::size_t>(from)].cutting)) return false;
-    for (std::int64_t k = from; k >= 0; k = labels[static_cast<std::size_t>(k)].prev) {
-      const Label& l = labels[static_cast<std::size_t>(k)];
+    if (cuts.empty() && (from < 0 || !labels_[static_cast<std::size_t>(from)].cutting)) return false;
+    for (std::int64_t k = from; k >= 0; k = labels_[static_cast<std::size_t>(k)].prev) {
+      const Label& l = labels_[static_cast<std::size_t>(k)];
       if (std::ranges::find(cuts, l.face) != cuts.end()) return true;
       const std::vector<std::int32_t>& earlier = cuts_of(l.support);
       if (std::ranges::find(earlier, arc.to) != earlier.end()) return true;
     }
     return false;
-  };
-  for (std::size_t u = 0; u < arcs_.size(); ++u) {
-    if (!standing[u]) continue;
-    for (const Arc& arc : arcs_[u])
-      if (open[static_cast<std::size_t>(arc.to)] && allowed(arc) && !breaks(-1, arc))
-        push({arc.cost, arc.picture, arc.to, arc.there_Y, static_cast<std::int32_t>(u), -1, arc.support,
-              !cuts_of(arc.support).empty()});
   }
-  while (!queue.empty()) {
-    const std::int64_t id = queue.top().second;
-    queue.pop();
-    const Label label = labels[static_cast<std::size_t>(id)];
-    State& st = state_of(label.face, label.Y);
-    if (st.settled >= 2 || (st.best[0] != id && st.best[1] != id)) continue;  // superseded
-    if (st.settled == 1 && st.best[0] == id) continue;
-    if (st.best[st.settled] != id) std::swap(st.best[0], st.best[1]);  // the popped one is the next settled
-    ++st.settled;
-    for (const Arc& arc : arcs_[static_cast<std::size_t>(label.face)]) {
-      if (!allowed(arc) || same_line(arc.here_Y, label.Y)) continue;  // a face held on one line swings
-      // Straight back is no path; longer cycles cost more than their way round, and an ear found
-      // through one is passed over below.
-      const bool back = label.prev >= 0 && labels[static_cast<std::size_t>(label.prev)].face == arc.to;
-      if (!open[static_cast<std::size_t>(arc.to)] || back || breaks(id, arc)) continue;
-      const bool cutting = label.cutting || (arc.support >= 0 && !cuts_[static_cast<std::size_t>(arc.support)].empty());
-      push({label.dist + arc.cost, label.picture + arc.picture, arc.to, arc.there_Y, label.source, id, arc.support,
-            cutting});
-    }
-  }
-  // Each open face's cheapest ear; the most expensive of them is taken.
-  // Whether the two paths into a face together visit some face twice, or a support of one cuts a
-  // face of the other in two.
-  const auto shares_face = [&](std::int64_t a, std::int64_t b) {
-    std::vector<std::int32_t> faces, cut;
-    for (std::int64_t k = labels[static_cast<std::size_t>(a)].prev; k >= 0;
-         k = labels[static_cast<std::size_t>(k)].prev)
-      faces.push_back(labels[static_cast<std::size_t>(k)].face);
-    for (std::int64_t k = b; k >= 0; k = labels[static_cast<std::size_t>(k)].prev)
-      faces.push_back(labels[static_cast<std::size_t>(k)].face);
-    for (const std::int64_t end : {a, b})
-      if (labels[static_cast<std::size_t>(end)].cutting)
-        for (std::int64_t k = end; k >= 0; k = labels[static_cast<std::size_t>(k)].prev)
-          for (const std::int32_t x : cuts_of(labels[static_cast<std::size_t>(k)].support)) cut.push_back(x);
-    std::ranges::sort(faces);
-    if (std::ranges::adjacent_find(faces) != faces.end()) return true;
-    return std::ranges::any_of(cut, [&](std::int32_t x) { return std::ranges::binary_search(faces, x); });
-  };
-  struct Found {
-    double cost;
-    std::int32_t face;
-    std::pair<std::int64_t, std::int64_t> pair;
-  };
-  std::vector<Found> found;
+
+  using Entry = std::pair<double, std::int64_t>;
+  const EarSearch& graph_;
+  const std::vector<std::uint8_t>& open_;
+  const std::vector<std::uint8_t>& usable_;
+  std::vector<Label> labels_;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue_;
+  std::vector<State> states_;
+  std::vector<std::vector<std::uint32_t>> states_of_;  // per face
+  std::unordered_map<std::uint64_t, std::uint32_t> state_index_;
+};
+
+namespace {
+
+// An open face's cheapest ear: its cost and its two labels.
+struct FoundEar {
+  double cost;
+  std::int32_t face;
+  std::pair<std::int64_t, std::int64_t> pair;
+};
+
+}  // namespace
+
+EarSearch::Choice EarSearch::pick(const std::vector<std::uint8_t>& standing, const std::vector<std::uint8_t>& open,
+                                  const std::vector<double>& limit, const std::vector<std::uint8_t>& usable,
+                                  bool hardest) const {
+  Paths paths(*this, open, usable);
+  paths.run(standing);
+  Choice choice;
+  // Each open face's cheapest ear: two labels of different sources, entering it on different lines,
+  // whose paths share no face.
+  std::vector<FoundEar> found;
   for (std::size_t f = 0; f < arcs_.size(); ++f) {
     if (!open[f]) continue;
-    std::vector<std::int64_t> kept;
-    for (const std::uint32_t k : states_of[f])
-      for (int i = 0; i < states[k].settled; ++i) kept.push_back(states[k].best[i]);
-    std::ranges::sort(kept, {}, [&](std::int64_t k) { return std::pair{dist_of(k), k}; });
+    const std::vector<std::int64_t> kept = paths.settled_at(f);
     double best = std::numeric_limits<double>::infinity(), best_picture = 0;
     std::pair<std::int64_t, std::int64_t> best_pair{-1, -1};
     for (std::size_t i = 0; i < kept.size(); ++i)
       for (std::size_t j = i + 1; j < kept.size(); ++j) {
-        const Label &a = labels[static_cast<std::size_t>(kept[i])], &b = labels[static_cast<std::size_t>(kept[j])];
+        const Label &a = paths.label(kept[i]), &b = paths.label(kept[j]);
         if (a.dist + b.dist >= best) break;  // sorted: no cheaper pair with this i
         if (a.source == b.source || same_line(a.Y, b.Y)) continue;
-        if (shares_face(kept[i], kept[j])) continue;
+        if (paths.shares_face(kept[i], kept[j])) continue;
         best = a.dist + b.dist, best_picture = a.picture + b.picture, best_pair = {kept[i], kept[j]};
       }
     if (best_pair.first < 0) continue;
@@ -212,31 +266,14 @@ EarSearch::Choice EarSearch::pick(const std::vector<std::uint8_t>& standing, con
   }
   // Hardest (or cheapest) first; an ear that shares a face or a support with one taken before it
   // waits for the next search, which sees the faces taken standing.
-  std::ranges::sort(found, [&](const Found& a, const Found& b) {
+  std::ranges::sort(found, [&](const FoundEar& a, const FoundEar& b) {
     return hardest ? std::tie(b.cost, a.face) < std::tie(a.cost, b.face)
                    : std::tie(a.cost, a.face) < std::tie(b.cost, b.face);
   });
   std::vector<std::uint8_t> taken_face(arcs_.size(), 0);
   std::vector<std::size_t> taken_support;
-  for (const Found& f : found) {
-    Ear ear;
-    ear.cost = f.cost;
-    ear.picture = labels[static_cast<std::size_t>(f.pair.first)].picture +
-                  labels[static_cast<std::size_t>(f.pair.second)].picture;
-    // The first path from its source to the face, then the second back from the face to its source.
-    std::vector<std::int32_t> there;
-    for (std::int64_t k = f.pair.first; k >= 0; k = labels[static_cast<std::size_t>(k)].prev) {
-      const Label& l = labels[static_cast<std::size_t>(k)];
-      there.push_back(l.face);
-      if (l.support >= 0) ear.supports.push_back(static_cast<std::size_t>(l.support));
-    }
-    ear.faces.assign(there.rbegin(), there.rend());
-    for (std::int64_t k = labels[static_cast<std::size_t>(f.pair.second)].prev; k >= 0;
-         k = labels[static_cast<std::size_t>(k)].prev)
-      ear.faces.push_back(labels[static_cast<std::size_t>(k)].face);
-    for (std::int64_t k = f.pair.second; k >= 0; k = labels[static_cast<std::size_t>(k)].prev)
-      if (labels[static_cast<std::size_t>(k)].support >= 0)
-        ear.supports.push_back(static_cast<std::size_t>(labels[static_cast<std::size_t>(k)].support));
+  for (const FoundEar& f : found) {
+    Ear ear = paths.ear(f.cost, f.pair);
     const bool apart =
         std::ranges::none_of(ear.faces, [&](std::int32_t x) { return taken_face[static_cast<std::size_t>(x)] != 0; }) &&
         std::ranges::none_of(ear.supports,

@@ -76,6 +76,7 @@ class EarSearch {
     double cost, picture;
     std::int64_t support;  // the support edge, -1 for a fold
   };
+  class Paths;
   Choice pick(const std::vector<std::uint8_t>& standing, const std::vector<std::uint8_t>& open,
               const std::vector<double>& limit, const std::vector<std::uint8_t>& usable, bool hardest) const;
   std::vector<std::vector<Arc>> arcs_;           // per face
