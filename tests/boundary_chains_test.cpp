@@ -75,7 +75,7 @@ TEST(BoundaryChains, AStaircaseSimplifiesWithinItsTolerance) {
   const auto simplified = [&](double tolerance_mm) {
     std::vector<LatticePoint> points;
     for (const chains::ChainPoint& p :
-         chains::simplified(stairs, lattice, no_breaks, tolerance_mm, tolerance_mm).points)
+         chains::simplified(stairs, lattice, no_breaks, {tolerance_mm, tolerance_mm}).points)
       points.push_back(p.lattice);
     return points;
   };

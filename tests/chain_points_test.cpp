@@ -53,7 +53,7 @@ struct StaircaseOnAnEdge {
 // drawn exactly.
 TEST(ChainPoints, AStaircaseOnTheModelsEdgeIsItsStraightEdge) {
   const StaircaseOnAnEdge s;
-  const chains::DrawnChain drawn = chains::simplified(s.stairs, s.lattice, s.breaks(), 0.1, 0.02);
+  const chains::DrawnChain drawn = chains::simplified(s.stairs, s.lattice, s.breaks(), {0.1, 0.02});
   ASSERT_GE(drawn.points.size(), 3u);
   EXPECT_LE(drawn.off_edge_mm, 0.02);
   for (std::size_t k = 1; k + 1 < drawn.points.size(); ++k) {
@@ -61,7 +61,7 @@ TEST(ChainPoints, AStaircaseOnTheModelsEdgeIsItsStraightEdge) {
     EXPECT_LE(s.off_edge(drawn.points[k].X, drawn.points[k].Y), 1e-9) << k;
   }
   const chains::DrawnChain straight =
-      chains::simplified(s.stairs, s.lattice, s.breaks(), 0.1, 0.02,
+      chains::simplified(s.stairs, s.lattice, s.breaks(), {0.1, 0.02},
                          {s.on_edge(s.stairs.corners.front()), s.on_edge(s.stairs.corners.back())});
   EXPECT_EQ(straight.points.size(), 2u);
   EXPECT_LE(straight.off_edge_mm, 1e-9);
@@ -71,11 +71,12 @@ TEST(ChainPoints, AStaircaseOnTheModelsEdgeIsItsStraightEdge) {
 TEST(ChainPoints, AShortRunOfBreaksStaysOnTheLattice) {
   StaircaseOnAnEdge s;
   s.stairs.corners.resize(7);  // 6 pixel edges, all across breaks
-  for (const chains::ChainPoint& p : chains::simplified(s.stairs, s.lattice, s.breaks(), 0.1, 0.02).points)
+  for (const chains::ChainPoint& p : chains::simplified(s.stairs, s.lattice, s.breaks(), {0.1, 0.02}).points)
     EXPECT_FALSE(p.on_break);
   s = StaircaseOnAnEdge{};
   s.stairs.corners.resize(10);  // 9 pixel edges: a run long enough is drawn on the edge
-  const std::vector<chains::ChainPoint> points = chains::simplified(s.stairs, s.lattice, s.breaks(), 0.1, 0.02).points;
+  const std::vector<chains::ChainPoint> points =
+      chains::simplified(s.stairs, s.lattice, s.breaks(), {0.1, 0.02}).points;
   EXPECT_TRUE(std::ranges::any_of(points, &chains::ChainPoint::on_break));
 }
 

@@ -172,9 +172,9 @@ void add_cut(const Chain& chain, CornerSpan span, const ChainDrawing& drawing, C
   if (!ends[0]) ends[0] = drawing.junctions.moved(piece.corners.front());
   if (!ends[1]) ends[1] = drawing.junctions.moved(piece.corners.back());
   const auto near = [](const std::optional<PieceEnd>& end) { return end ? std::optional(end->near) : std::nullopt; };
-  const chains::DrawnChain drawn =
-      simplified(piece, lattice, lattice.breaks, drawing.simplify_mm,
-                 std::min(drawing.simplify_mm, kSimplifyOnBreaks_mm), {near(ends[0]), near(ends[1])});
+  const chains::DrawnChain drawn = simplified(
+      piece, lattice, lattice.breaks, {drawing.simplify_mm, std::min(drawing.simplify_mm, kSimplifyOnBreaks_mm)},
+      {near(ends[0]), near(ends[1])});
   const std::vector<ChainPoint>& points = drawn.points;
   curves.off_model_edges_mm = std::max(curves.off_model_edges_mm, drawn.off_edge_mm);
   const auto exact = [&](std::size_t k) {
@@ -746,8 +746,9 @@ void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& sl
   EdgeReading reading = read_edges(arr, faces, pieces, node);
   graph.folds = std::move(reading.folds);
   state.edges = std::move(reading.edges);
-  const PieceVerdict verdict = face_validity(validity_of(graph), pieces, node, areas.of_piece,
-                                             among_holes(arr, pieces, faces), n, aligned.min_strip_mm);
+  const std::vector<std::uint8_t> bordering_holes = among_holes(arr, pieces, faces);
+  const PieceVerdict verdict =
+      face_validity(validity_of(graph), {pieces, node, areas.of_piece, bordering_holes}, n, aligned.min_strip_mm);
   plan.validity = verdict.validity;
   plan.loose_card_pieces = verdict.loose_card_pieces;
   plan.crumbs_cut_out = static_cast<int>(std::ranges::count(verdict.cut_out, 1));

@@ -66,9 +66,9 @@ Pieces pieces_of(const Arrangement& arr) {
   return pieces;
 }
 
-PieceVerdict face_validity(const Validity& by_node, const Pieces& pieces, const std::vector<std::int32_t>& node,
-                           const std::vector<double>& piece_area, const std::vector<std::uint8_t>& among_holes,
-                           std::size_t faces, double min_strip_mm) {
+PieceVerdict face_validity(const Validity& by_node, const PieceFacts& piece, std::size_t faces, double min_strip_mm) {
+  const Pieces& pieces = piece.pieces;
+  const std::vector<double>& piece_area = piece.area;
   const double crumb = min_strip_mm * min_strip_mm / 8;
   PieceVerdict verdict;
   verdict.cut_out.assign(pieces.label.size(), 0);
@@ -80,9 +80,9 @@ PieceVerdict face_validity(const Validity& by_node, const Pieces& pieces, const 
   std::vector<int> worst(faces, -1);
   std::vector<std::uint8_t> kept(faces, 0);  // some piece of the face stays in the sheet
   for (std::size_t p = 0; p < pieces.label.size(); ++p) {
-    const auto f = static_cast<std::size_t>(pieces.label[p]), k = static_cast<std::size_t>(node[p]);
+    const auto f = static_cast<std::size_t>(pieces.label[p]), k = static_cast<std::size_t>(piece.node[p]);
     if (k < 2) continue;  // the card's halves themselves
-    if ((piece_area[p] < crumb || among_holes[p]) && by_node.status[k] == FaceStatus::Floating) {
+    if ((piece_area[p] < crumb || piece.among_holes[p]) && by_node.status[k] == FaceStatus::Floating) {
       verdict.cut_out[p] = 1;
       continue;
     }

@@ -70,9 +70,15 @@ struct PieceVerdict {
   int loose_card_pieces = 0;          // pieces of the back plane or the floor no fold holds
   std::vector<std::uint8_t> cut_out;  // per piece: a floating crumb, cut out
 };
-PieceVerdict face_validity(const Validity& by_node, const Pieces& pieces, const std::vector<std::int32_t>& node,
-                           const std::vector<double>& piece_area, const std::vector<std::uint8_t>& among_holes,
-                           std::size_t faces, double min_strip_mm);
+/// What face_validity reads of each piece besides its label: its node in the face graph, its area,
+/// and whether it borders only holes.
+struct PieceFacts {
+  const Pieces& pieces;
+  const std::vector<std::int32_t>& node;
+  const std::vector<double>& area;
+  const std::vector<std::uint8_t>& among_holes;
+};
+PieceVerdict face_validity(const Validity& by_node, const PieceFacts& piece, std::size_t faces, double min_strip_mm);
 
 /// An edge's length from its vertices' doubles, for the label vote and the reported line lengths.
 inline double length_of(Arrangement::Halfedge_const_handle he) {

@@ -2,20 +2,20 @@
 #include "origamic/raster.hpp"
 
 #include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <tuple>
-
-#include <glm/common.hpp>
-#include <glm/geometric.hpp>
-#include <glm/vec2.hpp>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include "embree_scene.hpp"
 #include "origamic/error.hpp"
@@ -85,8 +85,8 @@ constexpr double kCreaseCosine = 0.9397;
 // The point (X, Y + d, d) of the 45-degree line through plan point (X, Y) on the plane of triangle
 // abc, in double precision. Axis-parallel faces return their coordinate untouched, so a V face's d
 // and an H face's h are exactly the mesh's.
-Hit intersect_exactly(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double X, double Y,
-                      double fallback_d) {
+Hit intersect_exactly(const std::array<glm::dvec3, 3>& abc, double X, double Y, double fallback_d) {
+  const auto& [a, b, c] = abc;
   const glm::dvec3 n = glm::cross(b - a, c - a);
   if (n.x == 0 && n.y == 0) return {Y + a.z, a.z};
   if (n.x == 0 && n.z == 0) return {a.y, a.y - Y};
@@ -149,8 +149,9 @@ struct Tracer {
       traced.kind = HitKind::Model;
       traced.primitive = static_cast<std::int32_t>(ray.hit.primID);
       const auto& t = scene.mesh.triangles[ray.hit.primID];
-      traced.hit = intersect_exactly(scene.mesh.positions[t[0]], scene.mesh.positions[t[1]], scene.mesh.positions[t[2]],
-                                     X, Y, start_d - ray.ray.tfar);
+      const std::array<glm::dvec3, 3> abc{scene.mesh.positions[t[0]], scene.mesh.positions[t[1]],
+                                          scene.mesh.positions[t[2]]};
+      traced.hit = intersect_exactly(abc, X, Y, start_d - ray.ray.tfar);
       if (!with_normal) return traced;
       const auto* n = &scene.mesh.corner_normals[3 * static_cast<std::size_t>(ray.hit.primID)];
       glm::vec3 normal = glm::normalize((1 - ray.hit.u - ray.hit.v) * n[0] + ray.hit.u * n[1] + ray.hit.v * n[2]);
@@ -176,10 +177,16 @@ struct Bisected {
   Traced at_lo, at_hi;
 };
 
-// Bisects a to b, 10 times (to 1/1024 of the way), on which side of a change a point lies.
+// The way from plan point a to plan point b, and what the tracer found at each.
+struct Way {
+  glm::dvec2 a, b;
+  Traced at_a, at_b;
+};
+
+// Bisects the way, 10 times (to 1/1024 of it), on which side of a change a point lies.
 template <typename OnASide>
-Bisected bisect(const Tracer& tracer, glm::dvec2 a, glm::dvec2 b, const Traced& at_a, const Traced& at_b,
-                OnASide on_a_side) {
+Bisected bisect(const Tracer& tracer, const Way& way, OnASide on_a_side) {
+  const auto& [a, b, at_a, at_b] = way;
   Bisected range{0, 1, at_a, at_b};
   for (int step = 0; step < 10; ++step) {
     const double mid = (range.lo + range.hi) / 2;
@@ -197,7 +204,8 @@ Bisected bisect(const Tracer& tracer, glm::dvec2 a, glm::dvec2 b, const Traced& 
 // model against the background; a jump in the key (one surface in front of another); or a crease,
 // the facing turning sharply (a box's top edge). A jump or crease must stay whole as the bisection
 // narrows it to 1/1024 of the way: a steep or curved but smooth surface spreads its change.
-float break_between(const Tracer& tracer, glm::dvec2 a, glm::dvec2 b, const Traced& at_a, const Traced& at_b) {
+float break_between(const Tracer& tracer, const Way& way) {
+  const auto& [a, b, at_a, at_b] = way;
   constexpr float none = std::numeric_limits<float>::quiet_NaN();
   const bool model_a = at_a.kind == HitKind::Model, model_b = at_b.kind == HitKind::Model;
   // A break on the pixel edge itself (an axis-parallel model edge on the lattice, as often as not)
@@ -206,12 +214,11 @@ float break_between(const Tracer& tracer, glm::dvec2 a, glm::dvec2 b, const Trac
     return range.lo == 0.5 || range.hi == 0.5 ? 0.5f : static_cast<float>((range.lo + range.hi) / 2);
   };
   if (model_a != model_b)
-    return middle(
-        bisect(tracer, a, b, at_a, at_b, [&](const Traced& t) { return (t.kind == HitKind::Model) == model_a; }));
+    return middle(bisect(tracer, way, [&](const Traced& t) { return (t.kind == HitKind::Model) == model_a; }));
   if (!model_a) return none;
   const double jump = key_of(at_b) - key_of(at_a);
   if (std::abs(jump) > kBreakJump_px * glm::length(b - a)) {
-    const Bisected range = bisect(tracer, a, b, at_a, at_b, [&](const Traced& t) {
+    const Bisected range = bisect(tracer, way, [&](const Traced& t) {
       return t.kind == HitKind::Model && std::abs(key_of(t) - key_of(at_a)) < std::abs(key_of(t) - key_of(at_b));
     });
     if (std::abs(key_of(range.at_hi) - key_of(range.at_lo)) >= std::abs(jump) / 2) return middle(range);
@@ -219,7 +226,7 @@ float break_between(const Tracer& tracer, glm::dvec2 a, glm::dvec2 b, const Trac
   const glm::dvec3 facing_a = tracer.facing(at_a.primitive), facing_b = tracer.facing(at_b.primitive);
   const double turn = glm::dot(facing_a, facing_b);
   if (!(turn < kCreaseCosine)) return none;
-  const Bisected range = bisect(tracer, a, b, at_a, at_b, [&](const Traced& t) {
+  const Bisected range = bisect(tracer, way, [&](const Traced& t) {
     if (t.kind != HitKind::Model) return false;
     const glm::dvec3 facing = tracer.facing(t.primitive);
     return glm::dot(facing, facing_a) > glm::dot(facing, facing_b);
@@ -247,7 +254,7 @@ void trace_breaks(const Tracer& tracer, RasterMaps& maps) {
              {std::tuple{col + 1, row, &maps.break_right}, std::tuple{col, row + 1, &maps.break_below}}) {
           if (!maps.kind.contains(c, r) || maps.kind(c, r) == HitKind::Outside) continue;
           const Traced at_b{maps.kind(c, r), {maps.h_mm(c, r), maps.d_mm(c, r)}, {}, maps.primitive(c, r)};
-          (*out)(col, row) = break_between(tracer, a, a + glm::dvec2(c - col, row - r) * px_mm, at_a, at_b);
+          (*out)(col, row) = break_between(tracer, {a, a + glm::dvec2(c - col, row - r) * px_mm, at_a, at_b});
         }
       }
   });

@@ -460,7 +460,7 @@ class CandidateFinder {
     s.near = {h, d};
     s.far = support_fold(target.orientation, target.depth_mm, h, d);
     const double length = (s.r1 - s.r0) * px_mm_;
-    s.picture_mm = std::max(0.0, picture_.added_error(s.orientation, s.depth_mm, s.c0, s.c1, s.r0, s.r1)) / (W_ * W_);
+    s.picture_mm = std::max(0.0, picture_.added_error(s.orientation, s.depth_mm, {s.c0, s.c1, s.r0, s.r1})) / (W_ * W_);
     s.cost = kCostPerLength * length + s.picture_mm;
     std::ranges::sort(crossed);  // each face once already
     for (const std::int32_t x : crossed)
@@ -542,7 +542,7 @@ void widen(const Grid<std::int32_t>& face, const Claims& claims, const SupportPi
       if (face(c, r) != s.face && face(c, r) != s.target) return false;
       covers_them = true;
     }
-    if (picture.added_error(s.orientation, s.depth_mm, c, c + 1, s.r0, s.r1) > 0) return false;
+    if (picture.added_error(s.orientation, s.depth_mm, {c, c + 1, s.r0, s.r1}) > 0) return false;
     if (!covers_them) return true;
     Candidate wider = s;
     wider.c0 = std::min(s.c0, c), wider.c1 = std::max(s.c1, c + 1);

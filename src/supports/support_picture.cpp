@@ -63,9 +63,9 @@ SupportPicture::SupportPicture(const RasterMaps& maps, const RasterPlan& slices)
   for (double& e : hole_error_) e /= grid_.px_per_mm * grid_.px_per_mm;
 }
 
-double SupportPicture::added_error(Orientation orientation, double depth_mm, int c0, int c1, int r0, int r1) const {
-  c0 = std::max(c0, c0_), c1 = std::min(c1, c0_ + error_.cols), r0 = std::max(r0, r0_),
-  r1 = std::min(r1, r0_ + error_.rows);
+double SupportPicture::added_error(Orientation orientation, double depth_mm, PixelBox box) const {
+  const int c0 = std::max(box.c0, c0_), c1 = std::min(box.c1, c0_ + error_.cols), r0 = std::max(box.r0, r0_),
+            r1 = std::min(box.r1, r0_ + error_.rows);
   double sum = 0;
   for (int row = r0; row < r1; ++row) {
     const double Y = grid_.Y(row);

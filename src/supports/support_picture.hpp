@@ -21,9 +21,12 @@ class SupportPicture {
   /// The picture of the raster plan as it is.
   SupportPicture(const RasterMaps& maps, const RasterPlan& slices);
 
-  /// The error a face of this plane would add over the pixels [c0, c1) x [r0, r1), in mm of h + d
-  /// (capped) times mm² of plan (negative where it would show the model better than what is there).
-  double added_error(Orientation orientation, double depth_mm, int c0, int c1, int r0, int r1) const;
+  struct PixelBox {
+    int c0, c1, r0, r1;  // pixels [c0, c1) x [r0, r1)
+  };
+  /// The error a face of this plane would add over the pixels of the box, in mm of h + d (capped)
+  /// times mm² of plan (negative where it would show the model better than what is there).
+  double added_error(Orientation orientation, double depth_mm, PixelBox box) const;
 
   /// The error cutting face f out of the sheet would add: through the hole the back plane shows
   /// above the main fold and the floor below it, and no model. In mm times mm², as added_error.

@@ -79,10 +79,7 @@ struct Analyzer {
 
   explicit Analyzer(const AnalysisOptions& o) : options(o), tolerance(o.tolerance_mm), W(o.min_strip_mm) {}
 
-  void problem(PlanProblemKind k, PlanPoint at, PlanPoint from, PlanPoint to, std::int32_t region, double value,
-               std::string message) {
-    result.problems.push_back({k, at, from, to, region, value, std::move(message)});
-  }
+  void add(PlanProblem problem) { result.problems.push_back(std::move(problem)); }
 
   void run(const std::vector<PlanPolyline>& lines) {
     Input in = collect(lines, options);
@@ -140,11 +137,11 @@ struct Analyzer {
       if (top[r] || bottom[r]) place[r] = {true, top[r] ? Orientation::V : Orientation::H, FT(0)};
       result.node[r] = top[r] ? 0 : bottom[r] ? 1 : next_node++;
       if (top[r] && bottom[r])
-        problem(PlanProblemKind::SheetNotSplit, region.inside, region.inside, region.inside,
-                static_cast<std::int32_t>(r), 0,
-                "the face at " + point_text(region.inside) +
-                    " touches both the sheet's top edge (back plane) and its bottom edge (floor): no main fold "
-                    "separates them");
+        add({PlanProblemKind::SheetNotSplit, region.inside, region.inside, region.inside, static_cast<std::int32_t>(r),
+             0,
+             "the face at " + point_text(region.inside) +
+                 " touches both the sheet's top edge (back plane) and its bottom edge (floor): no main fold "
+                 "separates them"});
     }
     result.faces = next_node - 2;
   }
@@ -175,9 +172,9 @@ struct Analyzer {
         for (const auto& [on, name] :
              {std::pair{cut, "a cut"}, {mountain, "a mountain fold"}, {valley, "a valley fold"}})
           if (on) drawn += (drawn.empty() ? "" : " and ") + std::string(name);
-        problem(PlanProblemKind::ConflictingLines, a, a, b, -1, 0,
-                "the stretch from " + point_text(a) + " to " + point_text(b) + " is drawn as " + drawn +
-                    ": it is taken as a cut");
+        add({PlanProblemKind::ConflictingLines, a, a, b, -1, 0,
+             "the stretch from " + point_text(a) + " to " + point_text(b) + " is drawn as " + drawn +
+                 ": it is taken as a cut"});
         mountain = valley = false, cut = true;
       }
       if (cut) {
@@ -192,9 +189,9 @@ struct Analyzer {
       }
       if (p.y() != q.y()) {
         const PlanPoint a = plan_point(p), b = plan_point(q);
-        problem(PlanProblemKind::FoldNotHorizontal, a, a, b, -1, 0,
-                std::string(mountain ? "mountain" : "valley") + " fold from " + point_text(a) + " to " + point_text(b) +
-                    " is not parallel to the main fold: folds run along X");
+        add({PlanProblemKind::FoldNotHorizontal, a, a, b, -1, 0,
+             std::string(mountain ? "mountain" : "valley") + " fold from " + point_text(a) + " to " + point_text(b) +
+                 " is not parallel to the main fold: folds run along X"});
         continue;
       }
       folds.push_back({lower, upper, p.y(), p.x(), q.x(), mountain ? LineKind::Mountain : LineKind::Valley});
@@ -235,11 +232,11 @@ struct Analyzer {
       const PlanPoint at = loose ? plan_point(*loose) : from;
       const std::int32_t region = edges[i]->face()->data();
       const bool fold = k == PlanProblemKind::FoldInsideFace;
-      problem(k, at, from, to, region, 0,
-              std::string(fold ? "a fold" : "a cut") + " between " + point_text(from) + " and " + point_text(to) +
-                  " has the same face on both sides" +
-                  (loose ? ", with a loose end at " + point_text(at) : std::string(" (a slit)")) +
-                  (fold ? ": nothing folds there" : ""));
+      add({k, at, from, to, region, 0,
+           std::string(fold ? "a fold" : "a cut") + " between " + point_text(from) + " and " + point_text(to) +
+               " has the same face on both sides" +
+               (loose ? ", with a loose end at " + point_text(at) : std::string(" (a slit)")) +
+               (fold ? ": nothing folds there" : "")});
     }
   }
 
@@ -307,8 +304,8 @@ struct Analyzer {
       const auto& [k, lower, upper, Y] = key;
       const PlanPoint from{nearest_double(group.X_lo), Y}, to{nearest_double(group.X_hi), Y};
       const PlanPoint at{nearest_double((group.X_lo + group.X_hi) / 2), Y};
-      problem(static_cast<PlanProblemKind>(k), at, from, to, lower, group.value,
-              "at Y = " + num(Y) + " from X = " + num(from.X) + " to " + num(to.X) + ": " + group.what);
+      add({static_cast<PlanProblemKind>(k), at, from, to, lower, group.value,
+           "at Y = " + num(Y) + " from X = " + num(from.X) + " to " + num(to.X) + ": " + group.what});
     }
   }
 
@@ -325,10 +322,10 @@ struct Analyzer {
       const FT beyond = v ? -(worst->y() + p.depth) : worst->y() - p.depth;
       if (!(beyond > tolerance)) continue;
       const PlanPoint at = plan_point(*worst);
-      problem(PlanProblemKind::OutsideCard, at, at, at, static_cast<std::int32_t>(r), nearest_double(beyond),
-              "face " + face_text(p) + " at " + point_text(result.regions[r].inside) + " reaches " +
-                  (v ? "below the floor" : "behind the back plane") + " by " + num(nearest_double(beyond)) + " mm at " +
-                  point_text(at));
+      add({PlanProblemKind::OutsideCard, at, at, at, static_cast<std::int32_t>(r), nearest_double(beyond),
+           "face " + face_text(p) + " at " + point_text(result.regions[r].inside) + " reaches " +
+               (v ? "below the floor" : "behind the back plane") + " by " + num(nearest_double(beyond)) + " mm at " +
+               point_text(at)});
     }
   }
 
@@ -372,9 +369,9 @@ struct Analyzer {
         default:
           continue;
       }
-      problem(k, region.inside, region.inside, region.inside, static_cast<std::int32_t>(r), 0,
-              std::string(to_string(region.status)) + " face " + (place[r].placed ? face_text(place[r]) + " " : "") +
-                  "at " + point_text(region.inside) + ": " + why);
+      add({k, region.inside, region.inside, region.inside, static_cast<std::int32_t>(r), 0,
+           std::string(to_string(region.status)) + " face " + (place[r].placed ? face_text(place[r]) + " " : "") +
+               "at " + point_text(region.inside) + ": " + why});
     }
   }
 
@@ -391,12 +388,12 @@ struct Analyzer {
         const double width = nearest_double(chord->hi - chord->lo);
         const std::string where = along_Y ? "at X = " + num(from.X) + " from Y = " + num(from.Y) + " to " + num(to.Y)
                                           : "at Y = " + num(from.Y) + " from X = " + num(from.X) + " to " + num(to.X);
-        problem(PlanProblemKind::NarrowStrip, plan_point(CGAL::midpoint(a, b)), from, to, static_cast<std::int32_t>(r),
-                width,
-                "face " + (place[r].placed ? face_text(place[r]) + " " : "") + "at " +
-                    point_text(result.regions[r].inside) + " is " + num(width) + " mm wide along " +
-                    (along_Y ? "Y " : "X ") + where + ", under W = " + num(options.min_strip_mm) + " mm" +
-                    (narrow > 1 ? " (" + std::to_string(narrow) + " such places)" : ""));
+        add({PlanProblemKind::NarrowStrip, plan_point(CGAL::midpoint(a, b)), from, to, static_cast<std::int32_t>(r),
+             width,
+             "face " + (place[r].placed ? face_text(place[r]) + " " : "") + "at " +
+                 point_text(result.regions[r].inside) + " is " + num(width) + " mm wide along " +
+                 (along_Y ? "Y " : "X ") + where + ", under W = " + num(options.min_strip_mm) + " mm" +
+                 (narrow > 1 ? " (" + std::to_string(narrow) + " such places)" : "")});
       }
   }
 

@@ -408,21 +408,21 @@ JunctionMoves junctions_on_breaks(const std::vector<Chain>& chains, const Lattic
   return result;
 }
 
-DrawnChain simplified(const Chain& chain, const LatticeScale& lattice, const PictureBreaks& breaks, double lattice_mm,
-                      double break_mm, const MovedEnds& moved_ends) {
-  if (lattice_mm <= 0) {
+DrawnChain simplified(const Chain& chain, const LatticeScale& lattice, const PictureBreaks& breaks,
+                      DrawTolerance tolerance, const MovedEnds& moved_ends) {
+  if (tolerance.lattice_mm <= 0) {
     DrawnChain contour;
     for (const LatticePoint corner : chain.corners) contour.points.push_back({corner});
     return contour;
   }
-  Candidates c{edge_points(chain, lattice, breaks)};
+  Candidates c{edge_points(chain, lattice, breaks), {}, {}};
   c.fixed.assign(c.points.size(), false);
   c.fixed.front() = c.fixed.back() = true;
   insert_corners(lattice, c.points, c.fixed);
   for (const ChainPoint& p : c.points)
     c.at.push_back(p.on_break ? std::array{p.X, p.Y} : std::array{lattice.X(p.lattice.u), lattice.Y(p.lattice.v)});
   move_ends(moved_ends, c);
-  return drawing(c, douglas_peucker(c, lattice_mm, break_mm));
+  return drawing(c, douglas_peucker(c, tolerance.lattice_mm, tolerance.break_mm));
 }
 
 }  // namespace origamic::chains

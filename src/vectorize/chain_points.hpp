@@ -51,16 +51,22 @@ struct DrawnChain {
   double off_edge_mm = 0;  // the farthest the drawing passes from the chain's points on the model's edge
 };
 
+/// How far a simplified chain may pass from its points.
+struct DrawTolerance {
+  double lattice_mm = 0;  // points on the lattice; <= 0: the chain's own corners
+  double break_mm = 0;    // points moved onto the picture's breaks
+};
+
 /// Douglas-Peucker over the chain's edge midpoints between its two fixed end corners: a midpoint
 /// whose pixel edge the picture breaks across, in a run of 8 or more such edges, is moved onto the
-/// break and kept within `break_mm` of the result, any other within `lattice_mm`. Where such a run
+/// break and kept within `tolerance.break_mm` of the result, any other within `lattice_mm`. Where such a run
 /// meets a straight lattice run, the corner between them moves to where their lines meet and is
 /// kept. Ends whose junctions moved are measured where they moved to, and a midpoint beyond such an
 /// end (its last pixel edge ran past where the model edge meets the other line) is dropped.
 /// `lattice_mm` <= 0 gives the chain's own corners.
 /// \pre the chain has at least 2 corners.
-DrawnChain simplified(const Chain& chain, const LatticeScale& lattice, const PictureBreaks& breaks, double lattice_mm,
-                      double break_mm, const MovedEnds& moved_ends = {});
+DrawnChain simplified(const Chain& chain, const LatticeScale& lattice, const PictureBreaks& breaks,
+                      DrawTolerance tolerance, const MovedEnds& moved_ends = {});
 
 /// A junction moved off the lattice onto the model's edge: where a chain on the picture's break
 /// meets another boundary's line (another such chain, or a straight run along the lattice, on which
@@ -76,7 +82,7 @@ struct MovedJunction {
 /// contour); an end that snaps onto the chain's fold line (at plan Y) moves only along that line.
 struct ChainEnds {
   bool pinned = false;
-  std::array<std::optional<double>, 2> fold_Y;  // front, back
+  std::array<std::optional<double>, 2> fold_Y = {};  // front, back
 };
 
 struct JunctionMoves {
