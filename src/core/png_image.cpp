@@ -42,24 +42,30 @@ void append(png_structp png, png_bytep data, png_size_t length) {
   }
 }
 
+// An RGB image as libpng writes it: its rows, its text chunks and its resolution.
+struct RgbRows {
+  int width = 0, height = 0;
+  png_bytepp rows = nullptr;  // height rows of 3 * width bytes, top to bottom
+  png_textp texts = nullptr;
+  int text_count = 0;
+  png_uint_32 px_per_metre = 0;
+};
+
 // libpng reports errors by longjmp: this frame holds no object with a destructor.
-bool write_rgb(png_structp png, png_infop info, std::string* out, int width, int height, png_bytepp rows,
-               png_textp texts, int text_count, png_uint_32 px_per_metre) {
+bool write_rgb(png_structp png, png_infop info, const RgbRows& image, std::string* out) {
   if (setjmp(png_jmpbuf(png))) return false;
   png_set_write_fn(png, out, append, nullptr);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8, PNG_COLOR_TYPE_RGB,
-               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  png_set_text(png, info, texts, text_count);
-  png_set_pHYs(png, info, px_per_metre, px_per_metre, PNG_RESOLUTION_METER);
-  png_set_rows(png, info, rows);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(image.width), static_cast<png_uint_32>(image.height), 8,
+               PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_set_text(png, info, image.texts, image.text_count);
+  png_set_pHYs(png, info, image.px_per_metre, image.px_per_metre, PNG_RESOLUTION_METER);
+  png_set_rows(png, info, image.rows);
   png_write_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
   return true;
 }
 
-}  // namespace
-
-std::string encode_png(const std::string& name, int width, int height, std::span<const std::uint8_t> rgb,
-                       const std::vector<PngText>& texts, double px_per_mm) {
+// libpng's text chunks of the texts, pointing into them.
+std::vector<png_text> text_chunks(const std::vector<PngText>& texts) {
   std::vector<png_text> chunks(texts.size());
   for (std::size_t i = 0; i < texts.size(); ++i) {
     // tEXt is Latin-1: text with other bytes (UTF-8 model names) goes in an iTXt chunk instead.
@@ -72,15 +78,27 @@ std::string encode_png(const std::string& name, int width, int height, std::span
     else
       chunks[i].itxt_length = texts[i].text.size();
   }
+  return chunks;
+}
+
+}  // namespace
+
+std::string encode_png(const std::string& name, int width, int height, std::span<const std::uint8_t> rgb,
+                       const PngMetadata& metadata) {
+  std::vector<png_text> chunks = text_chunks(metadata.texts);
   std::vector<png_bytep> rows(static_cast<std::size_t>(height));
   for (std::size_t y = 0; y < rows.size(); ++y)
     rows[y] = const_cast<png_bytep>(rgb.data() + y * 3 * static_cast<std::size_t>(width));
+  const RgbRows image{.width = width,
+                      .height = height,
+                      .rows = rows.data(),
+                      .texts = chunks.data(),
+                      .text_count = static_cast<int>(chunks.size()),
+                      .px_per_metre = static_cast<png_uint_32>(std::lround(metadata.px_per_mm * 1000))};
   std::string bytes;
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
-  const bool ok =
-      info && write_rgb(png, info, &bytes, width, height, rows.data(), chunks.data(), static_cast<int>(chunks.size()),
-                        static_cast<png_uint_32>(std::lround(px_per_mm * 1000)));
+  const bool ok = info && write_rgb(png, info, image, &bytes);
   png_destroy_write_struct(&png, &info);
   if (!ok) throw OutputError(name + ": cannot encode PNG");
   return bytes;

@@ -24,10 +24,15 @@ struct PngText {
   std::string text;
 };
 
-/// PNG bytes of an Rgb8 image with tEXt chunks and a pHYs chunk of px_per_mm (so viewers know its
-/// size in mm), through libpng's full API (the simplified one writes no text).
-/// \throws OutputError naming `name` on failure.
+/// What a PNG says besides its pixels: text chunks, and its resolution in a pHYs chunk.
+struct PngMetadata {
+  std::vector<PngText> texts;
+  double px_per_mm = 0;  // so viewers know the picture's size in mm
+};
+
+/// PNG bytes of an Rgb8 image with the metadata's tEXt and pHYs chunks, through libpng's full API
+/// (the simplified one writes no text). \throws OutputError naming `name` on failure.
 std::string encode_png(const std::string& name, int width, int height, std::span<const std::uint8_t> rgb,
-                       const std::vector<PngText>& texts, double px_per_mm);
+                       const PngMetadata& metadata);
 
 }  // namespace origamic

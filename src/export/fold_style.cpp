@@ -146,16 +146,10 @@ Layer layer_of(LineKind kind, FoldStyle style) {
 
 std::string mm_text(double value) { return number_text(value); }
 
-struct RunStats {
-  double length_mm = 0;  // of the runs left outside the insets
-  int runs = 0;
-};
-
-// The perforation cuts of one fold polyline (arc lengths s) against the cut polylines.
-std::vector<DrawnLine> perforate(const PlanPolyline& fold, const std::vector<double>& s, Layer layer,
-                                 std::span<const PlanPolyline> cuts, const FoldStyleOptions& options, RunStats& stats) {
-  // Block every stretch of the fold within the inset of a cut segment.
-  const double r = options.inset_mm;
+// The stretches of a fold polyline (arc lengths s) within inset_mm of a cut segment.
+std::vector<Interval> near_cuts(const PlanPolyline& fold, const std::vector<double>& s,
+                                std::span<const PlanPolyline> cuts, double inset_mm) {
+  const double r = inset_mm;
   std::vector<Interval> blocked;
   for (std::size_t i = 1; i < fold.points.size(); ++i) {
     const PlanPoint p = fold.points[i - 1], q = fold.points[i];
@@ -170,21 +164,32 @@ std::vector<DrawnLine> perforate(const PlanPolyline& fold, const std::vector<dou
           blocked.emplace_back(s[i - 1] + t->first * length, s[i - 1] + t->second * length);
       }
   }
-  const double cut = options.perf_cut_mm, gap = options.perf_gap_mm;
+  return blocked;
+}
+
+// The perforation cuts of one fold, and the runs outside the insets they were spaced along.
+struct Perforation {
   std::vector<DrawnLine> lines;
-  std::vector<Interval> runs = complement(std::move(blocked), s.back());
+  double runs_mm = 0;  // their total length
+  int runs = 0;
+};
+
+// The perforation cuts of one fold polyline (arc lengths s) against the cut polylines.
+Perforation perforate(const PlanPolyline& fold, const std::vector<double>& s, Layer layer,
+                      std::span<const PlanPolyline> cuts, const FoldStyleOptions& options) {
+  const double cut = options.perf_cut_mm, gap = options.perf_gap_mm;
+  std::vector<Interval> runs = complement(near_cuts(fold, s, cuts, options.inset_mm), s.back());
   // A fold shorter than two insets is blocked whole: it keeps one perforation, its middle third, or
   // it would vanish from the plan and its two faces read as one (0.5 mm folds on the capitol).
-  if (runs.empty() && s.back() > kNegligible_mm) {
-    stats.runs += 1;
-    return {{layer, piece(fold.points, s, s.back() / 3, 2 * s.back() / 3), {}}};
-  }
+  if (runs.empty() && s.back() > kNegligible_mm)
+    return {.lines = {{layer, piece(fold.points, s, s.back() / 3, 2 * s.back() / 3), {}}}, .runs_mm = 0, .runs = 1};
+  Perforation perforation;
   for (const auto& [from, to] : runs) {
     const double L = to - from;
-    stats.length_mm += L;
-    stats.runs += 1;
+    perforation.runs_mm += L;
+    perforation.runs += 1;
     if (L < cut) {
-      lines.push_back({layer, piece(fold.points, s, from, to), {}});
+      perforation.lines.push_back({layer, piece(fold.points, s, from, to), {}});
       continue;
     }
     const int n = std::max(1, static_cast<int>(std::floor((L + gap) / (cut + gap))));
@@ -192,10 +197,10 @@ std::vector<DrawnLine> perforate(const PlanPolyline& fold, const std::vector<dou
     const double start = n > 1 ? from : from + (L - cut) / 2;  // a single cut sits in the middle
     for (int k = 0; k < n; ++k) {
       const double a = start + k * step, b = k + 1 == n && n > 1 ? to : a + cut;  // the last ends on the run's end
-      lines.push_back({layer, piece(fold.points, s, a, b), {}});
+      perforation.lines.push_back({layer, piece(fold.points, s, a, b), {}});
     }
   }
-  return lines;
+  return perforation;
 }
 
 }  // namespace
@@ -210,8 +215,7 @@ std::vector<DrawnLine> draw_fold(const PlanPolyline& fold, std::span<const PlanP
   const std::vector<double> s = arc_lengths(fold.points);
   if (options.style == FoldStyle::Score) return {{layer, fold.points, {}}};
   if (options.style == FoldStyle::Dashed) return {{layer, fold.points, fitted(fold_dash_pattern(fold.kind), s.back())}};
-  RunStats ignored;
-  return perforate(fold, s, layer, cuts, options, ignored);
+  return perforate(fold, s, layer, cuts, options).lines;
 }
 
 DrawnPlan draw_plan(const Plan& plan, const FoldStyleOptions& options) {
@@ -234,14 +238,14 @@ DrawnPlan draw_plan(const Plan& plan, const FoldStyleOptions& options) {
       drawn.lines.push_back(draw_fold(line, cuts, options).front());
       continue;
     }
-    RunStats stats;
-    for (DrawnLine& l : perforate(line, s, layer, cuts, options, stats)) {
+    Perforation perforation = perforate(line, s, layer, cuts, options);
+    for (DrawnLine& l : perforation.lines) {
       drawn.perforated_mm += arc_lengths(l.points).back();
       drawn.perforations += 1;
       drawn.lines.push_back(std::move(l));
     }
-    drawn.inset_removed_mm += s.back() - stats.length_mm;
-    drawn.perforated_runs += stats.runs;
+    drawn.inset_removed_mm += s.back() - perforation.runs_mm;
+    drawn.perforated_runs += perforation.runs;
   }
   return drawn;
 }

@@ -144,129 +144,182 @@ std::string with_object_owners(const std::string& dxf) {
   return out;
 }
 
+// The plan as the DXF's sections write it.
+struct DxfDrawing {
+  const Sheet& sheet;
+  const ExportOptions& options;
+  const DrawnPlan& drawn;
+  std::vector<Layer> layers;  // those drawn, in cutting order
+
+  // Cutter beds and CAD pages start at the lower-left corner, so the file does too (Inkscape's DXF
+  // import put the floor half below the page). Adding half the sheet rounds a fold's Y by at most
+  // half an ulp of the sum (1.4e-14 mm on A4), far inside validate's 1e-6 mm fold tolerance.
+  double file_Y(double Y) const { return Y + sheet.half_height_mm(); }
+  bool r2000() const { return options.dxf_version == DxfVersion::R2000; }
+};
+
+// 999 comments: readers skip them (AutoCAD's OPEN ignores them), people and scripts read them.
+void write_comments(DL_WriterA& dw, const DxfDrawing& drawing) {
+  const ExportOptions& options = drawing.options;
+  dw.dxfString(999, "origamic plan of " + one_line(options.model.empty() ? "a model" : options.model));
+  dw.dxfString(999,
+               "units: mm ($INSUNITS 4, $MEASUREMENT 1), scale 1:1; origin at the sheet's lower-left corner: X "
+               "along the main fold from the left edge, Y up from the bottom edge; the main fold at Y = " +
+                   mm_text(drawing.file_Y(0)));
+  dw.dxfString(999, "sheet " + mm_text(drawing.sheet.width_mm) + " x " + mm_text(drawing.sheet.height_mm) + " mm");
+  if (!options.settings.empty()) dw.dxfString(999, "settings: " + one_line(options.settings));
+  dw.dxfString(999, fold_style_summary(options.folds));
+  std::string order = "layers, in cutting order:";
+  for (const Layer layer : drawing.layers) order += std::string(" ") + layer_style(layer, options.colours).name;
+  dw.dxfString(999, order);
+}
+
+void write_header(DL_Dxf& dxf, DL_WriterA& dw, const Sheet& sheet) {
+  dxf.writeHeader(dw);
+  dw.dxfString(9, "$INSUNITS");
+  dw.dxfInt(70, 4);  // millimetres
+  dw.dxfString(9, "$MEASUREMENT");
+  dw.dxfInt(70, 1);  // metric
+  dw.dxfString(9, "$EXTMIN");
+  dw.dxfReal(10, 0.0);
+  dw.dxfReal(20, 0.0);
+  dw.dxfString(9, "$EXTMAX");
+  dw.dxfReal(10, sheet.width_mm);
+  dw.dxfReal(20, sheet.height_mm);
+  dw.sectionEnd();
+}
+
+void write_layer_table(DL_Dxf& dxf, DL_WriterA& dw, const DxfDrawing& drawing) {
+  dw.tableLayers(static_cast<int>(drawing.layers.size()) + 1);
+  dxf.writeLayer(dw, DL_LayerData("0", 0), DL_Attributes("", 7, 0, "CONTINUOUS", 1.0));
+  for (const Layer layer : drawing.layers) {
+    const LayerStyle style = layer_style(layer, drawing.options.colours);
+    dxf.writeLayer(dw, DL_LayerData(style.name, 0), DL_Attributes("", style.aci, 0, "CONTINUOUS", 1.0));
+  }
+  dw.tableEnd();
+}
+
+void write_tables(DL_Dxf& dxf, DL_WriterA& dw, const DxfDrawing& drawing) {
+  dw.sectionTables();
+  dxf.writeVPort(dw);
+  dw.tableLinetypes(3);
+  dxf.writeLinetype(dw, DL_LinetypeData("BYBLOCK", "", 0, 0, 0.0));
+  dxf.writeLinetype(dw, DL_LinetypeData("BYLAYER", "", 0, 0, 0.0));
+  dxf.writeLinetype(dw, DL_LinetypeData("CONTINUOUS", "Solid line", 0, 0, 0.0));
+  dw.tableEnd();
+  write_layer_table(dxf, dw, drawing);
+  dw.tableStyle(1);
+  dxf.writeStyle(dw, DL_StyleData("standard", 0, 2.5, 1.0, 0.0, 0, 2.5, "txt", ""));
+  dw.tableEnd();
+  dxf.writeView(dw);
+  dxf.writeUcs(dw);
+  dw.tableAppid(1);
+  dxf.writeAppid(dw, "ACAD");
+  dw.tableEnd();
+  dxf.writeDimStyle(dw, 1, 1, 1, 1, 1);
+  if (drawing.r2000()) {
+    dxf.writeBlockRecord(dw);
+    dw.tableEnd();
+  }
+  dw.sectionEnd();
+}
+
+void write_blocks(DL_Dxf& dxf, DL_WriterA& dw, const DxfDrawing& drawing) {
+  dw.sectionBlocks();
+  dxf.writeBlock(dw, DL_BlockData("*Model_Space", 0, 0.0, 0.0, 0.0));
+  dxf.writeEndBlock(dw, "*Model_Space");
+  dxf.writeBlock(dw, DL_BlockData("*Paper_Space", 0, 0.0, 0.0, 0.0));
+  dxf.writeEndBlock(dw, "*Paper_Space");
+  if (drawing.r2000()) {  // dxflib's block records and layouts name it
+    dxf.writeBlock(dw, DL_BlockData("*Paper_Space0", 0, 0.0, 0.0, 0.0));
+    dxf.writeEndBlock(dw, "*Paper_Space0");
+  }
+  dw.sectionEnd();
+}
+
+void write_entities(DL_Dxf& dxf, DL_WriterA& dw, const DxfDrawing& drawing) {
+  dw.sectionEntities();
+  auto write_polyline = [&](const std::vector<PlanPoint>& points, const DL_Attributes& attributes) {
+    const bool closed = is_closed(points);
+    const std::size_t count = points.size() - (closed ? 1 : 0);
+    dxf.writePolyline(dw, DL_PolylineData(static_cast<int>(count), 0, 0, closed ? 1 : 0), attributes);
+    for (std::size_t i = 0; i < count; ++i)
+      dxf.writeVertex(dw, DL_VertexData(points[i].X, drawing.file_Y(points[i].Y), 0.0, 0.0));
+    dxf.writePolylineEnd(dw);
+  };
+  for (const Layer layer : drawing.layers) {
+    const LayerStyle style = layer_style(layer, drawing.options.colours);
+    const DL_Attributes attributes(style.name, style.aci, 0, "CONTINUOUS", 1.0);
+    for (const DrawnLine& line : drawing.drawn.lines) {
+      if (line.layer != layer) continue;
+      if (!drawn_in_pieces(line)) {
+        write_polyline(line.points, attributes);  // one entity per chain
+        continue;
+      }
+      for (const std::vector<PlanPoint>& p : dash_pieces(line)) {
+        if (p.size() == 2)
+          dxf.writeLine(dw, DL_LineData(p[0].X, drawing.file_Y(p[0].Y), 0.0, p[1].X, drawing.file_Y(p[1].Y), 0.0),
+                        attributes);
+        else
+          write_polyline(p, attributes);
+      }
+    }
+  }
+  dw.sectionEnd();
+}
+
+void write_dxf(const std::string& path, const DxfDrawing& drawing) {
+  const DL_Codes::version flavour =
+      drawing.options.dxf_version == DxfVersion::R12 ? DL_Codes::AC1009 : DL_Codes::AC1015;
+  DL_Dxf dxf;
+  std::unique_ptr<DL_WriterA> dw(dxf.out(path.c_str(), flavour));
+  if (!dw || dw->openFailed()) throw OutputError("DXF: cannot write the temporary file " + path);
+  write_comments(*dw, drawing);
+  write_header(dxf, *dw, drawing.sheet);
+  write_tables(dxf, *dw, drawing);
+  write_blocks(dxf, *dw, drawing);
+  write_entities(dxf, *dw, drawing);
+  if (drawing.r2000()) {
+    dxf.writeObjects(*dw);
+    dxf.writeObjectsEnd(*dw);
+  }
+  dw->dxfEOF();
+  dw->close();
+}
+
+// dxflib writes to a named file only: a private temporary one, removed when done.
+struct TemporaryFile {
+  std::string path = (std::filesystem::temp_directory_path() / "origamic-dxf-XXXXXX").string();
+
+  TemporaryFile() {
+    const int fd = ::mkstemp(path.data());
+    if (fd < 0)
+      throw OutputError("DXF: cannot create a temporary file in " + std::filesystem::temp_directory_path().string());
+    ::close(fd);
+  }
+  TemporaryFile(const TemporaryFile&) = delete;
+  TemporaryFile& operator=(const TemporaryFile&) = delete;
+  ~TemporaryFile() { std::remove(path.c_str()); }
+};
+
+std::string read_back(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) throw OutputError("DXF: cannot read back the temporary file " + path);
+  if (bytes.size() < 4 || bytes.compare(bytes.size() - 4, 4, "EOF\n") != 0)
+    throw OutputError("DXF: dxflib wrote an incomplete file (disk full?)");
+  return bytes;
+}
+
 }  // namespace
 
 std::string plan_dxf(const Plan& plan, const ExportOptions& options) {
   const DrawnPlan drawn = draw_plan(plan, options.folds);
-  const std::vector<Layer> layers = used_layers(drawn);
-  // Cutter beds and CAD pages start at the lower-left corner, so the file does too (Inkscape's DXF
-  // import put the floor half below the page). Adding half the sheet rounds a fold's Y by at most
-  // half an ulp of the sum (1.4e-14 mm on A4), far inside validate's 1e-6 mm fold tolerance.
-  const auto to_file_Y = [&](double Y) { return Y + plan.sheet.half_height_mm(); };
-  // dxflib writes to a named file only: a private temporary one, read back and removed.
-  std::string temp = (std::filesystem::temp_directory_path() / "origamic-dxf-XXXXXX").string();
-  const int fd = ::mkstemp(temp.data());
-  if (fd < 0) throw OutputError("DXF: cannot create a temporary file in " + std::filesystem::temp_directory_path().string());
-  ::close(fd);
-  struct Remove {
-    std::string path;
-    ~Remove() { std::remove(path.c_str()); }
-  } remove_temp{temp};
-  {
-    const DL_Codes::version flavour = options.dxf_version == DxfVersion::R12 ? DL_Codes::AC1009 : DL_Codes::AC1015;
-    DL_Dxf dxf;
-    std::unique_ptr<DL_WriterA> dw(dxf.out(temp.c_str(), flavour));
-    if (!dw || dw->openFailed()) throw OutputError("DXF: cannot write the temporary file " + temp);
-    // 999 comments: readers skip them (AutoCAD's OPEN ignores them), people and scripts read them.
-    dw->dxfString(999, "origamic plan of " + one_line(options.model.empty() ? "a model" : options.model));
-    dw->dxfString(999, "units: mm ($INSUNITS 4, $MEASUREMENT 1), scale 1:1; origin at the sheet's lower-left corner: X "
-                       "along the main fold from the left edge, Y up from the bottom edge; the main fold at Y = " +
-                           mm_text(to_file_Y(0)));
-    dw->dxfString(999, "sheet " + mm_text(plan.sheet.width_mm) + " x " + mm_text(plan.sheet.height_mm) + " mm");
-    if (!options.settings.empty()) dw->dxfString(999, "settings: " + one_line(options.settings));
-    dw->dxfString(999, fold_style_summary(options.folds));
-    std::string order = "layers, in cutting order:";
-    for (const Layer layer : layers) order += std::string(" ") + layer_style(layer, options.colours).name;
-    dw->dxfString(999, order);
-    dxf.writeHeader(*dw);
-    dw->dxfString(9, "$INSUNITS");
-    dw->dxfInt(70, 4);  // millimetres
-    dw->dxfString(9, "$MEASUREMENT");
-    dw->dxfInt(70, 1);  // metric
-    dw->dxfString(9, "$EXTMIN");
-    dw->dxfReal(10, 0.0);
-    dw->dxfReal(20, 0.0);
-    dw->dxfString(9, "$EXTMAX");
-    dw->dxfReal(10, plan.sheet.width_mm);
-    dw->dxfReal(20, plan.sheet.height_mm);
-    dw->sectionEnd();
-    dw->sectionTables();
-    dxf.writeVPort(*dw);
-    dw->tableLinetypes(3);
-    dxf.writeLinetype(*dw, DL_LinetypeData("BYBLOCK", "", 0, 0, 0.0));
-    dxf.writeLinetype(*dw, DL_LinetypeData("BYLAYER", "", 0, 0, 0.0));
-    dxf.writeLinetype(*dw, DL_LinetypeData("CONTINUOUS", "Solid line", 0, 0, 0.0));
-    dw->tableEnd();
-    dw->tableLayers(static_cast<int>(layers.size()) + 1);
-    dxf.writeLayer(*dw, DL_LayerData("0", 0), DL_Attributes("", 7, 0, "CONTINUOUS", 1.0));
-    for (const Layer layer : layers) {
-      const LayerStyle style = layer_style(layer, options.colours);
-      dxf.writeLayer(*dw, DL_LayerData(style.name, 0), DL_Attributes("", style.aci, 0, "CONTINUOUS", 1.0));
-    }
-    dw->tableEnd();
-    dw->tableStyle(1);
-    dxf.writeStyle(*dw, DL_StyleData("standard", 0, 2.5, 1.0, 0.0, 0, 2.5, "txt", ""));
-    dw->tableEnd();
-    dxf.writeView(*dw);
-    dxf.writeUcs(*dw);
-    dw->tableAppid(1);
-    dxf.writeAppid(*dw, "ACAD");
-    dw->tableEnd();
-    dxf.writeDimStyle(*dw, 1, 1, 1, 1, 1);
-    if (options.dxf_version == DxfVersion::R2000) {
-      dxf.writeBlockRecord(*dw);
-      dw->tableEnd();
-    }
-    dw->sectionEnd();
-    dw->sectionBlocks();
-    dxf.writeBlock(*dw, DL_BlockData("*Model_Space", 0, 0.0, 0.0, 0.0));
-    dxf.writeEndBlock(*dw, "*Model_Space");
-    dxf.writeBlock(*dw, DL_BlockData("*Paper_Space", 0, 0.0, 0.0, 0.0));
-    dxf.writeEndBlock(*dw, "*Paper_Space");
-    if (options.dxf_version == DxfVersion::R2000) {  // dxflib's block records and layouts name it
-      dxf.writeBlock(*dw, DL_BlockData("*Paper_Space0", 0, 0.0, 0.0, 0.0));
-      dxf.writeEndBlock(*dw, "*Paper_Space0");
-    }
-    dw->sectionEnd();
-    dw->sectionEntities();
-    auto write_polyline = [&](const std::vector<PlanPoint>& points, const DL_Attributes& attributes) {
-      const bool closed = is_closed(points);
-      const std::size_t count = points.size() - (closed ? 1 : 0);
-      dxf.writePolyline(*dw, DL_PolylineData(static_cast<int>(count), 0, 0, closed ? 1 : 0), attributes);
-      for (std::size_t i = 0; i < count; ++i)
-        dxf.writeVertex(*dw, DL_VertexData(points[i].X, to_file_Y(points[i].Y), 0.0, 0.0));
-      dxf.writePolylineEnd(*dw);
-    };
-    for (const Layer layer : layers) {
-      const LayerStyle style = layer_style(layer, options.colours);
-      const DL_Attributes attributes(style.name, style.aci, 0, "CONTINUOUS", 1.0);
-      for (const DrawnLine& line : drawn.lines) {
-        if (line.layer != layer) continue;
-        if (!drawn_in_pieces(line)) {
-          write_polyline(line.points, attributes);  // one entity per chain
-          continue;
-        }
-        for (const std::vector<PlanPoint>& p : dash_pieces(line)) {
-          if (p.size() == 2)
-            dxf.writeLine(*dw, DL_LineData(p[0].X, to_file_Y(p[0].Y), 0.0, p[1].X, to_file_Y(p[1].Y), 0.0), attributes);
-          else write_polyline(p, attributes);
-        }
-      }
-    }
-    dw->sectionEnd();
-    if (options.dxf_version == DxfVersion::R2000) {
-      dxf.writeObjects(*dw);
-      dxf.writeObjectsEnd(*dw);
-    }
-    dw->dxfEOF();
-    dw->close();
-  }
-  std::ifstream in(temp, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof()) throw OutputError("DXF: cannot read back the temporary file " + temp);
-  if (bytes.size() < 4 || bytes.compare(bytes.size() - 4, 4, "EOF\n") != 0)
-    throw OutputError("DXF: dxflib wrote an incomplete file (disk full?)");
-  return options.dxf_version == DxfVersion::R2000 ? with_object_owners(bytes) : bytes;
+  const DxfDrawing drawing{plan.sheet, options, drawn, used_layers(drawn)};
+  const TemporaryFile temp;
+  write_dxf(temp.path, drawing);
+  const std::string bytes = read_back(temp.path);
+  return drawing.r2000() ? with_object_owners(bytes) : bytes;
 }
 
 std::string plan_svg(const Plan& plan, const ExportOptions& options) {
@@ -361,11 +414,11 @@ std::string plan_png(const Plan& plan, const ExportOptions& options) {
     }
   cairo_surface_destroy(surface);
   return encode_png("plan PNG", w, h, rgb,
-                    {{"Title", one_line("origamic plan: " + options.model)},
-                     {"Description", plan_description(plan, options) + "; preview at " + mm_text(scale) +
-                                         " px/mm: cuts red, folds green (mountain dash-dot, valley dashed)"},
-                     {"Software", std::string("origamic ") + version}},
-                    scale);
+                    {.texts = {{"Title", one_line("origamic plan: " + options.model)},
+                               {"Description", plan_description(plan, options) + "; preview at " + mm_text(scale) +
+                                                   " px/mm: cuts red, folds green (mountain dash-dot, valley dashed)"},
+                               {"Software", std::string("origamic ") + version}},
+                     .px_per_mm = scale});
 }
 
 std::vector<OutputFile> plan_files(const Plan& plan, const ExportOptions& options, const std::string& base) {

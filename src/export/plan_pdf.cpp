@@ -145,10 +145,18 @@ double text_width(cairo_t* cr, const std::string& text, double size) {
   return extents.x_advance;
 }
 
-// Lays the legend out with its top-left corner at (x, y), drawing it if asked; returns its size.
-// Wide: the samples and the scale bar in one row; tall: one above the other. The caption follows.
-Box lay_out(cairo_t* cr, const Legend& legend, bool wide, double x, double y, bool draw) {
+// The legend's shape and place. Wide: the samples and the scale bar in one row; tall: one above the
+// other. The caption follows.
+struct LegendLayout {
+  bool wide = true;
+  double x = 0, y = 0;  // its top-left corner, page mm, y down
+};
+
+// Lays the legend out, drawing it if asked; returns its box.
+Box lay_out(cairo_t* cr, const Legend& legend, const LegendLayout& layout, bool draw) {
   const double row = 3.6, gap = 1.5, spacing = 4;
+  const bool wide = layout.wide;
+  const double x = layout.x, y = layout.y;
   double w = 0, cx = x, cy = y;
   auto item = [&](double label_x, const std::string& label) {
     if (draw) {
@@ -199,12 +207,20 @@ struct Placement {
   bool second_page = false;
 };
 
+// The page and the sheet on it.
+struct SheetOnPage {
+  PageSize page;
+  Sheet sheet;
+  Frame frame;  // where the sheet sits
+};
+
 // Where the legend goes, in order of preference: the paper's margin beside the sheet (it stays off
 // the card); a corner of the sheet whose box, widened by kPlanClear_mm, meets no plan line (the auto
 // fit leaves the sheet's corners empty for most models); else a second page of the same size.
-Placement place_legend(cairo_t* cr, const Legend& legend, const DrawnPlan& drawn, const Frame& frame,
-                       const PageSize& page, const Sheet& sheet) {
-  const Box sheet_box{frame.x0, frame.y0, sheet.width_mm, sheet.height_mm};
+Placement place_legend(cairo_t* cr, const Legend& legend, const DrawnPlan& drawn, const SheetOnPage& on_page) {
+  const PageSize& page = on_page.page;
+  const Frame& frame = on_page.frame;
+  const Box sheet_box{frame.x0, frame.y0, on_page.sheet.width_mm, on_page.sheet.height_mm};
   auto fits_page = [&](const Box& b) {
     return b.x >= kPaperEdge_mm && b.y >= kPaperEdge_mm && b.x + b.w <= page.width_mm - kPaperEdge_mm &&
            b.y + b.h <= page.height_mm - kPaperEdge_mm;
@@ -221,7 +237,7 @@ Placement place_legend(cairo_t* cr, const Legend& legend, const DrawnPlan& drawn
     return true;
   };
   for (const bool wide : {true, false}) {  // the paper's margins: below, above, left, right of the sheet
-    const Box size = lay_out(cr, legend, wide, 0, 0, false);
+    const Box size = lay_out(cr, legend, {wide, 0, 0}, false);
     const double left = std::max(kPaperEdge_mm, sheet_box.x);
     for (const Box b :
          {Box{left, sheet_box.y + sheet_box.h + kPlanClear_mm, size.w, size.h},
@@ -231,7 +247,7 @@ Placement place_legend(cairo_t* cr, const Legend& legend, const DrawnPlan& drawn
       if (fits_page(b)) return {b, wide, false};
   }
   for (const bool wide : {true, false}) {  // the sheet's corners: bottom left, bottom right, top left, top right
-    const Box size = lay_out(cr, legend, wide, 0, 0, false);
+    const Box size = lay_out(cr, legend, {wide, 0, 0}, false);
     const double left = std::max(sheet_box.x + kSheetEdge_mm, kPaperEdge_mm);
     const double right = std::min(sheet_box.x + sheet_box.w - kSheetEdge_mm, page.width_mm - kPaperEdge_mm) - size.w;
     const double top = std::max(sheet_box.y + kSheetEdge_mm, kPaperEdge_mm);
@@ -242,7 +258,7 @@ Placement place_legend(cairo_t* cr, const Legend& legend, const DrawnPlan& drawn
           b.y + b.h <= sheet_box.y + sheet_box.h && clear_of_plan(b))
         return {b, wide, false};
   }
-  const Box size = lay_out(cr, legend, false, 0, 0, false);
+  const Box size = lay_out(cr, legend, {false, 0, 0}, false);
   return {{kPaperEdge_mm, kPaperEdge_mm, size.w, size.h}, false, true};
 }
 
@@ -325,9 +341,9 @@ std::string plan_pdf(const Plan& plan, const ExportOptions& options) {
       if (line.layer == layer) stroke_pieces(cr, line, frame);
   }
   const Legend legend = legend_of(options, cr);
-  const Placement at = place_legend(cr, legend, drawn, frame, page, plan.sheet);
+  const Placement at = place_legend(cr, legend, drawn, {page, plan.sheet, frame});
   if (at.second_page) cairo_show_page(cr);
-  lay_out(cr, legend, at.wide, at.box.x, at.box.y, true);
+  lay_out(cr, legend, {at.wide, at.box.x, at.box.y}, true);
   cairo_show_page(cr);
   cairo_destroy(cr);
   cairo_surface_finish(surface);
