@@ -217,76 +217,102 @@ glm::dvec3 mitre(const CardFrame& frame, Orientation orientation, const FoldEdge
   return std::clamp(a, -2 * thickness_mm, 2 * thickness_mm) * into;
 }
 
-void fold_region(const PlanRegion& region, std::int32_t index, const CardFrame& frame, double thickness_mm,
-                 const std::vector<FoldEdge>& folds, Builder& builder, FoldedPopup& popup) {
-  Cdt cdt;
+// A region to fold, with what folding it reads.
+struct RegionToFold {
+  const PlanRegion& region;
+  std::int32_t index = 0;              // among the popup's regions
+  const std::vector<FoldEdge>& folds;  // the region's, from fold_edges
+  const CardFrame& frame;
+  double thickness_mm = 0;
+};
+
+void insert_rings(Cdt& cdt, const PlanRegion& region) {
   for (const auto& ring : region.rings) {
     std::vector<Kernel::Point_2> points;
     points.reserve(ring.size());
     for (const PlanPoint& p : ring) points.emplace_back(p.X, p.Y);
     cdt.insert_constraint(points.begin(), points.end(), true);
   }
-  if (cdt.dimension() < 2) return;  // rings with no area between them: nothing to fold
+}
+
+// Zero-thickness paper is one sheet: a vertex on a fold is shared with the face across it. (Slabs
+// meet on their mitre planes instead, each closed on its own.)
+const FoldEdge* shared_fold(const RegionToFold& r, PlanPoint p) {
+  if (r.thickness_mm > 0) return nullptr;
+  for (const FoldEdge& fold : r.folds)
+    if (fold.Y == p.Y && fold.X_low <= p.X && p.X <= fold.X_high) return &fold;
+  return nullptr;
+}
+
+// The printed side of a region, over the popup's vertices.
+struct PrintedSide {
+  std::vector<std::uint32_t> vertices;  // in order of first use
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<std::array<std::uint32_t, 2>> boundary;  // directed with the region on the left
+};
+
+// The triangles inside the region's rings, their vertices made as the triangles first use them.
+PrintedSide printed_side(Cdt& cdt, const RegionToFold& r, Builder& builder) {
   mark_nesting(cdt);
   for (Cdt::Vertex_handle v : cdt.finite_vertex_handles()) v->info() = kUnused;
-
-  std::vector<std::uint32_t> front;  // the region's printed-side vertices, in order of first use
-  // Zero-thickness paper is one sheet: a vertex on a fold is shared with the face across it. (Slabs
-  // meet on their mitre planes instead, each closed on its own.)
-  auto fold_at = [&](PlanPoint p) -> const FoldEdge* {
-    if (thickness_mm > 0) return nullptr;
-    for (const FoldEdge& fold : folds)
-      if (fold.Y == p.Y && fold.X_low <= p.X && p.X <= fold.X_high) return &fold;
-    return nullptr;
-  };
+  PrintedSide side;
   auto vertex = [&](Cdt::Vertex_handle v) {
     if (v->info() == kUnused) {
       const PlanPoint p{v->point().x(), v->point().y()};
-      const glm::dvec3 position = fold_point(frame, p, region.orientation, region.depth_mm);
-      const FoldEdge* fold = fold_at(p);
-      const bool is_v = region.orientation == Orientation::V;
-      v->info() = fold ? builder.fold_vertex(position, p, index, is_v ? region.depth_mm : fold->other_depth_mm,
-                                             is_v ? fold->other_depth_mm : region.depth_mm)
-                       : builder.add_vertex(position, p, index);
-      front.push_back(v->info());
+      const glm::dvec3 position = fold_point(r.frame, p, r.region.orientation, r.region.depth_mm);
+      const FoldEdge* fold = shared_fold(r, p);
+      const bool is_v = r.region.orientation == Orientation::V;
+      v->info() = fold ? builder.fold_vertex(position, p, r.index, is_v ? r.region.depth_mm : fold->other_depth_mm,
+                                             is_v ? fold->other_depth_mm : r.region.depth_mm)
+                       : builder.add_vertex(position, p, r.index);
+      side.vertices.push_back(v->info());
     }
     return v->info();
   };
-  std::vector<std::array<std::uint32_t, 3>> triangles;
-  std::vector<std::array<std::uint32_t, 2>> boundary;  // directed with the region on the left
   for (Cdt::Face_handle f : cdt.finite_face_handles()) {
     if (!f->info().inside()) continue;
-    triangles.push_back({vertex(f->vertex(0)), vertex(f->vertex(1)), vertex(f->vertex(2))});
+    side.triangles.push_back({vertex(f->vertex(0)), vertex(f->vertex(1)), vertex(f->vertex(2))});
     for (int i = 0; i < 3; ++i)
       if (!f->neighbor(i)->info().inside())
-        boundary.push_back({f->vertex(Cdt::ccw(i))->info(), f->vertex(Cdt::cw(i))->info()});
+        side.boundary.push_back({f->vertex(Cdt::ccw(i))->info(), f->vertex(Cdt::cw(i))->info()});
   }
-  if (triangles.empty()) {
+  return side;
+}
+
+// The slab: the reverse side thickness_mm behind the printed one, mitred at folds, and quads along
+// the boundary.
+void add_slab(const PrintedSide& printed, const RegionToFold& r, Builder& builder, const FoldedPopup& popup) {
+  const glm::dvec3 offset = -r.thickness_mm * printed_normal(r.frame, r.region.orientation);
+  std::vector<glm::dvec3> mitred(popup.positions.size());
+  for (const auto& [a, b] : printed.boundary) {
+    const PlanPoint p = popup.plan_points[a], q = popup.plan_points[b];
+    if (p.Y != q.Y) continue;
+    for (const FoldEdge& fold : r.folds)
+      if (fold.Y == p.Y && fold.X_low <= std::min(p.X, q.X) && std::max(p.X, q.X) <= fold.X_high)
+        mitred[a] = mitred[b] = mitre(r.frame, r.region.orientation, fold, r.thickness_mm);
+  }
+  std::vector<std::uint32_t> behind(popup.positions.size(), kUnused);
+  for (const std::uint32_t v : printed.vertices)
+    behind[v] = builder.add_vertex(popup.positions[v] + offset + mitred[v], popup.plan_points[v], r.index);
+  for (const auto& t : printed.triangles)
+    builder.add_triangle({behind[t[0]], behind[t[2]], behind[t[1]]}, r.index, PaperSurface::Reverse);
+  for (const auto& [a, b] : printed.boundary) {
+    builder.add_triangle({a, behind[a], behind[b]}, r.index, PaperSurface::Edge);
+    builder.add_triangle({a, behind[b], b}, r.index, PaperSurface::Edge);
+  }
+}
+
+void fold_region(const RegionToFold& r, Builder& builder, FoldedPopup& popup) {
+  Cdt cdt;
+  insert_rings(cdt, r.region);
+  if (cdt.dimension() < 2) return;  // rings with no area between them: nothing to fold
+  const PrintedSide printed = printed_side(cdt, r, builder);
+  if (printed.triangles.empty()) {
     ++popup.empty_regions;
     return;
   }
-  for (const auto& t : triangles) builder.add_triangle(t, index, PaperSurface::Printed);
-  if (thickness_mm <= 0) return;
-
-  // The slab: the reverse side thickness_mm behind the printed one, mitred at folds, and quads
-  // along the boundary.
-  const glm::dvec3 offset = -thickness_mm * printed_normal(frame, region.orientation);
-  std::vector<glm::dvec3> mitred(popup.positions.size());
-  for (const auto& [a, b] : boundary) {
-    const PlanPoint p = popup.plan_points[a], q = popup.plan_points[b];
-    if (p.Y != q.Y) continue;
-    for (const FoldEdge& fold : folds)
-      if (fold.Y == p.Y && fold.X_low <= std::min(p.X, q.X) && std::max(p.X, q.X) <= fold.X_high)
-        mitred[a] = mitred[b] = mitre(frame, region.orientation, fold, thickness_mm);
-  }
-  std::vector<std::uint32_t> behind(popup.positions.size(), kUnused);
-  for (const std::uint32_t v : front)
-    behind[v] = builder.add_vertex(popup.positions[v] + offset + mitred[v], popup.plan_points[v], index);
-  for (const auto& t : triangles) builder.add_triangle({behind[t[0]], behind[t[2]], behind[t[1]]}, index, PaperSurface::Reverse);
-  for (const auto& [a, b] : boundary) {
-    builder.add_triangle({a, behind[a], behind[b]}, index, PaperSurface::Edge);
-    builder.add_triangle({a, behind[b], b}, index, PaperSurface::Edge);
-  }
+  for (const auto& t : printed.triangles) builder.add_triangle(t, r.index, PaperSurface::Printed);
+  if (r.thickness_mm > 0) add_slab(printed, r, builder, popup);
 }
 
 // sin and cos of an angle in degrees, exact at the quarter turns the tests and pictures use most.
@@ -332,7 +358,7 @@ FoldedPopup fold_popup(const std::vector<PlanRegion>& regions, const Sheet& shee
       ++popup.unplaced_regions;
       continue;
     }
-    fold_region(region, static_cast<std::int32_t>(i), frame, options.thickness_mm, folds[i], builder, popup);
+    fold_region({region, static_cast<std::int32_t>(i), folds[i], frame, options.thickness_mm}, builder, popup);
   }
   return popup;
 }

@@ -41,87 +41,106 @@ int add_view(tinygltf::Model& model, std::size_t offset, std::size_t length, int
   return static_cast<int>(model.bufferViews.size() - 1);
 }
 
-}  // namespace
-
-std::string gltf_bytes(const FoldedPopup& popup, const std::string& name, bool binary) {
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = std::string("origamic ") + version;
+tinygltf::Asset asset_of(const FoldedPopup& popup) {
+  tinygltf::Asset asset;
+  asset.version = "2.0";
+  asset.generator = std::string("origamic ") + version;
   tinygltf::Value::Object extras;
   extras["opening_angle_deg"] = tinygltf::Value(popup.options.angle_deg);
   extras["paper_thickness_mm"] = tinygltf::Value(popup.options.thickness_mm);
   extras["sheet_width_mm"] = tinygltf::Value(popup.sheet.width_mm);
   extras["sheet_height_mm"] = tinygltf::Value(popup.sheet.height_mm);
-  model.asset.extras = tinygltf::Value(extras);
+  asset.extras = tinygltf::Value(extras);
+  return asset;
+}
 
+// The positions in metres, glTF's unit, as accessor 0 with the bounds glTF requires of it.
+void add_positions(tinygltf::Model& model, tinygltf::Buffer& buffer, const std::vector<glm::dvec3>& positions_mm) {
   std::vector<float> positions;
-  positions.reserve(3 * popup.positions.size());
+  positions.reserve(3 * positions_mm.size());
   std::vector<double> low(3, std::numeric_limits<double>::max()), high(3, std::numeric_limits<double>::lowest());
-  for (const glm::dvec3& p : popup.positions)
+  for (const glm::dvec3& p : positions_mm)
     for (int k = 0; k < 3; ++k) {
       const float metres = static_cast<float>(p[k] / 1000);
       positions.push_back(metres);
       low[k] = std::min(low[k], double{metres});
       high[k] = std::max(high[k], double{metres});
     }
+  const std::size_t offset = append(buffer.data, positions);
+  tinygltf::Accessor accessor;
+  accessor.bufferView = add_view(model, offset, positions.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+  accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  accessor.count = positions_mm.size();
+  accessor.type = TINYGLTF_TYPE_VEC3;
+  accessor.minValues = low;
+  accessor.maxValues = high;
+  model.accessors.push_back(accessor);
+}
 
-  // Triangles grouped by colour, in first-use order so the same popup gives the same bytes.
-  std::map<std::tuple<int, int, int>, std::size_t> colour_group;
+struct ColourGroups {
   std::vector<Rgb8> colours;
-  std::vector<std::vector<std::uint32_t>> indices;
+  std::vector<std::vector<std::uint32_t>> indices;  // per colour: its triangles' vertices
+};
+
+// Triangles grouped by colour, in first-use order so the same popup gives the same bytes.
+ColourGroups colour_groups(const FoldedPopup& popup) {
+  std::map<std::tuple<int, int, int>, std::size_t> colour_group;
+  ColourGroups groups;
   for (std::size_t i = 0; i < popup.triangles.size(); ++i) {
     const Rgb8 c = triangle_colour(popup, i, true);
-    const auto [it, added] = colour_group.try_emplace({c.r, c.g, c.b}, colours.size());
+    const auto [it, added] = colour_group.try_emplace({c.r, c.g, c.b}, groups.colours.size());
     if (added) {
-      colours.push_back(c);
-      indices.emplace_back();
+      groups.colours.push_back(c);
+      groups.indices.emplace_back();
     }
-    for (const std::uint32_t v : popup.triangles[i]) indices[it->second].push_back(v);
+    for (const std::uint32_t v : popup.triangles[i]) groups.indices[it->second].push_back(v);
   }
+  return groups;
+}
 
-  tinygltf::Buffer buffer;
+int add_indices(tinygltf::Model& model, tinygltf::Buffer& buffer, const std::vector<std::uint32_t>& indices) {
+  const std::size_t offset = append(buffer.data, indices);
+  tinygltf::Accessor accessor;
+  accessor.bufferView =
+      add_view(model, offset, indices.size() * sizeof(std::uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  accessor.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  accessor.count = indices.size();
+  accessor.type = TINYGLTF_TYPE_SCALAR;
+  model.accessors.push_back(accessor);
+  return static_cast<int>(model.accessors.size() - 1);
+}
+
+int add_material(tinygltf::Model& model, Rgb8 colour, bool double_sided) {
+  tinygltf::Material material;
+  material.name = "paper_" + std::to_string(colour.r) + "_" + std::to_string(colour.g) + "_" + std::to_string(colour.b);
+  material.pbrMetallicRoughness.baseColorFactor = {linear_from_srgb(colour.r), linear_from_srgb(colour.g),
+                                                   linear_from_srgb(colour.b), 1.0};
+  material.pbrMetallicRoughness.metallicFactor = 0;
+  material.pbrMetallicRoughness.roughnessFactor = 1;
+  material.doubleSided = double_sided;
+  model.materials.push_back(material);
+  return static_cast<int>(model.materials.size() - 1);
+}
+
+// One primitive per paper colour, over the positions of accessor 0.
+tinygltf::Mesh popup_mesh(tinygltf::Model& model, tinygltf::Buffer& buffer, const FoldedPopup& popup) {
+  const ColourGroups groups = colour_groups(popup);
+  // A zero-thickness sheet is seen from both sides; a slab is closed and needs no back faces.
+  const bool double_sided = popup.options.thickness_mm <= 0;
   tinygltf::Mesh mesh;
   mesh.name = "popup";
-  if (!popup.positions.empty()) {
-    const std::size_t offset = append(buffer.data, positions);
-    tinygltf::Accessor accessor;
-    accessor.bufferView = add_view(model, offset, positions.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
-    accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-    accessor.count = popup.positions.size();
-    accessor.type = TINYGLTF_TYPE_VEC3;
-    accessor.minValues = low;
-    accessor.maxValues = high;
-    model.accessors.push_back(accessor);
-  }
-  for (std::size_t g = 0; g < colours.size(); ++g) {
-    const std::size_t offset = append(buffer.data, indices[g]);
-    tinygltf::Accessor accessor;
-    accessor.bufferView =
-        add_view(model, offset, indices[g].size() * sizeof(std::uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-    accessor.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-    accessor.count = indices[g].size();
-    accessor.type = TINYGLTF_TYPE_SCALAR;
-    model.accessors.push_back(accessor);
-
-    tinygltf::Material material;
-    material.name = "paper_" + std::to_string(colours[g].r) + "_" + std::to_string(colours[g].g) + "_" +
-                    std::to_string(colours[g].b);
-    material.pbrMetallicRoughness.baseColorFactor = {linear_from_srgb(colours[g].r), linear_from_srgb(colours[g].g),
-                                                     linear_from_srgb(colours[g].b), 1.0};
-    material.pbrMetallicRoughness.metallicFactor = 0;
-    material.pbrMetallicRoughness.roughnessFactor = 1;
-    // A zero-thickness sheet is seen from both sides; a slab is closed and needs no back faces.
-    material.doubleSided = popup.options.thickness_mm <= 0;
-    model.materials.push_back(material);
-
+  for (std::size_t g = 0; g < groups.colours.size(); ++g) {
     tinygltf::Primitive primitive;
     primitive.attributes["POSITION"] = 0;
-    primitive.indices = static_cast<int>(model.accessors.size() - 1);
-    primitive.material = static_cast<int>(model.materials.size() - 1);
+    primitive.indices = add_indices(model, buffer, groups.indices[g]);
+    primitive.material = add_material(model, groups.colours[g], double_sided);
     primitive.mode = TINYGLTF_MODE_TRIANGLES;
     mesh.primitives.push_back(primitive);
   }
-  if (!buffer.data.empty()) model.buffers.push_back(buffer);  // glTF has no empty buffers either
+  return mesh;
+}
+
+void add_scene(tinygltf::Model& model, const tinygltf::Mesh& mesh) {
   tinygltf::Node node;
   node.name = "popup";
   if (!mesh.primitives.empty()) {  // glTF has no empty meshes: a popup with no faces is an empty node
@@ -133,6 +152,18 @@ std::string gltf_bytes(const FoldedPopup& popup, const std::string& name, bool b
   scene.nodes = {0};
   model.scenes.push_back(scene);
   model.defaultScene = 0;
+}
+
+}  // namespace
+
+std::string gltf_bytes(const FoldedPopup& popup, const std::string& name, bool binary) {
+  tinygltf::Model model;
+  model.asset = asset_of(popup);
+  tinygltf::Buffer buffer;
+  if (!popup.positions.empty()) add_positions(model, buffer, popup.positions);
+  const tinygltf::Mesh mesh = popup_mesh(model, buffer, popup);
+  if (!buffer.data.empty()) model.buffers.push_back(buffer);  // glTF has no empty buffers either
+  add_scene(model, mesh);
 
   std::ostringstream out;
   tinygltf::TinyGLTF writer;
