@@ -498,8 +498,8 @@ Plan designed_box_plan() {
   const RayScene scene(test::box({kX0, 0, 0}, {kX1, kH, kD}));
   const Sheet sheet;
   const RasterMaps maps = raster(scene, sheet, RasterOptions{});
-  const RasterPlan slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
-  return build_plan(maps, slices, sheet, PlanOptions{});
+  const RasterPlan raster_plan = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  return build_plan(maps, raster_plan, sheet, PlanOptions{});
 }
 
 // A popup with nothing placed still makes valid glTF: an empty node, and no empty buffer.

@@ -322,9 +322,9 @@ RasterPlan sliced(const RasterMaps& maps) { return slice(maps, segment(maps, Seg
 
 FloatingBoxPlan::FloatingBoxPlan()
     : maps(raster(RayScene(box({60.2, 41.3, 18.6}, {150.7, 77.9, 47.1})), sheet, RasterOptions{})),
-      slices(sliced(maps)),
-      build(maps, slices, sheet, PlanOptions{}) {
-  if (slices.faces.size() > 2 && slices.faces[2].orientation == Orientation::H) std::swap(front, top);
+      raster_plan(sliced(maps)),
+      exact_plan(maps, raster_plan, sheet, PlanOptions{}) {
+  if (raster_plan.faces.size() > 2 && raster_plan.faces[2].orientation == Orientation::H) std::swap(front, top);
 }
 
 }  // namespace origamic::test

@@ -34,8 +34,8 @@ struct FloatingBoxPlan {
   FloatingBoxPlan();
   Sheet sheet;
   RasterMaps maps;
-  RasterPlan slices;
-  ExactPlan build;
+  RasterPlan raster_plan;
+  ExactPlan exact_plan;
   std::int32_t front = 2, top = 3;  // the faces' ids
 };
 

@@ -26,8 +26,8 @@ Plan plan_of_oa_mesh(TriangleMesh oa_mesh, const Sheet& sheet) {
   const RayScene scene(std::move(oa_mesh));
   const RasterMaps maps = raster(scene, sheet, RasterOptions{});
   const Segmentation segmentation = segment(maps, SegmentOptions{});
-  const RasterPlan slices = slice(maps, segmentation, SliceOptions{});
-  return build_plan(maps, slices, sheet, PlanOptions{});
+  const RasterPlan raster_plan = slice(maps, segmentation, SliceOptions{});
+  return build_plan(maps, raster_plan, sheet, PlanOptions{});
 }
 
 std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }

@@ -29,8 +29,8 @@ Plan plan_of_oa_mesh(TriangleMesh oa_mesh) {
   const Sheet sheet;
   const RasterMaps maps = raster(scene, sheet, RasterOptions{});
   const Segmentation segmentation = segment(maps, SegmentOptions{});
-  const RasterPlan slices = slice(maps, segmentation, SliceOptions{});
-  return build_plan(maps, slices, sheet, PlanOptions{});
+  const RasterPlan raster_plan = slice(maps, segmentation, SliceOptions{});
+  return build_plan(maps, raster_plan, sheet, PlanOptions{});
 }
 
 struct FoldAt {
@@ -157,12 +157,12 @@ TEST(Plan, BoxFloatingInMidAirIsFloating) {
 // (sides off the pixel lattice): front V(47.1) from h 41.3 to 77.9, top H(77.9) from d 18.6 to 47.1.
 TEST(Plan, RaysShotOnTheExactPlanReachTheFacesWhereTheirFoldLinesMeetThem) {
   const test::FloatingBoxPlan box;
-  const RasterPlan& slices = box.slices;
-  const ExactPlan& build = box.build;
-  ASSERT_EQ(slices.faces.size(), 4u);
+  const RasterPlan& raster_plan = box.raster_plan;
+  const ExactPlan& exact_plan = box.exact_plan;
+  ASSERT_EQ(raster_plan.faces.size(), 4u);
   const std::int32_t front = box.front, top = box.top;
-  ASSERT_EQ(slices.faces[static_cast<std::size_t>(front)].orientation, Orientation::V);
-  ASSERT_EQ(slices.faces[static_cast<std::size_t>(top)].depth_mm, 77.9);
+  ASSERT_EQ(raster_plan.faces[static_cast<std::size_t>(front)].orientation, Orientation::V);
+  ASSERT_EQ(raster_plan.faces[static_cast<std::size_t>(top)].depth_mm, 77.9);
   const double x = 100.3;
   using Reached = std::vector<ExactPlan::Reached>;
   auto faces_of = [](const Reached& reached) {
@@ -171,33 +171,35 @@ TEST(Plan, RaysShotOnTheExactPlanReachTheFacesWhereTheirFoldLinesMeetThem) {
     return faces;
   };
   // From the top's back edge (Y = 77.9 - 18.6) up, as H(77.9): the back plane, at Y = 77.9 exactly.
-  const Reached from_top = build.faces_reached({.x = x, .from_Y = 59.0, .up = true, .h = 77.9, .d = 77.9 - 59.0});
+  const Reached from_top = exact_plan.faces_reached({.x = x, .from_Y = 59.0, .up = true, .h = 77.9, .d = 77.9 - 59.0});
   ASSERT_EQ(faces_of(from_top), std::vector<std::int32_t>{kBackFace});
   EXPECT_EQ(from_top[0].Y, 77.9);
   // From the front's top edge up, as H(77.9): the top is no higher, so the ray passes over it to
   // the back plane.
-  const Reached from_front_top = build.faces_reached({.x = x, .from_Y = 77.9 - 47.1, .up = true, .h = 77.9, .d = 47.1});
+  const Reached from_front_top =
+      exact_plan.faces_reached({.x = x, .from_Y = 77.9 - 47.1, .up = true, .h = 77.9, .d = 47.1});
   ASSERT_EQ(faces_of(from_front_top), std::vector<std::int32_t>{kBackFace});
   EXPECT_EQ(from_front_top[0].Y, 77.9);
   // From the front's bottom edge down, as V(47.1): the floor, at Y = 0 - 47.1 exactly.
-  const Reached from_front = build.faces_reached({.x = x, .from_Y = 41.3 - 47.1, .up = false, .h = 41.3, .d = 47.1});
+  const Reached from_front =
+      exact_plan.faces_reached({.x = x, .from_Y = 41.3 - 47.1, .up = false, .h = 41.3, .d = 47.1});
   ASSERT_EQ(faces_of(from_front), std::vector<std::int32_t>{kFloorFace});
   EXPECT_EQ(from_front[0].Y, -47.1);
   // A fold line beyond the sheet meets nothing; one behind the start is not reached either.
-  EXPECT_TRUE(build.faces_reached({.x = x, .from_Y = 59.0, .up = true, .h = 400, .d = 400 - 59.0}).empty());
-  EXPECT_TRUE(build.faces_reached({.x = x, .from_Y = 59.0, .up = true, .h = 58.0, .d = 0.5}).empty());
+  EXPECT_TRUE(exact_plan.faces_reached({.x = x, .from_Y = 59.0, .up = true, .h = 400, .d = 400 - 59.0}).empty());
+  EXPECT_TRUE(exact_plan.faces_reached({.x = x, .from_Y = 59.0, .up = true, .h = 58.0, .d = 0.5}).empty());
   // Beside the box, from the floor up as H(0) at depth 30: the back plane, on the main fold Y = 0,
   // where its piece of the line begins (the ends count).
-  const Reached beside = build.faces_reached({.x = 20.1, .from_Y = -30.0, .up = true, .h = 0, .d = 30});
+  const Reached beside = exact_plan.faces_reached({.x = 20.1, .from_Y = -30.0, .up = true, .h = 0, .d = 30});
   ASSERT_EQ(faces_of(beside), std::vector<std::int32_t>{kBackFace});
   EXPECT_EQ(beside[0].Y, 0.0);
   // From the main fold itself: the back plane is reached where the ray starts (the faces touch).
-  const Reached at_start = build.faces_reached({.x = 20.1, .from_Y = 0.0, .up = true, .h = 0, .d = 30});
+  const Reached at_start = exact_plan.faces_reached({.x = 20.1, .from_Y = 0.0, .up = true, .h = 0, .d = 30});
   ASSERT_EQ(faces_of(at_start), std::vector<std::int32_t>{kBackFace});
   EXPECT_EQ(at_start[0].Y, 0.0);
   // Nearest first: up through the box from below it, as H(62) at depth 25, the top (H(77.9) at
   // Y = 77.9 - 25) and then the back plane (at Y = 62); the front, not behind, is passed over.
-  const Reached through = build.faces_reached({.x = x, .from_Y = -30.0, .up = true, .h = 62, .d = 25});
+  const Reached through = exact_plan.faces_reached({.x = x, .from_Y = -30.0, .up = true, .h = 62, .d = 25});
   ASSERT_EQ(faces_of(through), (std::vector<std::int32_t>{top, kBackFace}));
   EXPECT_EQ(through[0].Y, 77.9 - 25);
   EXPECT_EQ(through[1].Y, 62.0);
@@ -208,10 +210,10 @@ TEST(Plan, RaysShotOnTheExactPlanReachTheFacesWhereTheirFoldLinesMeetThem) {
 // Y = h - 47.1, and its bottom is a cut on a pixel edge, under Y = 41.3 - 47.1.
 TEST(Plan, AFoldJustShortOfAFaceReachesItWithinTheGivenDistance) {
   const test::FloatingBoxPlan box;
-  const ExactPlan& build = box.build;
+  const ExactPlan& exact_plan = box.exact_plan;
   const double x = 100.3;
   double bottom = NAN;  // the front's bottom cut, where the ray crosses it
-  for (const PlanPolyline& line : build.full().lines)
+  for (const PlanPolyline& line : exact_plan.full().lines)
     for (std::size_t i = 1; i < line.points.size(); ++i) {
       const PlanPoint &a = line.points[i - 1], &b = line.points[i];
       if (line.kind == LineKind::Cut && a.Y == b.Y && a.Y < 0 && a.Y > -10 && std::min(a.X, b.X) < x &&
@@ -222,8 +224,8 @@ TEST(Plan, AFoldJustShortOfAFaceReachesItWithinTheGivenDistance) {
   const double px_mm = 1 / box.maps.grid.px_per_mm;
   ASSERT_LE(std::abs(bottom - (41.3 - 47.1)), px_mm);
   auto reaches_front = [&](double fold_Y, double short_mm) {
-    const auto reached =
-        build.faces_reached({.x = x, .from_Y = -30.0, .up = true, .h = fold_Y + 47.1, .d = 50, .short_mm = short_mm});
+    const auto reached = exact_plan.faces_reached(
+        {.x = x, .from_Y = -30.0, .up = true, .h = fold_Y + 47.1, .d = 50, .short_mm = short_mm});
     return !reached.empty() && reached[0].face == box.front && reached[0].Y == fold_Y + 47.1 - 47.1;
   };
   EXPECT_TRUE(reaches_front(bottom + 0.05, 0));
@@ -235,8 +237,8 @@ TEST(Plan, AFoldJustShortOfAFaceReachesItWithinTheGivenDistance) {
 // Supports painted since the exact plan was built cover what it holds where they cross the ray.
 TEST(Plan, RaysMeetTheFacesPaintedSinceThePlanWasBuiltAndNotWhatTheyCover) {
   const test::FloatingBoxPlan box;
-  const ExactPlan& build = box.build;
-  ASSERT_EQ(box.slices.faces.size(), 4u);
+  const ExactPlan& exact_plan = box.exact_plan;
+  ASSERT_EQ(box.raster_plan.faces.size(), 4u);
   const std::int32_t top = box.top;
   const double x = 100.3;
   // The top H(77.9) spans Y 77.9 - 47.1 to 77.9 - 18.6 on the line. A V(20) band from Y 30 to 50
@@ -245,7 +247,7 @@ TEST(Plan, RaysMeetTheFacesPaintedSinceThePlanWasBuiltAndNotWhatTheyCover) {
   // Up as H(62) at depth 25: onto V(20) at Y = 62 - 20 inside the band, then onto what is left of
   // the top above the band, then the back plane.
   const auto through =
-      build.faces_reached({.x = x, .from_Y = -30.0, .up = true, .h = 62, .d = 25, .painted = std::span(&v20, 1)});
+      exact_plan.faces_reached({.x = x, .from_Y = -30.0, .up = true, .h = 62, .d = 25, .painted = std::span(&v20, 1)});
   ASSERT_EQ(through.size(), 3u);
   EXPECT_EQ(through[0].face, -1);
   EXPECT_EQ(through[0].orientation, Orientation::V);
@@ -258,14 +260,14 @@ TEST(Plan, RaysMeetTheFacesPaintedSinceThePlanWasBuiltAndNotWhatTheyCover) {
   // The line above the band is the top's again, up to the back plane.
   const PaintedBand h10{Orientation::H, 10, {52, 0}, {55, 0}};
   const auto hidden =
-      build.faces_reached({.x = x, .from_Y = -30.0, .up = true, .h = 62, .d = 25, .painted = std::span(&h10, 1)});
+      exact_plan.faces_reached({.x = x, .from_Y = -30.0, .up = true, .h = 62, .d = 25, .painted = std::span(&h10, 1)});
   ASSERT_EQ(hidden.size(), 1u);
   EXPECT_EQ(hidden[0].face, kBackFace);
   EXPECT_EQ(hidden[0].Y, 62.0);
   // A band ending exactly on the fold line: the piece above it, the top's, holds the fold.
   const PaintedBand to_fold{Orientation::H, 10, {40, 0}, {77.9, 25}};
-  const auto above =
-      build.faces_reached({.x = x, .from_Y = -30.0, .up = true, .h = 62, .d = 25, .painted = std::span(&to_fold, 1)});
+  const auto above = exact_plan.faces_reached(
+      {.x = x, .from_Y = -30.0, .up = true, .h = 62, .d = 25, .painted = std::span(&to_fold, 1)});
   ASSERT_EQ(above.size(), 2u);
   EXPECT_EQ(above[0].face, top);
   // Bands later in the list lie over earlier ones: V(22) over part of V(18), whose top part shows
@@ -273,7 +275,8 @@ TEST(Plan, RaysMeetTheFacesPaintedSinceThePlanWasBuiltAndNotWhatTheyCover) {
   // top; the back plane.
   const std::array<PaintedBand, 2> stacked{PaintedBand{Orientation::V, 18, {30, 0}, {50, 0}},
                                            PaintedBand{Orientation::V, 22, {40, 0}, {43, 0}}};
-  const auto both = build.faces_reached({.x = x, .from_Y = -30.0, .up = true, .h = 62, .d = 25, .painted = stacked});
+  const auto both =
+      exact_plan.faces_reached({.x = x, .from_Y = -30.0, .up = true, .h = 62, .d = 25, .painted = stacked});
   ASSERT_EQ(both.size(), 4u);
   EXPECT_EQ(both[0].depth_mm, 22.0);
   EXPECT_EQ(both[0].Y, 40.0);
@@ -282,17 +285,17 @@ TEST(Plan, RaysMeetTheFacesPaintedSinceThePlanWasBuiltAndNotWhatTheyCover) {
   EXPECT_EQ(both[2].face, top);
   EXPECT_EQ(both[3].face, kBackFace);
   // Off the band's columns (the caller passes only the bands the ray crosses) nothing changes.
-  EXPECT_EQ(build.faces_reached({.x = x, .from_Y = -30.0, .up = true, .h = 62, .d = 25}).size(), 2u);
+  EXPECT_EQ(exact_plan.faces_reached({.x = x, .from_Y = -30.0, .up = true, .h = 62, .d = 25}).size(), 2u);
   // A support's height is the double nearest edge Y + d: its fold line lies a rounding off the edge.
   // 70.7 - 20.7 is 50 + 3.6e-15 exactly, 70.1 - 20.1 is 50 - 7.1e-15: both lie on a band ending at 50.
   const PaintedBand below_50{Orientation::V, 20.7, {50, 0}, {30, 0}};
-  const auto down = build.faces_reached(
+  const auto down = exact_plan.faces_reached(
       {.x = x, .from_Y = 55.0, .up = false, .h = 50 + 20.7, .d = 10, .painted = std::span(&below_50, 1)});
   ASSERT_FALSE(down.empty());
   EXPECT_EQ(down[0].face, -1);
   EXPECT_EQ(down[0].Y, 50.0);
   const PaintedBand above_50{Orientation::V, 20.1, {50, 0}, {55, 0}};
-  const auto up = build.faces_reached(
+  const auto up = exact_plan.faces_reached(
       {.x = x, .from_Y = 40.0, .up = true, .h = 50 + 20.1, .d = 25, .painted = std::span(&above_50, 1)});
   ASSERT_FALSE(up.empty());
   EXPECT_EQ(up[0].face, -1);
@@ -528,7 +531,7 @@ TEST(Plan, AVerdictBuildDecidesAsTheFullBuildAndDrawsNothing) {
   options.placement.up = UpAxis::Z;
   options.supports.enabled = false;  // sliced, unsupported: floating and invalid faces, in pieces
   const DesignResult r = design(test::models_dir() / "seedlike" / "sphere.stl", options);
-  const Plan verdict = ExactPlan(r.maps, r.slices, options.sheet, options.plan).verdict();
+  const Plan verdict = ExactPlan(r.maps, r.raster_plan, options.sheet, options.plan).verdict();
   const Plan& full = r.plan;
   ASSERT_GT(full.validity.floating + full.validity.invalid, 0) << "a plan with something to decide";
   EXPECT_EQ(verdict.validity.status, full.validity.status);

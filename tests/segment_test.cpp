@@ -25,8 +25,12 @@ TEST(Segment, ABoxIsItsFrontAndItsTopBesideTheBackPlaneAndTheFloor) {
   for (int r = 0; r < maps.grid.rows; ++r)
     for (int c = 0; c < maps.grid.cols; ++c) {
       const HitKind kind = maps.kind(c, r);
-      if (kind == HitKind::Back) EXPECT_EQ(s.segment(c, r), kBackSegment);
-      if (kind == HitKind::Floor) EXPECT_EQ(s.segment(c, r), kFloorSegment);
+      if (kind == HitKind::Back) {
+        EXPECT_EQ(s.segment(c, r), kBackSegment);
+      }
+      if (kind == HitKind::Floor) {
+        EXPECT_EQ(s.segment(c, r), kFloorSegment);
+      }
       if (kind != HitKind::Model) continue;
       ++model;
       (std::abs(maps.d_mm(c, r) - 50) < 1e-6 ? front : top).insert(s.segment(c, r));

@@ -19,7 +19,7 @@ namespace {
 struct Planned {
   RasterMaps maps;
   Segmentation segmentation;
-  RasterPlan slices;
+  RasterPlan raster_plan;
 };
 
 Planned plan_of_oa_mesh(TriangleMesh oa_mesh, double W = 3.0) {
@@ -27,17 +27,17 @@ Planned plan_of_oa_mesh(TriangleMesh oa_mesh, double W = 3.0) {
   const RayScene scene(std::move(oa_mesh));
   p.maps = raster(scene, Sheet{}, RasterOptions{});
   p.segmentation = segment(p.maps, SegmentOptions{});
-  p.slices = slice(p.maps, p.segmentation, SliceOptions{.min_strip_mm = W});
+  p.raster_plan = slice(p.maps, p.segmentation, SliceOptions{.min_strip_mm = W});
   return p;
 }
 
 TEST(Slice, BoxBecomesOneVFaceAndOneHFaceAtItsDepthAndHeight) {
   const double depth = 37.3, height = 61.7;
   const Planned p = plan_of_oa_mesh(test::box({40.2, 0, 0}, {151.9, height, depth}));
-  ASSERT_EQ(p.slices.faces.size(), 4u);  // back, floor, front, top
+  ASSERT_EQ(p.raster_plan.faces.size(), 4u);  // back, floor, front, top
   int v = 0, h = 0;
-  for (std::size_t i = 2; i < p.slices.faces.size(); ++i) {
-    const RasterFace& f = p.slices.faces[i];
+  for (std::size_t i = 2; i < p.raster_plan.faces.size(); ++i) {
+    const RasterFace& f = p.raster_plan.faces[i];
     if (f.orientation == Orientation::V) {
       ++v;
       EXPECT_NEAR(f.depth_mm, depth, 1e-6);
@@ -48,7 +48,7 @@ TEST(Slice, BoxBecomesOneVFaceAndOneHFaceAtItsDepthAndHeight) {
   }
   EXPECT_EQ(v, 1);
   EXPECT_EQ(h, 1);
-  const Likeness l = likeness(p.maps, card_view(p.maps.grid, p.slices.face, p.slices.faces), 3.0);
+  const Likeness l = likeness(p.maps, card_view(p.maps.grid, p.raster_plan.face, p.raster_plan.faces), 3.0);
   EXPECT_NEAR(l.p95_mm, 0.0, 1e-6);
   EXPECT_NEAR(l.mean_mm, 0.0, 1e-6);
   EXPECT_DOUBLE_EQ(l.coverage, 1.0);
@@ -75,20 +75,20 @@ TEST(Slice, HalfCylinderBecomesVerticalSlicesNoNarrowerThanW) {
   options.supports.enabled = false;  // the slices as sliced
   const DesignResult r = design(test::models_dir() / "seedlike/half_cylinder.stl", options);
   const double W = options.slice.min_strip_mm, W_px = W * r.maps.grid.px_per_mm;
-  const auto extents = face_extents(r.slices.face);
+  const auto extents = face_extents(r.raster_plan.face);
   // Curved-side faces: V, each of one constant depth, at least W wide; d falls from the centre out.
   std::vector<std::pair<double, double>> centre_and_depth;
   const double mid_X = (r.placement.min_oa.x + r.placement.max_oa.x) / 2;
-  for (std::size_t i = 2; i < r.slices.faces.size(); ++i) {
-    const RasterFace& f = r.slices.faces[i];
+  for (std::size_t i = 2; i < r.raster_plan.faces.size(); ++i) {
+    const RasterFace& f = r.raster_plan.faces[i];
     if (f.orientation == Orientation::H) continue;  // the flat top
     const auto [w_px, h_px] = extents.at(static_cast<std::int32_t>(i));
     EXPECT_GE(w_px, W_px - 1) << "face " << i;
     double sum_X = 0;
     std::int64_t n = 0;
-    for (int row = 0; row < r.slices.face.rows; ++row)
-      for (int col = 0; col < r.slices.face.cols; ++col)
-        if (r.slices.face(col, row) == static_cast<std::int32_t>(i)) sum_X += r.maps.grid.X(col), ++n;
+    for (int row = 0; row < r.raster_plan.face.rows; ++row)
+      for (int col = 0; col < r.raster_plan.face.cols; ++col)
+        if (r.raster_plan.face(col, row) == static_cast<std::int32_t>(i)) sum_X += r.maps.grid.X(col), ++n;
     centre_and_depth.emplace_back(std::abs(sum_X / static_cast<double>(n) - mid_X), f.depth_mm);
   }
   ASSERT_GE(centre_and_depth.size(), 8u);
@@ -112,27 +112,27 @@ TEST(Slice, FaceCountFallsAsWGrowsAndNoFaceIsNarrowerThanW) {
       options.slice.min_strip_mm = W;
       options.supports.enabled = false;
       const DesignResult r = design(test::models_dir() / model, options);
-      EXPECT_LT(r.slices.faces.size(), previous) << "W = " << W;
-      previous = r.slices.faces.size();
+      EXPECT_LT(r.raster_plan.faces.size(), previous) << "W = " << W;
+      previous = r.raster_plan.faces.size();
       // V where the model is steeper than 55 degrees, H where it is flatter than 35: nearly every
       // such pixel (slivers under W join a neighbour whatever its orientation).
       std::int64_t decisive = 0, agreeing = 0;
-      for (int row = 0; row < r.slices.face.rows; ++row)
-        for (int col = 0; col < r.slices.face.cols; ++col) {
-          const std::int32_t f = r.slices.face(col, row);
+      for (int row = 0; row < r.raster_plan.face.rows; ++row)
+        for (int col = 0; col < r.raster_plan.face.cols; ++col) {
+          const std::int32_t f = r.raster_plan.face(col, row);
           if (f < 2 || r.maps.kind(col, row) != HitKind::Model) continue;
           const glm::vec3 n = r.maps.normal(col, row);
           const float steep = std::abs(n.z), flat = std::abs(n.y), tan_35 = 0.7002f;
           if (flat >= steep * tan_35 && steep >= flat * tan_35) continue;
           ++decisive;
-          agreeing += r.slices.faces[static_cast<std::size_t>(f)].orientation ==
+          agreeing += r.raster_plan.faces[static_cast<std::size_t>(f)].orientation ==
                       (flat < steep * tan_35 ? Orientation::V : Orientation::H);
         }
       EXPECT_GE(agreeing, decisive * 98 / 100) << "W = " << W;
       std::map<std::int32_t, std::vector<std::pair<int, int>>> pixels_of;
-      for (int row = 0; row < r.slices.face.rows; ++row)
-        for (int col = 0; col < r.slices.face.cols; ++col)
-          if (r.slices.face(col, row) >= 2) pixels_of[r.slices.face(col, row)].emplace_back(col, row);
+      for (int row = 0; row < r.raster_plan.face.rows; ++row)
+        for (int col = 0; col < r.raster_plan.face.cols; ++col)
+          if (r.raster_plan.face(col, row) >= 2) pixels_of[r.raster_plan.face(col, row)].emplace_back(col, row);
       for (const auto& [id, pixels] : pixels_of)
         EXPECT_GE(oriented_box_min_side_px(pixels), W * r.maps.grid.px_per_mm - 1) << "face " << id << " W " << W;
     }
@@ -150,16 +150,17 @@ TEST(Slice, ARoofRisingToTheBackPlaneEndsOnItsFoldThereNotBehindIt) {
   const PixelGrid& grid = p.maps.grid;
   int terraces = 0;
   double top = 0;
-  for (std::size_t f = 2; f < p.slices.faces.size(); ++f)
-    if (p.slices.faces[f].orientation == Orientation::H) ++terraces, top = std::max(top, p.slices.faces[f].depth_mm);
+  for (std::size_t f = 2; f < p.raster_plan.faces.size(); ++f)
+    if (p.raster_plan.faces[f].orientation == Orientation::H)
+      ++terraces, top = std::max(top, p.raster_plan.faces[f].depth_mm);
   EXPECT_GE(terraces, 10) << "one terrace per W of the 35 mm rise";
   EXPECT_LT(top, 35.0);
   int top_rows_below_back_plane = 0;
   for (int row = 0; row + 1 < grid.rows; ++row)
     for (int col = 0; col < grid.cols; ++col) {
-      const std::int32_t f = p.slices.face(col, row);
+      const std::int32_t f = p.raster_plan.face(col, row);
       ASSERT_GE(f, 0);
-      const RasterFace& face = p.slices.faces[static_cast<std::size_t>(f)];
+      const RasterFace& face = p.raster_plan.faces[static_cast<std::size_t>(f)];
       if (f >= 2 && face.orientation == Orientation::H) {
         EXPECT_LE(grid.Y(row), face.depth_mm) << col << ", " << row;
       }
@@ -167,8 +168,8 @@ TEST(Slice, ARoofRisingToTheBackPlaneEndsOnItsFoldThereNotBehindIt) {
         EXPECT_GE(grid.Y(row), -face.depth_mm) << col << ", " << row;
       }
       // The top terrace meets the back plane on its fold line Y = h, to the pixel.
-      if (f == kBackFace && grid.X(col) > 45 && grid.X(col) < 145 && p.slices.face(col, row + 1) >= 2 &&
-          p.slices.faces[static_cast<std::size_t>(p.slices.face(col, row + 1))].depth_mm == top) {
+      if (f == kBackFace && grid.X(col) > 45 && grid.X(col) < 145 && p.raster_plan.face(col, row + 1) >= 2 &&
+          p.raster_plan.faces[static_cast<std::size_t>(p.raster_plan.face(col, row + 1))].depth_mm == top) {
         EXPECT_NEAR(grid.Y(row) - 0.5 / grid.px_per_mm, top, 1 / grid.px_per_mm);
         ++top_rows_below_back_plane;
       }
@@ -183,23 +184,24 @@ TEST(Slice, ThinPoleIsRemovedAndItsHoleFilled) {
   const Planned p = plan_of_oa_mesh(test::merged(house, pole));
   for (int row = 0; row < p.maps.grid.rows; ++row)
     for (int col = 0; col < p.maps.grid.cols; ++col) {
-      const std::int32_t f = p.slices.face(col, row);
+      const std::int32_t f = p.raster_plan.face(col, row);
       ASSERT_GE(f, 0);
       // No face stands at the pole's depth (50 .. 51 mm) or on its top (80 mm).
-      const RasterFace& face = p.slices.faces[static_cast<std::size_t>(f)];
+      const RasterFace& face = p.raster_plan.faces[static_cast<std::size_t>(f)];
       EXPECT_LT(face.depth_mm, face.orientation == Orientation::V ? 49.0 : 79.0);
     }
-  EXPECT_GE(p.slices.removed_thin, 1);
-  EXPECT_EQ(p.slices.faces.size(), 4u);  // back, floor, and the house's front and top
+  EXPECT_GE(p.raster_plan.removed_thin, 1);
+  EXPECT_EQ(p.raster_plan.faces.size(), 4u);  // back, floor, and the house's front and top
 }
 
 TEST(Slice, SameInputGivesByteIdenticalFaceMaps) {
   const TriangleMesh shape = test::sphere({105, 40, 40}, 38, 96, 48);
   const Planned a = plan_of_oa_mesh(shape), b = plan_of_oa_mesh(shape);
-  EXPECT_EQ(a.slices.face.values, b.slices.face.values);
+  EXPECT_EQ(a.raster_plan.face.values, b.raster_plan.face.values);
   EXPECT_EQ(a.segmentation.segment.values, b.segmentation.segment.values);
-  ASSERT_EQ(a.slices.faces.size(), b.slices.faces.size());
-  for (std::size_t i = 0; i < a.slices.faces.size(); ++i) EXPECT_EQ(a.slices.faces[i].depth_mm, b.slices.faces[i].depth_mm);
+  ASSERT_EQ(a.raster_plan.faces.size(), b.raster_plan.faces.size());
+  for (std::size_t i = 0; i < a.raster_plan.faces.size(); ++i)
+    EXPECT_EQ(a.raster_plan.faces[i].depth_mm, b.raster_plan.faces[i].depth_mm);
 }
 
 TEST(Slice, OrientedBoxOfADiagonalLineIsOnePixelThin) {

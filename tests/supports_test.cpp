@@ -20,12 +20,12 @@ namespace origamic {
 namespace {
 
 // Column extent [min, max] in pixels of every support face of a raster plan.
-std::map<std::int32_t, std::pair<int, int>> support_columns(const RasterPlan& slices) {
+std::map<std::int32_t, std::pair<int, int>> support_columns(const RasterPlan& raster_plan) {
   std::map<std::int32_t, std::pair<int, int>> extent;
-  for (int row = 0; row < slices.face.rows; ++row)
-    for (int col = 0; col < slices.face.cols; ++col) {
-      const std::int32_t f = slices.face(col, row);
-      if (f < 0 || !slices.faces[static_cast<std::size_t>(f)].support) continue;
+  for (int row = 0; row < raster_plan.face.rows; ++row)
+    for (int col = 0; col < raster_plan.face.cols; ++col) {
+      const std::int32_t f = raster_plan.face(col, row);
+      if (f < 0 || !raster_plan.faces[static_cast<std::size_t>(f)].support) continue;
       auto [it, fresh] = extent.try_emplace(f, col, col);
       it->second = {std::min(it->second.first, col), std::max(it->second.second, col)};
     }
@@ -62,19 +62,19 @@ std::vector<Candidate> nearest(const std::vector<Candidate>& leaving) {
 }
 
 // choose_supports on the raster plan's own folds.
-SupportChoice choose(const RasterMaps& maps, const RasterPlan& slices, const ExactPlan& build,
+SupportChoice choose(const RasterMaps& maps, const RasterPlan& raster_plan, const ExactPlan& exact_plan,
                      const FaceVerdicts& standing, const std::vector<std::int32_t>& invalid, SupportReach reach = {}) {
-  const std::vector<FoldEdge> folds = raster_folds(maps.grid, slices, aligned_fold_tolerance_mm(maps.grid));
-  return choose_supports({maps, slices, build, {}, folds}, standing, invalid, SupportOptions{}, reach);
+  const std::vector<FoldEdge> folds = raster_folds(maps.grid, raster_plan, aligned_fold_tolerance_mm(maps.grid));
+  return choose_supports({maps, raster_plan, exact_plan, {}, folds}, standing, invalid, SupportOptions{}, reach);
 }
 
 TEST(Supports, FloatingBoxIsSupportedAtTopAndBottom) {
   const RayScene scene(test::box({60, 40, 20}, {150, 80, 50}));
   const Sheet sheet;
   const RasterMaps maps = raster(scene, sheet, RasterOptions{});
-  const RasterPlan slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
-  ASSERT_FALSE(plan_stands(build_plan(maps, slices, sheet, PlanOptions{}).validity, false));
-  const SupportedPlan s = add_supports(maps, slices, sheet, PlanOptions{}, SupportOptions{});
+  const RasterPlan raster_plan = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  ASSERT_FALSE(plan_stands(build_plan(maps, raster_plan, sheet, PlanOptions{}).validity, false));
+  const SupportedPlan s = add_supports(maps, raster_plan, sheet, PlanOptions{}, SupportOptions{});
   EXPECT_TRUE(s.report.converged) << stop_reason(s.report);
   EXPECT_EQ(s.report.supports, 2);
   expect_exact_and_standing(s.plan);
@@ -100,18 +100,18 @@ TEST(Supports, FloatingBoxIsSupportedAtTopAndBottom) {
 TEST(Supports, ARoundReachesTheFacesOnTheExactPlan) {
   const test::FloatingBoxPlan box;
   const RasterMaps& maps = box.maps;
-  const RasterPlan& slices = box.slices;
-  const ExactPlan& build = box.build;
-  const Plan& verdict = build.verdict();
+  const RasterPlan& raster_plan = box.raster_plan;
+  const ExactPlan& exact_plan = box.exact_plan;
+  const Plan& verdict = exact_plan.verdict();
   const FaceVerdicts standing = verdicts_of(verdict);
   const std::vector<std::int32_t> invalid{2, 3};
   ASSERT_EQ(verdict.validity.floating, 2);
   // One ear: the floor, the front, its fold with the top, the top, the back plane.
-  const std::vector<Candidate> exact = choose(maps, slices, build, standing, invalid).supports;
+  const std::vector<Candidate> exact = choose(maps, raster_plan, exact_plan, standing, invalid).supports;
   ASSERT_EQ(exact.size(), 2u);
   const double px_mm = 1 / maps.grid.px_per_mm;
   for (const Candidate& s : exact) {
-    const RasterFace& face = slices.faces[static_cast<std::size_t>(s.face)];
+    const RasterFace& face = raster_plan.faces[static_cast<std::size_t>(s.face)];
     SCOPED_TRACE(s.face);
     // The top H(77.9) reaches back to the back plane, along its own plane: the fold at Y = 77.9.
     // The front V(47.1) reaches down to the floor, along its own plane: the fold at Y = -47.1.
@@ -123,7 +123,7 @@ TEST(Supports, ARoundReachesTheFacesOnTheExactPlan) {
     // The target's row just beyond the support holds the fold line, a row's edge at most away.
     EXPECT_LE(std::abs(maps.grid.Y(s.target_row) - fold_Y), px_mm / 2);
     EXPECT_EQ(s.target_row, top ? s.r0 - 1 : s.r1);
-    EXPECT_GE(s.c1 - s.c0, slices.block_px);
+    EXPECT_GE(s.c1 - s.c0, raster_plan.block_px);
   }
 }
 
@@ -133,12 +133,12 @@ TEST(Supports, ARoundReachesTheFacesOnTheExactPlan) {
 TEST(Supports, RaysMeetFacesTheRasterPlanGainedSinceTheExactPlan) {
   const test::FloatingBoxPlan box;
   const RasterMaps& maps = box.maps;
-  const RasterPlan& slices = box.slices;
-  const ExactPlan& build = box.build;
+  const RasterPlan& raster_plan = box.raster_plan;
+  const ExactPlan& exact_plan = box.exact_plan;
   const std::int32_t front = box.front;
   // Below the front V(47.1) (Y from 41.3 - 47.1 up), the floor gains an H(20) band from Y -30 to
   // -20 across the box: the front, reaching down along its plane, folds onto it at 20 - 47.1.
-  RasterPlan changed = slices;
+  RasterPlan changed = raster_plan;
   const auto h20 = static_cast<std::int32_t>(changed.faces.size());
   changed.faces.push_back({Orientation::H, 20, 0, 0, false, false});
   const PixelGrid& grid = maps.grid;
@@ -147,7 +147,7 @@ TEST(Supports, RaysMeetFacesTheRasterPlanGainedSinceTheExactPlan) {
       if (grid.Y(r) > -30 && grid.Y(r) < -20 && grid.X(c) > 60.2 && grid.X(c) < 150.7) changed.face(c, r) = h20;
   const std::vector<std::int32_t> faces{front};
   const std::vector<Candidate> down =
-      nearest(leaving(support_candidates({maps, changed, build, {}, {}}, faces, SupportReach{}), front, false));
+      nearest(leaving(support_candidates({maps, changed, exact_plan, {}, {}}, faces, SupportReach{}), front, false));
   ASSERT_FALSE(down.empty());
   for (const Candidate& c : down) {
     if (c.c0 < 60.2 * grid.px_per_mm || c.c1 > 150.7 * grid.px_per_mm) continue;  // the band's columns
@@ -157,8 +157,8 @@ TEST(Supports, RaysMeetFacesTheRasterPlanGainedSinceTheExactPlan) {
     EXPECT_LE(std::abs(grid.Y(c.target_row) - (20 - 47.1)), 0.5 / grid.px_per_mm);
   }
   // On the plan as built, the front reaches the floor, at Y = -47.1.
-  const std::vector<Candidate> before =
-      nearest(leaving(support_candidates({maps, slices, build, {}, {}}, faces, SupportReach{}), front, false));
+  const std::vector<Candidate> before = nearest(
+      leaving(support_candidates({maps, raster_plan, exact_plan, {}, {}}, faces, SupportReach{}), front, false));
   ASSERT_FALSE(before.empty());
   for (const Candidate& c : before) EXPECT_EQ(c.target, kFloorFace);
 }
@@ -167,14 +167,14 @@ TEST(Supports, RaysMeetFacesTheRasterPlanGainedSinceTheExactPlan) {
 // hold: it gets no candidate, and the other faces of the round get theirs.
 TEST(Supports, AFaceWithNoPixelsLeftHasNoEdgeToHold) {
   const test::FloatingBoxPlan box;
-  RasterPlan joined = box.slices;
+  RasterPlan joined = box.raster_plan;
   for (std::int32_t& f : joined.face.values)
     if (f == box.top) f = box.front;
   joined.faces[static_cast<std::size_t>(box.front)].pixels +=
       std::exchange(joined.faces[static_cast<std::size_t>(box.top)].pixels, 0);
   const std::vector<std::int32_t> faces{box.top, box.front};
   const std::vector<Candidate> found =
-      support_candidates({box.maps, joined, box.build, {}, {}}, faces, SupportReach{true, true, true});
+      support_candidates({box.maps, joined, box.exact_plan, {}, {}}, faces, SupportReach{true, true, true});
   ASSERT_FALSE(found.empty());
   for (const Candidate& s : found) EXPECT_EQ(s.face, box.front);
 }
@@ -188,20 +188,20 @@ TEST(Supports, AFoldAtTheFarEndOfAFacesPieceLandsBeyondIt) {
   const Sheet sheet;
   const RayScene scene(test::merged(test::box({60, 0, 0}, {150, 50, 30}), test::box({80, 40, 60}, {130, 50, 80})));
   const RasterMaps maps = raster(scene, sheet, RasterOptions{});
-  const RasterPlan slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
-  const ExactPlan build(maps, slices, sheet, PlanOptions{});
-  const Plan& verdict = build.verdict();
+  const RasterPlan raster_plan = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const ExactPlan exact_plan(maps, raster_plan, sheet, PlanOptions{});
+  const Plan& verdict = exact_plan.verdict();
   std::int32_t s_top = -1, g_front = -1;
-  for (std::size_t f = 2; f < slices.faces.size(); ++f) {
-    const RasterFace& face = slices.faces[f];
+  for (std::size_t f = 2; f < raster_plan.faces.size(); ++f) {
+    const RasterFace& face = raster_plan.faces[f];
     if (face.orientation == Orientation::H && face.depth_mm == 50 && verdict.validity.status[f] == FaceStatus::Floating)
       s_top = static_cast<std::int32_t>(f);
     if (face.orientation == Orientation::V && face.depth_mm == 30) g_front = static_cast<std::int32_t>(f);
   }
   ASSERT_GE(s_top, 0);
   ASSERT_GE(g_front, 0);
-  const std::vector<Candidate> up =
-      nearest(leaving(support_candidates({maps, slices, build, {}, {}}, {s_top}, SupportReach{}), s_top, true));
+  const std::vector<Candidate> up = nearest(
+      leaving(support_candidates({maps, raster_plan, exact_plan, {}, {}}, {s_top}, SupportReach{}), s_top, true));
   ASSERT_FALSE(up.empty());
   for (const Candidate& c : up) {
     EXPECT_EQ(c.target, kBackFace);
@@ -219,12 +219,12 @@ TEST(Supports, AFoldOnARowEdgeLandsInTheRowBeforeWhereTheRowBeyondHoldsNoTarget)
   const Sheet sheet;
   const RayScene scene(test::box({60, 41.3, 18.6}, {150, 78, 47.1}));
   const RasterMaps maps = raster(scene, sheet, RasterOptions{});
-  const RasterPlan slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
-  const ExactPlan build(maps, slices, sheet, PlanOptions{});
+  const RasterPlan raster_plan = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const ExactPlan exact_plan(maps, raster_plan, sheet, PlanOptions{});
   const PixelGrid& grid = maps.grid;
   std::int32_t top = -1;
-  for (std::size_t f = 2; f < slices.faces.size(); ++f)
-    if (slices.faces[f].orientation == Orientation::H && slices.faces[f].depth_mm == 78)
+  for (std::size_t f = 2; f < raster_plan.faces.size(); ++f)
+    if (raster_plan.faces[f].orientation == Orientation::H && raster_plan.faces[f].depth_mm == 78)
       top = static_cast<std::int32_t>(f);
   ASSERT_GE(top, 0);
   const double px_mm = 1 / grid.px_per_mm;
@@ -233,19 +233,19 @@ TEST(Supports, AFoldOnARowEdgeLandsInTheRowBeforeWhereTheRowBeyondHoldsNoTarget)
   ASSERT_EQ(grid.Y(beyond), 78 + px_mm / 2);
   ASSERT_EQ(grid.Y(before), 78 - px_mm / 2);
   const std::vector<Candidate> plain =
-      nearest(leaving(support_candidates({maps, slices, build, {}, {}}, {top}, SupportReach{}), top, true));
+      nearest(leaving(support_candidates({maps, raster_plan, exact_plan, {}, {}}, {top}, SupportReach{}), top, true));
   ASSERT_FALSE(plain.empty());
   for (const Candidate& c : plain) {
     EXPECT_EQ(c.target, kBackFace);
     EXPECT_EQ(c.target_row, beyond);
   }
-  RasterPlan cut = slices;
+  RasterPlan cut = raster_plan;
   const auto hole = static_cast<std::int32_t>(cut.faces.size());
   cut.faces.push_back({Orientation::V, 0, 0, 0, false, true});
   for (int c = 0; c < cut.face.cols; ++c)
     if (cut.face(c, beyond) == kBackFace) cut.face(c, beyond) = hole;
   const std::vector<Candidate> chosen =
-      nearest(leaving(support_candidates({maps, cut, build, {}, {}}, {top}, SupportReach{}), top, true));
+      nearest(leaving(support_candidates({maps, cut, exact_plan, {}, {}}, {top}, SupportReach{}), top, true));
   ASSERT_FALSE(chosen.empty());
   for (const Candidate& c : chosen) {
     EXPECT_EQ(c.target, kBackFace);
@@ -267,14 +267,14 @@ TEST(Supports, SlopesBecomeStaircasesAsWideAsTheSlope) {
     EXPECT_TRUE(r.supports.converged) << stop_reason(r.supports);
     EXPECT_GT(r.supports.supports, 0);
     expect_exact_and_standing(r.plan);
-    const auto supports = support_columns(r.slices);
+    const auto supports = support_columns(r.raster_plan);
     int narrowest = INT_MAX, widest = 0;
     for (const auto& [id, columns] : supports) {
       narrowest = std::min(narrowest, columns.second - columns.first + 1);
       widest = std::max(widest, columns.second - columns.first + 1);
     }
     if (!supports.empty()) {
-      EXPECT_GE(narrowest, r.slices.block_px) << "a support narrower than W";
+      EXPECT_GE(narrowest, r.raster_plan.block_px) << "a support narrower than W";
     }
     const double model_width_px = (r.placement.max_oa.x - r.placement.min_oa.x) * r.maps.grid.px_per_mm;
     EXPECT_GE(widest, slope_width_fraction * model_width_px) << "supports widened along the slope";
@@ -301,33 +301,34 @@ TEST(Supports, QuarterSphereStandsWithEverySliceSupportedAndSupportsAtLeastWWide
   EXPECT_EQ(r.supports.cut_out, 0);
   EXPECT_GT(r.supports.supports, 0);
   // Every slice stands: steep ones vertical, flat ones horizontal, each folded to the next.
-  int slices = 0, vertical = 0;
+  int raster_plan = 0, vertical = 0;
   for (std::size_t f = 2; f < r.plan.faces.size(); ++f) {
     EXPECT_EQ(r.plan.faces[f].status, FaceStatus::Valid) << "face " << f;
-    if (r.slices.faces[f].support) continue;
-    ++slices;
-    vertical += r.slices.faces[f].orientation == Orientation::V;
+    if (r.raster_plan.faces[f].support) continue;
+    ++raster_plan;
+    vertical += r.raster_plan.faces[f].orientation == Orientation::V;
   }
   double radius_mm = 0;  // the placed model's height: the sphere's radius
   for (std::size_t i = 0; i < r.maps.kind.size(); ++i)
     if (r.maps.kind.values[i] == HitKind::Model) radius_mm = std::max(radius_mm, r.maps.h_mm.values[i]);
-  EXPECT_GE(slices, 2 * static_cast<int>(radius_mm / r.slices.min_strip_mm) - 6)
+  EXPECT_GE(raster_plan, 2 * static_cast<int>(radius_mm / r.raster_plan.min_strip_mm) - 6)
       << "about one slice per W of the radius, each way";
   EXPECT_GT(vertical, 0);
-  EXPECT_LT(vertical, slices);
+  EXPECT_LT(vertical, raster_plan);
   // A support is at least W wide when chosen; a later one crossing it can leave a narrower piece.
   // Every such piece is reported, with its place.
   std::vector<std::int32_t> narrow_supports, reported;
-  for (const auto& [id, columns] : support_columns(r.slices))
-    if (columns.second - columns.first + 1 < r.slices.block_px && !r.slices.faces[static_cast<std::size_t>(id)].hole)
+  for (const auto& [id, columns] : support_columns(r.raster_plan))
+    if (columns.second - columns.first + 1 < r.raster_plan.block_px &&
+        !r.raster_plan.faces[static_cast<std::size_t>(id)].hole)
       narrow_supports.push_back(id);
   for (const NarrowStrip& n : r.supports.narrow) {
     if (n.support) reported.push_back(n.face);
-    EXPECT_LT(n.width_mm, r.slices.min_strip_mm);
-    EXPECT_EQ(
-        r.slices.face(static_cast<int>(n.at.X * r.maps.grid.px_per_mm),
-                      r.maps.grid.rows_above_fold - 1 - static_cast<int>(std::floor(n.at.Y * r.maps.grid.px_per_mm))),
-        n.face)
+    EXPECT_LT(n.width_mm, r.raster_plan.min_strip_mm);
+    EXPECT_EQ(r.raster_plan.face(
+                  static_cast<int>(n.at.X * r.maps.grid.px_per_mm),
+                  r.maps.grid.rows_above_fold - 1 - static_cast<int>(std::floor(n.at.Y * r.maps.grid.px_per_mm))),
+              n.face)
         << "its place is in it";
   }
   EXPECT_EQ(narrow_supports, reported);
@@ -339,7 +340,7 @@ TEST(Supports, SameSeedSamePlanAnotherSeedStillStands) {
   options.placement.up = UpAxis::Z;
   const auto model = test::models_dir() / "seedlike/capitol.stl";
   const DesignResult a = design(model, options), b = design(model, options);
-  EXPECT_EQ(a.slices.face.values, b.slices.face.values);
+  EXPECT_EQ(a.raster_plan.face.values, b.raster_plan.face.values);
   expect_exact_and_standing(a.plan);
   options.supports.seed = 12345;
   const DesignResult c = design(model, options);
@@ -436,7 +437,7 @@ TEST(Supports, ThePlanKeptIsTheExactPlanOfTheSlicesKept) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   const DesignResult r = standing_design("seedlike/torus.stl");
   ASSERT_GT(r.supports.passes_undone, 0) << "a design with undone passes";
-  const Plan fresh = build_plan(r.maps, r.slices, DesignOptions{}.sheet, PlanOptions{});
+  const Plan fresh = build_plan(r.maps, r.raster_plan, DesignOptions{}.sheet, PlanOptions{});
   EXPECT_EQ(fresh.validity.status, r.plan.validity.status);
   EXPECT_EQ(fresh.lines.size(), r.plan.lines.size());
   EXPECT_EQ(fresh.cut_mm, r.plan.cut_mm);
@@ -460,11 +461,11 @@ TEST(Supports, ASupportThroughTheBackPlaneIsChosenOverAnEquallyLongOneAcrossAVis
   const RayScene scene(
       test::merged(test::box({60, 41.3, 18.6}, {150, 77.9, 47.1}), test::box({65, 0, 0}, {105, 66, 8})));
   const RasterMaps maps = raster(scene, sheet, RasterOptions{});
-  const RasterPlan slices = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
-  const ExactPlan build(maps, slices, sheet, PlanOptions{});
+  const RasterPlan raster_plan = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const ExactPlan exact_plan(maps, raster_plan, sheet, PlanOptions{});
   std::int32_t top = -1, front = -1, c_top = -1;
-  for (std::size_t f = 2; f < slices.faces.size(); ++f) {
-    const RasterFace& face = slices.faces[f];
+  for (std::size_t f = 2; f < raster_plan.faces.size(); ++f) {
+    const RasterFace& face = raster_plan.faces[f];
     if (face.orientation == Orientation::H && face.depth_mm == 77.9) top = static_cast<std::int32_t>(f);
     if (face.orientation == Orientation::V && face.depth_mm == 47.1) front = static_cast<std::int32_t>(f);
     if (face.orientation == Orientation::H && face.depth_mm == 66) c_top = static_cast<std::int32_t>(f);
@@ -474,7 +475,7 @@ TEST(Supports, ASupportThroughTheBackPlaneIsChosenOverAnEquallyLongOneAcrossAVis
   ASSERT_GE(c_top, 0);
   // Both kinds of candidate are there, as long, to the back plane.
   const std::vector<Candidate> up =
-      nearest(leaving(support_candidates({maps, slices, build, {}, {}}, {top}, SupportReach{}), top, true));
+      nearest(leaving(support_candidates({maps, raster_plan, exact_plan, {}, {}}, {top}, SupportReach{}), top, true));
   const int c_from = static_cast<int>(65 * maps.grid.px_per_mm), c_to = static_cast<int>(105 * maps.grid.px_per_mm);
   const auto across_c = std::ranges::find_if(up, [&](const Candidate& c) { return c.c0 > c_from && c.c1 < c_to; });
   const auto bare = std::ranges::find_if(up, [&](const Candidate& c) { return c.c0 > c_to; });
@@ -487,7 +488,7 @@ TEST(Supports, ASupportThroughTheBackPlaneIsChosenOverAnEquallyLongOneAcrossAVis
   EXPECT_EQ(bare->picture_mm, 0);
   EXPECT_GT(across_c->cost, bare->cost);
   // The round holds the top by the back plane, beside C.
-  const SupportChoice choice = choose(maps, slices, build, verdicts_of(build.verdict()), {top, front});
+  const SupportChoice choice = choose(maps, raster_plan, exact_plan, verdicts_of(exact_plan.verdict()), {top, front});
   int from_top = 0;
   for (const Candidate& s : choice.supports) {
     if (s.face != top) continue;
@@ -511,7 +512,7 @@ TEST(Supports, ADomesTopStandsAndTheCardStaysCloseToTheModel) {
       top = i;
   ASSERT_LT(top, r.maps.kind.size());
   EXPECT_EQ(r.card.surface.values[top], CardSurface::Model);
-  EXPECT_LE(likeness_error_map(r.maps, r.card).values[top], r.slices.min_strip_mm);
+  EXPECT_LE(likeness_error_map(r.maps, r.card).values[top], r.raster_plan.min_strip_mm);
   EXPECT_LE(r.likeness.p95_W, 2.0);
   EXPECT_LE(r.likeness.cut_out_share, 0.03);
   EXPECT_LE(r.likeness.support_share, 0.1);
@@ -529,7 +530,7 @@ TEST(Supports, ThePlanDoesNotDependOnTheThreads) {
     const tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
     return design(model, options);
   }();
-  EXPECT_EQ(one.slices.face.values, all.slices.face.values);
+  EXPECT_EQ(one.raster_plan.face.values, all.raster_plan.face.values);
   EXPECT_EQ(one.supports.supports, all.supports.supports);
   ASSERT_EQ(one.plan.lines.size(), all.plan.lines.size());
   for (std::size_t i = 0; i < one.plan.lines.size(); ++i) {

@@ -78,16 +78,16 @@ int main(int argc, char** argv) {
   benchmark::RegisterBenchmark("slice", [&](benchmark::State& state) {
     std::size_t faces = 0;
     for (auto _ : state) {
-      const origamic::RasterPlan slices = origamic::slice(maps, segmentation, origamic::SliceOptions{});
-      faces = slices.faces.size();
+      const origamic::RasterPlan raster_plan = origamic::slice(maps, segmentation, origamic::SliceOptions{});
+      faces = raster_plan.faces.size();
     }
     state.counters["faces"] = static_cast<double>(faces);
   })->Unit(benchmark::kMillisecond)->MinTime(1.0);
 
-  const origamic::RasterPlan slices = origamic::slice(maps, segmentation, origamic::SliceOptions{});
+  const origamic::RasterPlan raster_plan = origamic::slice(maps, segmentation, origamic::SliceOptions{});
   benchmark::RegisterBenchmark("plan", [&](benchmark::State& state) {
     origamic::Plan plan;
-    for (auto _ : state) plan = origamic::build_plan(maps, slices, sheet, origamic::PlanOptions{});
+    for (auto _ : state) plan = origamic::build_plan(maps, raster_plan, sheet, origamic::PlanOptions{});
     state.counters["arr_faces"] = plan.arrangement_faces;
     state.counters["simplified"] = plan.simplified;
   })->Unit(benchmark::kMillisecond)->MinTime(1.0);

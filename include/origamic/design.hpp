@@ -49,7 +49,7 @@ struct DesignResult {
   Placement placement;
   RasterMaps maps;
   Segmentation segmentation;
-  RasterPlan slices;
+  RasterPlan raster_plan;
   Plan plan;                   // the final plan: with supports unless they are off
   // Every place the final plan is narrower than W, along X or Y, measured exactly on its lines as
   // `origamic validate --min-strip W` measures them (PlanProblemKind::NarrowStrip).

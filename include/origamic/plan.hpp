@@ -90,8 +90,8 @@ struct Plan {
 inline constexpr double kFoldLineTolerance_mm = 1e-6;
 
 /// How far from its fold line a V/H boundary may run and still become that fold, in mm.
-inline double fold_snap_tolerance_mm(const PlanOptions& options, const RasterPlan& slices, const PixelGrid& grid) {
-  return options.fold_snap_fraction_of_W * slices.min_strip_mm + 1 / grid.px_per_mm;
+inline double fold_snap_tolerance_mm(const PlanOptions& options, const RasterPlan& raster_plan, const PixelGrid& grid) {
+  return options.fold_snap_fraction_of_W * raster_plan.min_strip_mm + 1 / grid.px_per_mm;
 }
 
 /// After align_folds_to_lines, how far from its fold line an aligned boundary lies at most: half a
@@ -101,6 +101,6 @@ inline double aligned_fold_tolerance_mm(const PixelGrid& grid) { return 1 / grid
 /// Builds the exact plan from the raster plan (sheet in mm). Deterministic. The exact numbers are built
 /// without thread safety, so calls from several threads take turns (one exact run at a time per
 /// process, as for ExactPlan, add_supports, design and analyze_plan).
-Plan build_plan(const RasterMaps& maps, const RasterPlan& slices, const Sheet& sheet, const PlanOptions& options);
+Plan build_plan(const RasterMaps& maps, const RasterPlan& raster_plan, const Sheet& sheet, const PlanOptions& options);
 
 }  // namespace origamic

@@ -25,7 +25,7 @@ std::vector<OutputFile> raster_image_files(const RasterMaps& maps, const std::fi
 /// 45-degree view sees it (|card h + d - model h + d|: black where the card meets the model, white
 /// at 2 W or more off; blue off the model). Named for the folder dir. \throws OutputError.
 std::vector<OutputFile> slice_image_files(const RasterMaps& maps, const Segmentation& segmentation,
-                                          const RasterPlan& slices, const CardView& card,
+                                          const RasterPlan& raster_plan, const CardView& card,
                                           const std::filesystem::path& dir);
 
 }  // namespace origamic

@@ -83,7 +83,7 @@ struct SupportReport {
 };
 
 struct SupportedPlan {
-  RasterPlan slices;  // the raster plan with the supports painted in (RasterFace::support)
+  RasterPlan raster_plan;  // the raster plan with the supports painted in (RasterFace::support)
   Plan plan;           // the exact plan of it, validated from scratch
   SupportReport report;
 };
@@ -91,11 +91,11 @@ struct SupportedPlan {
 /// Adds supports until every face of the exact plan is valid (or, with allow_dangling, valid or
 /// dangling), or the bound is reached. Deterministic for a given seed. Calls from several threads
 /// take turns (one exact run at a time per process, as for build_plan and design).
-SupportedPlan add_supports(const RasterMaps& maps, RasterPlan slices, const Sheet& sheet, const PlanOptions& plan_options,
-                       const SupportOptions& options);
+SupportedPlan add_supports(const RasterMaps& maps, RasterPlan raster_plan, const Sheet& sheet,
+                           const PlanOptions& plan_options, const SupportOptions& options);
 
 /// Every face (holes aside) whose pixels span fewer than W (block_px) columns, in face order.
-std::vector<NarrowStrip> narrow_strips(const RasterPlan& slices, const PixelGrid& grid);
+std::vector<NarrowStrip> narrow_strips(const RasterPlan& raster_plan, const PixelGrid& grid);
 
 /// Why supports stopped, in words ("" for SupportStop::None): "12 faces still invalid: no progress in
 /// 3 rounds; 2 loose pieces of the back plane or the floor", as the report gives it.

@@ -363,7 +363,8 @@ int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const
   }
   if (!args.maps_dir.empty()) {
     for (auto& file : origamic::raster_image_files(result.maps, args.maps_dir)) files.push_back(std::move(file));
-    for (auto& file : origamic::slice_image_files(result.maps, result.segmentation, result.slices, result.card, args.maps_dir))
+    for (auto& file :
+         origamic::slice_image_files(result.maps, result.segmentation, result.raster_plan, result.card, args.maps_dir))
       files.push_back(std::move(file));
     written += "maps: " + args.maps_dir + "/{D,F,T,N,kind,S,SS,faces,E,plan_preview}.png\n";
   }

@@ -49,26 +49,27 @@ void design_loaded(LoadedMesh loaded, const std::filesystem::path& model_file, c
   result.segmentation = segment(result.maps, options.segment);
   clock.lap("segment");
   starting("slicing");
-  result.slices = slice(result.maps, result.segmentation, options.slice);
-  if (std::none_of(result.slices.faces.begin() + 2, result.slices.faces.end(),
+  result.raster_plan = slice(result.maps, result.segmentation, options.slice);
+  if (std::none_of(result.raster_plan.faces.begin() + 2, result.raster_plan.faces.end(),
                    [](const RasterFace& f) { return !f.hole && f.pixels > 0; }))
     throw InputError((model_file.empty() ? std::string("the model") : model_file.string()) +
                      ": the model leaves no face on the card (it is smaller than a strip width W or seen edge on: "
                      "a larger scale, a smaller W or another up axis may help)");
-  const double fold_snap_mm = fold_snap_tolerance_mm(options.plan, result.slices, result.maps.grid);
-  result.slices = align_folds_to_lines(std::move(result.slices), result.maps.grid, fold_snap_mm);
+  const double fold_snap_mm = fold_snap_tolerance_mm(options.plan, result.raster_plan, result.maps.grid);
+  result.raster_plan = align_folds_to_lines(std::move(result.raster_plan), result.maps.grid, fold_snap_mm);
   clock.lap("slice");
   const double W = options.slice.min_strip_mm;
   result.sliced_likeness =
-      likeness(result.maps, card_view(result.maps.grid, result.slices.face, result.slices.faces), W);
+      likeness(result.maps, card_view(result.maps.grid, result.raster_plan.face, result.raster_plan.faces), W);
   result.allow_dangling = options.supports.allow_dangling;
   starting(options.supports.enabled ? "supports and the exact plan" : "the exact plan");
   if (!options.supports.enabled) {
-    result.plan = build_plan(result.maps, result.slices, options.sheet, options.plan);
+    result.plan = build_plan(result.maps, result.raster_plan, options.sheet, options.plan);
     clock.lap("plan");
   } else {
-    SupportedPlan supported = add_supports(result.maps, result.slices, options.sheet, options.plan, options.supports);
-    result.slices = std::move(supported.slices);
+    SupportedPlan supported =
+        add_supports(result.maps, result.raster_plan, options.sheet, options.plan, options.supports);
+    result.raster_plan = std::move(supported.raster_plan);
     result.plan = std::move(supported.plan);
     result.supports = supported.report;
     clock.lap("plan+supports");

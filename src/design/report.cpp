@@ -32,12 +32,12 @@ nlohmann::json placement_json(const Placement& p, const PlacementOptions& option
   };
 }
 
-nlohmann::json slices_json(const DesignResult& result, const DesignOptions& options) {
-  const RasterPlan& slices = result.slices;
+nlohmann::json raster_plan_json(const DesignResult& result, const DesignOptions& options) {
+  const RasterPlan& raster_plan = result.raster_plan;
   const double pixel_area_mm2 = 1 / (result.maps.grid.px_per_mm * result.maps.grid.px_per_mm);
   nlohmann::json faces = nlohmann::json::array();
-  for (std::size_t i = 0; i < slices.faces.size(); ++i) {
-    const RasterFace& f = slices.faces[i];
+  for (std::size_t i = 0; i < raster_plan.faces.size(); ++i) {
+    const RasterFace& f = raster_plan.faces[i];
     const bool v = f.orientation == Orientation::V;
     faces.push_back({{"id", i},
                      {"orientation", v ? "V" : "H"},
@@ -46,11 +46,11 @@ nlohmann::json slices_json(const DesignResult& result, const DesignOptions& opti
                      {"area_mm2", static_cast<double>(f.pixels) * pixel_area_mm2}});
   }
   return {{"min_strip_mm", options.slice.min_strip_mm},
-          {"block_px", slices.block_px},
+          {"block_px", raster_plan.block_px},
           {"segments", result.segmentation.count},
-          {"subsegments", slices.subsegments},
-          {"removed_thin_faces", slices.removed_thin},
-          {"face_count", slices.faces.size()},
+          {"subsegments", raster_plan.subsegments},
+          {"removed_thin_faces", raster_plan.removed_thin},
+          {"face_count", raster_plan.faces.size()},
           {"faces", faces}};
 }
 
@@ -191,7 +191,7 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
         {"model_pixels", maps.model_pixels},
         {"front_d_mm", maps.reference.front_d_mm},
         {"top_h_mm", maps.reference.top_h_mm}}},
-      {"raster_plan", slices_json(result, options)},
+      {"raster_plan", raster_plan_json(result, options)},
       {"likeness",
        {{"comment", "|card h + d - model h + d| over the model's pixels in the 45-degree view; shares of them"},
         {"finished", likeness_json(result.likeness)},
@@ -229,7 +229,7 @@ std::string summary_line(const DesignResult& result) {
                 "%s: %d valid, %d indirect, %d floating, %d dangling, %d invalid, %d removed; %zu places narrower "
                 "than W; %.0f ms",
                 result.model_file.filename().c_str(), result.triangles, result.placement.scale,
-                result.segmentation.count, result.slices.faces.size() - 2, result.slices.min_strip_mm,
+                result.segmentation.count, result.raster_plan.faces.size() - 2, result.raster_plan.min_strip_mm,
                 result.likeness.p95_W, result.likeness.mean_W, result.sliced_likeness.p95_W,
                 100 * result.likeness.coverage, 100 * result.likeness.support_share,
                 100 * result.likeness.cut_out_share, result.supports.supports,

@@ -58,8 +58,8 @@ bool is_fold(const RasterFace& upper, const RasterFace& lower, double boundary_Y
   return std::abs(fold_line_Y(upper.orientation, upper.depth_mm, lower.depth_mm) - boundary_Y) <= pixel_mm;
 }
 
-std::vector<std::uint8_t> plan_preview_rgb(const RasterMaps& maps, const RasterPlan& slices) {
-  const Grid<std::int32_t>& face = slices.face;
+std::vector<std::uint8_t> plan_preview_rgb(const RasterMaps& maps, const RasterPlan& raster_plan) {
+  const Grid<std::int32_t>& face = raster_plan.face;
   std::vector<std::uint8_t> pixels(3 * face.size(), 255);
   auto paint = [&](int col, int row, std::array<std::uint8_t, 3> rgb) {
     std::ranges::copy(rgb, &pixels[3 * face.index(col, row)]);
@@ -72,8 +72,9 @@ std::vector<std::uint8_t> plan_preview_rgb(const RasterMaps& maps, const RasterP
       if (col + 1 < face.cols && face(col + 1, row) >= 0 && face(col + 1, row) != f) paint(col, row, {220, 0, 0});
       if (row + 1 < face.rows && face(col, row + 1) >= 0 && face(col, row + 1) != f) {
         const double boundary_Y = maps.grid.Y(row) - pixel_mm / 2;
-        const bool fold = is_fold(slices.faces[static_cast<std::size_t>(f)],
-                                  slices.faces[static_cast<std::size_t>(face(col, row + 1))], boundary_Y, pixel_mm);
+        const bool fold =
+            is_fold(raster_plan.faces[static_cast<std::size_t>(f)],
+                    raster_plan.faces[static_cast<std::size_t>(face(col, row + 1))], boundary_Y, pixel_mm);
         paint(col, row, fold ? std::array<std::uint8_t, 3>{0, 160, 0} : std::array<std::uint8_t, 3>{220, 0, 0});
       }
     }
@@ -98,15 +99,15 @@ std::vector<std::uint8_t> error_rgb(const Grid<float>& error, double W) {
 }  // namespace
 
 std::vector<OutputFile> slice_image_files(const RasterMaps& maps, const Segmentation& segmentation,
-                                          const RasterPlan& slices, const CardView& card,
+                                          const RasterPlan& raster_plan, const CardView& card,
                                           const std::filesystem::path& dir) {
   const int w = maps.grid.cols, h = maps.grid.rows;
   const std::vector<std::pair<std::string, std::vector<std::uint8_t>>> images = {
       {"S.png", id_rgb(segmentation.segment, true)},
-      {"SS.png", id_rgb(slices.subsegment, false)},
-      {"faces.png", id_rgb(slices.face, true)},
-      {"plan_preview.png", plan_preview_rgb(maps, slices)},
-      {"E.png", error_rgb(likeness_error_map(maps, card), slices.min_strip_mm)},
+      {"SS.png", id_rgb(raster_plan.subsegment, false)},
+      {"faces.png", id_rgb(raster_plan.face, true)},
+      {"plan_preview.png", plan_preview_rgb(maps, raster_plan)},
+      {"E.png", error_rgb(likeness_error_map(maps, card), raster_plan.min_strip_mm)},
   };
   std::vector<OutputFile> files;
   for (const auto& [name, pixels] : images)

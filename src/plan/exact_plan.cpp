@@ -784,9 +784,9 @@ const Plan& ExactPlan::verdict() const { return state_->plan; }
 const Grid<std::int32_t>& ExactPlan::face_map() const { return state_->labels; }
 const std::vector<RasterFace>& ExactPlan::faces() const { return state_->faces; }
 
-Plan build_plan(const RasterMaps& maps, const RasterPlan& slices, const Sheet& sheet, const PlanOptions& options) {
+Plan build_plan(const RasterMaps& maps, const RasterPlan& raster_plan, const Sheet& sheet, const PlanOptions& options) {
   const auto lock = exact_run_lock();
-  return ExactPlan(maps, slices, sheet, options).full();
+  return ExactPlan(maps, raster_plan, sheet, options).full();
 }
 
 }  // namespace origamic

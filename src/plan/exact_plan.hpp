@@ -52,7 +52,7 @@ struct PaintedBand {
 /// faces), then, from the arrangement kept, the plan in full, as build_plan gives it. Same rules.
 class ExactPlan {
  public:
-  ExactPlan(const RasterMaps& maps, const RasterPlan& slices, const Sheet& sheet, const PlanOptions& options);
+  ExactPlan(const RasterMaps& maps, const RasterPlan& raster_plan, const Sheet& sheet, const PlanOptions& options);
   ~ExactPlan();
   ExactPlan(ExactPlan&&) noexcept;
   ExactPlan& operator=(ExactPlan&&) noexcept;
@@ -92,7 +92,7 @@ class ExactPlan {
 
  private:
   struct State;
-  static void build(State& state, const RasterMaps& maps, const RasterPlan& slices, const Sheet& sheet,
+  static void build(State& state, const RasterMaps& maps, const RasterPlan& raster_plan, const Sheet& sheet,
                     const PlanOptions& options);
   std::unique_ptr<State> state_;
 };

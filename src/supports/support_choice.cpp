@@ -67,14 +67,14 @@ class CandidateFinder {
         picture_(picture),
         painted_(round.painted),
         grid_(round.maps.grid),
-        face_(round.slices.face),
-        faces_(round.slices.faces),
-        W_(round.slices.min_strip_mm),
+        face_(round.raster_plan.face),
+        faces_(round.raster_plan.faces),
+        W_(round.raster_plan.min_strip_mm),
         below_tips_(reach.below_tips),
         corners_(reach.corners),
         px_mm_(1 / round.maps.grid.px_per_mm),
-        block_(round.slices.block_px),
-        slot_(round.slices.faces.size(), -1) {
+        block_(round.raster_plan.block_px),
+        slot_(round.raster_plan.faces.size(), -1) {
     for (const std::int32_t f : wanted)
       if (int& k = slot_[static_cast<std::size_t>(f)]; k < 0)
         k = static_cast<int>(columns_.size()), columns_.push_back({INT_MAX, -1});
@@ -585,7 +585,7 @@ std::vector<Candidate> candidates_of(const CandidateFinder& finder, const std::v
 
 std::vector<Candidate> support_candidates(const SupportRound& round, const std::vector<std::int32_t>& faces,
                                           SupportReach reach) {
-  const SupportPicture picture(round.maps, round.slices);
+  const SupportPicture picture(round.maps, round.raster_plan);
   return candidates_of(CandidateFinder(round, faces, picture, reach), faces, reach.split_faces);
 }
 
@@ -599,19 +599,19 @@ class EarTaker {
            const SupportOptions& options, SupportReach reach)
       : round_(round),
         options_(options),
-        picture_(round.maps, round.slices),
+        picture_(round.maps, round.raster_plan),
         finder_(round, invalid, picture_, reach),
         candidates_(candidates_of(finder_, invalid, reach.split_faces)),
-        stands_(round.slices.faces.size(), 0),
-        open_(round.slices.faces.size(), 0),
+        stands_(round.raster_plan.faces.size(), 0),
+        open_(round.raster_plan.faces.size(), 0),
         usable_(candidates_.size(), 1),
-        limit_(round.slices.faces.size(), 0),
-        claims_(round.slices.face.cols, round.slices.face.rows) {
-    const std::vector<RasterFace>& faces = round.slices.faces;
+        limit_(round.raster_plan.faces.size(), 0),
+        claims_(round.raster_plan.face.cols, round.raster_plan.face.rows) {
+    const std::vector<RasterFace>& faces = round.raster_plan.faces;
     for (std::size_t f = 0; f < faces.size() && f < verdicts.validity.status.size(); ++f)
       stands_[f] = verdicts.validity.status[f] == FaceStatus::Valid && !faces[f].hole;
     // A face is held only while that costs the picture no more than cutting it out.
-    const double W = round.slices.min_strip_mm;
+    const double W = round.raster_plan.min_strip_mm;
     for (const std::int32_t f : invalid) {
       open_[static_cast<std::size_t>(f)] = 1;
       limit_[static_cast<std::size_t>(f)] = std::max(0.0, picture_.hole_error(f)) / (W * W);
@@ -688,7 +688,7 @@ class EarTaker {
     const std::size_t first_new = chosen.size();
     for (const std::size_t k : ear.supports) {
       Candidate s = candidates_[k];
-      widen(round_.slices.face, claims_, picture_, finder_, s);
+      widen(round_.raster_plan.face, claims_, picture_, finder_, s);
       claims_.claim(s);
       chosen.push_back(s);
     }

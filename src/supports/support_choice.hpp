@@ -45,7 +45,7 @@ struct FaceVerdicts {
 /// The folds of the raster plan: wherever a V(d) pixel and an H(h) pixel meet one above the other
 /// within `tolerance` of Y = h - d, as the exact plan snaps them (plan.hpp), the upper face first; a
 /// run of one pair once, in row order.
-std::vector<FoldEdge> raster_folds(const PixelGrid& grid, const RasterPlan& slices, double tolerance);
+std::vector<FoldEdge> raster_folds(const PixelGrid& grid, const RasterPlan& raster_plan, double tolerance);
 
 /// The exact plan's word on each face, as the rounds read it.
 FaceVerdicts verdicts_of(const Plan& plan);
@@ -66,7 +66,7 @@ struct SupportReach {
 // of it, the supports painted since, and the raster plan's folds (raster_folds).
 struct SupportRound {
   const RasterMaps& maps;
-  const RasterPlan& slices;
+  const RasterPlan& raster_plan;
   const ExactPlan& exact;
   std::span<const Candidate> painted;
   std::span<const FoldEdge> folds;
@@ -103,11 +103,11 @@ SupportChoice choose_supports(const SupportRound& round, const FaceVerdicts& ver
 /// 4-connected part of a face (a loose piece of the back plane or the floor too) becomes a face of
 /// its own, a part under crumb_px pixels joins a neighbour. The face graph of the rounds is then the
 /// exact plan's graph of pieces.
-void split_into_pieces(RasterPlan& slices, std::int64_t crumb_px);
+void split_into_pieces(RasterPlan& raster_plan, std::int64_t crumb_px);
 
 /// Paints the chosen supports into the raster plan as faces of their own (RasterFace::support),
 /// then splits it into pieces.
 void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid, double tolerance,
-                    std::int64_t crumb_px, RasterPlan& slices);
+                    std::int64_t crumb_px, RasterPlan& raster_plan);
 
 }  // namespace origamic

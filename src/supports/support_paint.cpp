@@ -17,23 +17,23 @@ namespace origamic {
 // it beside the support, narrower than W and within the support's rows: a piece of paper too thin
 // to hold, which becomes part of the support (a wider support, the same folds).
 void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid, double tolerance,
-                    std::int64_t crumb_px, RasterPlan& slices) {
-  Grid<std::int32_t>& face = slices.face;
-  const auto first_support = static_cast<std::int32_t>(slices.faces.size());
+                    std::int64_t crumb_px, RasterPlan& raster_plan) {
+  Grid<std::int32_t>& face = raster_plan.face;
+  const auto first_support = static_cast<std::int32_t>(raster_plan.faces.size());
   std::set<std::int32_t> crossed;
   for (const Candidate& s : chosen) {
-    const auto id = static_cast<std::int32_t>(slices.faces.size());
-    slices.faces.push_back(
-        {s.orientation, s.depth_mm, slices.faces[static_cast<std::size_t>(s.face)].segment, 0, true});
+    const auto id = static_cast<std::int32_t>(raster_plan.faces.size());
+    raster_plan.faces.push_back(
+        {s.orientation, s.depth_mm, raster_plan.faces[static_cast<std::size_t>(s.face)].segment, 0, true});
     for (int r = s.r0; r < s.r1; ++r)
       for (int c = s.c0; c < s.c1; ++c) crossed.insert(std::exchange(face(c, r), id));
     crossed.insert(s.face), crossed.insert(s.target);  // what is left of them may be a crumb
   }
   const std::vector<FacePart> parts =
-      split_disconnected_faces(slices, std::vector<std::int32_t>(crossed.begin(), crossed.end()), crumb_px, 0);
+      split_disconnected_faces(raster_plan, std::vector<std::int32_t>(crossed.begin(), crossed.end()), crumb_px, 0);
   // The faces and parts a support crossed: their extent, and the support they touch (-1 none, -2
   // several).
-  const std::size_t n = slices.faces.size();
+  const std::size_t n = raster_plan.faces.size();
   std::vector<std::uint8_t> candidate(n, 0);
   for (const std::int32_t f : crossed)
     if (f >= 2 && f < first_support) candidate[static_cast<std::size_t>(f)] = 1;
@@ -76,7 +76,7 @@ void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid,
   std::iota(into.begin(), into.end(), 0);
   for (const FacePart& p : parts) into[static_cast<std::size_t>(p.face)] = p.from;
   for (std::size_t i = 0; i < n; ++i) {
-    if (!candidate[i] || touches[i] < 0 || c_hi[i] - c_lo[i] + 1 >= slices.block_px) continue;
+    if (!candidate[i] || touches[i] < 0 || c_hi[i] - c_lo[i] + 1 >= raster_plan.block_px) continue;
     const Candidate& s = chosen[static_cast<std::size_t>(touches[i] - first_support)];
     if (r_lo[i] >= s.r0 && r_hi[i] < s.r1) into[i] = touches[i];
   }
@@ -85,15 +85,15 @@ void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid,
     for (std::size_t i = row_begin * cols; i < row_end * cols; ++i)
       if (std::int32_t& f = face.values[i]; f >= 0) f = into[static_cast<std::size_t>(f)];
   });
-  merge_coplanar_faces(slices);
-  slices = align_folds_to_lines(std::move(slices), grid, tolerance);
-  split_into_pieces(slices, crumb_px);
+  merge_coplanar_faces(raster_plan);
+  raster_plan = align_folds_to_lines(std::move(raster_plan), grid, tolerance);
+  split_into_pieces(raster_plan, crumb_px);
 }
 
-void split_into_pieces(RasterPlan& slices, std::int64_t crumb_px) {
-  std::vector<std::int32_t> all(slices.faces.size());
+void split_into_pieces(RasterPlan& raster_plan, std::int64_t crumb_px) {
+  std::vector<std::int32_t> all(raster_plan.faces.size());
   std::iota(all.begin(), all.end(), 0);
-  if (!split_disconnected_faces(slices, all, crumb_px, 0).empty()) merge_coplanar_faces(slices);
+  if (!split_disconnected_faces(raster_plan, all, crumb_px, 0).empty()) merge_coplanar_faces(raster_plan);
 }
 
 }  // namespace origamic

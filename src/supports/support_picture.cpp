@@ -19,10 +19,10 @@ constexpr double kHoleExtra_W = 2;
 
 }  // namespace
 
-SupportPicture::SupportPicture(const RasterMaps& maps, const RasterPlan& slices)
+SupportPicture::SupportPicture(const RasterMaps& maps, const RasterPlan& raster_plan)
     : grid_(maps.grid),
-      cap_mm_(static_cast<float>(kErrorCap_W * slices.min_strip_mm)),
-      hole_error_(slices.faces.size(), 0.0) {
+      cap_mm_(static_cast<float>(kErrorCap_W * raster_plan.min_strip_mm)),
+      hole_error_(raster_plan.faces.size(), 0.0) {
   // Off the model nothing is compared: the tables cover the model's bounding box only.
   int c_end = 0, r_end = 0;
   c0_ = grid_.cols, r0_ = grid_.rows;
@@ -42,17 +42,17 @@ SupportPicture::SupportPicture(const RasterMaps& maps, const RasterPlan& slices)
       if (maps.kind(col, row) != HitKind::Model) continue;
       const double model = maps.h_mm(col, row) + maps.d_mm(col, row);
       model_key_(col - c0_, row - r0_) = static_cast<float>(model);
-      if (const std::int32_t f = slices.face(col, row); f >= 0)
+      if (const std::int32_t f = raster_plan.face(col, row); f >= 0)
         error_(col - c0_, row - r0_) = std::min(
-            cap_mm_, static_cast<float>(std::abs(key_of(slices.faces[static_cast<std::size_t>(f)], Y) - model)));
+            cap_mm_, static_cast<float>(std::abs(key_of(raster_plan.faces[static_cast<std::size_t>(f)], Y) - model)));
     }
   });
   // In row order, one pixel after another: the sums do not depend on the threads.
-  const auto extra = static_cast<float>(kHoleExtra_W * slices.min_strip_mm);
+  const auto extra = static_cast<float>(kHoleExtra_W * raster_plan.min_strip_mm);
   for (int row = r0_; row < r_end; ++row) {
     const double Y = grid_.Y(row);
     for (int col = c0_; col < c_end; ++col) {
-      const std::int32_t f = slices.face(col, row);
+      const std::int32_t f = raster_plan.face(col, row);
       if (f < 0 || maps.kind(col, row) != HitKind::Model) continue;
       const double model = maps.h_mm(col, row) + maps.d_mm(col, row);
       const float error = error_(col - c0_, row - r0_);

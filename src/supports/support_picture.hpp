@@ -19,7 +19,7 @@ namespace origamic {
 class SupportPicture {
  public:
   /// The picture of the raster plan as it is.
-  SupportPicture(const RasterMaps& maps, const RasterPlan& slices);
+  SupportPicture(const RasterMaps& maps, const RasterPlan& raster_plan);
 
   struct PixelBox {
     int c0, c1, r0, r1;  // pixels [c0, c1) x [r0, r1)

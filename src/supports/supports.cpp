@@ -28,12 +28,12 @@ bool needs_support(FaceStatus status, bool allow_dangling) {
 
 }  // namespace
 
-std::vector<NarrowStrip> narrow_strips(const RasterPlan& slices, const PixelGrid& grid) {
-  const std::size_t n = slices.faces.size();
+std::vector<NarrowStrip> narrow_strips(const RasterPlan& raster_plan, const PixelGrid& grid) {
+  const std::size_t n = raster_plan.faces.size();
   std::vector<int> lo(n, INT_MAX), hi(n, -1), lo_row(n, 0);
-  for (int r = 0; r < slices.face.rows; ++r)
-    for (int c = 0; c < slices.face.cols; ++c) {
-      const std::int32_t f = slices.face(c, r);
+  for (int r = 0; r < raster_plan.face.rows; ++r)
+    for (int c = 0; c < raster_plan.face.cols; ++c) {
+      const std::int32_t f = raster_plan.face(c, r);
       if (f < 2) continue;
       const auto i = static_cast<std::size_t>(f);
       if (c < lo[i]) lo[i] = c, lo_row[i] = r;
@@ -41,17 +41,17 @@ std::vector<NarrowStrip> narrow_strips(const RasterPlan& slices, const PixelGrid
     }
   std::vector<NarrowStrip> narrow;
   for (std::size_t f = 2; f < n; ++f) {
-    if (hi[f] < 0 || slices.faces[f].hole || hi[f] - lo[f] + 1 >= slices.block_px) continue;
+    if (hi[f] < 0 || raster_plan.faces[f].hole || hi[f] - lo[f] + 1 >= raster_plan.block_px) continue;
     // Its place: its top pixel in its middle column, or its leftmost pixel if it has none there.
     int col = lo[f], row = lo_row[f];
     const int mid = (lo[f] + hi[f]) / 2;
-    for (int r = 0; r < slices.face.rows; ++r)
-      if (slices.face(mid, r) == static_cast<std::int32_t>(f)) {
+    for (int r = 0; r < raster_plan.face.rows; ++r)
+      if (raster_plan.face(mid, r) == static_cast<std::int32_t>(f)) {
         col = mid, row = r;
         break;
       }
     narrow.push_back({static_cast<std::int32_t>(f),
-                      slices.faces[f].support,
+                      raster_plan.faces[f].support,
                       (hi[f] - lo[f] + 1) / grid.px_per_mm,
                       {grid.X(col), grid.Y(row)}});
   }
@@ -80,8 +80,8 @@ bool plan_stands(const Validity& validity, bool allow_dangling) {
   return validity.floating + validity.invalid == 0 && (allow_dangling || validity.dangling == 0);
 }
 
-std::vector<FoldEdge> raster_folds(const PixelGrid& grid, const RasterPlan& slices, double tolerance) {
-  const Grid<std::int32_t>& face = slices.face;
+std::vector<FoldEdge> raster_folds(const PixelGrid& grid, const RasterPlan& raster_plan, double tolerance) {
+  const Grid<std::int32_t>& face = raster_plan.face;
   std::array<std::vector<FoldEdge>, kBands> bands;
   for_bands(face.rows - 1, [&](int band, int row_begin, int row_end) {
     for (int r = row_begin; r < row_end; ++r) {
@@ -92,8 +92,8 @@ std::vector<FoldEdge> raster_folds(const PixelGrid& grid, const RasterPlan& slic
         const std::int32_t upper = above[c], lower = below[c];
         if (upper == lower || upper < 0 || lower < 0) continue;
         if (c > 0 && upper == above[c - 1] && lower == below[c - 1]) continue;  // the same pair, already seen
-        const RasterFace &fu = slices.faces[static_cast<std::size_t>(upper)],
-                         &fl = slices.faces[static_cast<std::size_t>(lower)];
+        const RasterFace &fu = raster_plan.faces[static_cast<std::size_t>(upper)],
+                         &fl = raster_plan.faces[static_cast<std::size_t>(lower)];
         if (fu.orientation == fl.orientation || fu.hole || fl.hole) continue;
         const double fold_Y = fold_line_Y(fu.orientation, fu.depth_mm, fl.depth_mm);
         if (std::abs(edge_Y - fold_Y) <= tolerance)
@@ -114,16 +114,16 @@ namespace {
 // The face graph read from the raster plan's folds (the upper face first). Rebuilding the exact
 // plan costs 50-700 ms; this costs a few, so rounds run on it and the exact plan only confirms (and
 // overrides) its verdict.
-FaceVerdicts raster_verdicts(const PixelGrid& grid, const RasterPlan& slices, double tolerance) {
-  const std::size_t n = slices.faces.size();
+FaceVerdicts raster_verdicts(const PixelGrid& grid, const RasterPlan& raster_plan, double tolerance) {
+  const std::size_t n = raster_plan.faces.size();
   FaceGraph graph;
   graph.faces = static_cast<std::int32_t>(n);
-  for (const RasterFace& f : slices.faces) graph.holes.push_back(f.hole);
+  for (const RasterFace& f : raster_plan.faces) graph.holes.push_back(f.hole);
   FaceVerdicts s;
   s.fold_on_top.assign(n, 0);
   s.fold_on_bottom.assign(n, 0);
   std::map<double, std::int32_t> line_ids;
-  for (const auto& [upper, lower, fold_Y] : raster_folds(grid, slices, tolerance)) {
+  for (const auto& [upper, lower, fold_Y] : raster_folds(grid, raster_plan, tolerance)) {
     const auto line = line_ids.try_emplace(fold_Y, static_cast<std::int32_t>(line_ids.size())).first->second;
     s.fold_on_top[static_cast<std::size_t>(lower)] = 1;
     s.fold_on_bottom[static_cast<std::size_t>(upper)] = 1;
@@ -168,17 +168,17 @@ struct OrderRules {
 // the raster graph, each ending in a verdict of the exact plan, which always has the last word.
 class FaceOrderRun {
  public:
-  FaceOrderRun(const OrderSetting& setting, RasterPlan slices, OrderRules rules, std::mt19937& random)
+  FaceOrderRun(const OrderSetting& setting, RasterPlan raster_plan, OrderRules rules, std::mt19937& random)
       : setting_(setting),
-        slices_(std::move(slices)),
+        raster_plan_(std::move(raster_plan)),
         rules_(rules),
         random_(random),
-        tolerance_(fold_snap_tolerance_mm(setting.plan_options, slices_, setting_.maps.grid)),
+        tolerance_(fold_snap_tolerance_mm(setting.plan_options, raster_plan_, setting_.maps.grid)),
         // A part of a face under W x W / 8 (a crumb left where a support or a slanted cut met it)
         // joins a neighbour rather than become a face to be supported.
-        crumb_px_(std::int64_t{slices_.block_px} * slices_.block_px / 8) {
-    report().round_bound = slices_.face.cols / std::max(1, slices_.block_px) + 1;
-    for (std::size_t f = 2; f < slices_.faces.size(); ++f) model_pixels_ += slices_.faces[f].pixels;
+        crumb_px_(std::int64_t{raster_plan_.block_px} * raster_plan_.block_px / 8) {
+    report().round_bound = raster_plan_.face.cols / std::max(1, raster_plan_.block_px) + 1;
+    for (std::size_t f = 2; f < raster_plan_.faces.size(); ++f) model_pixels_ += raster_plan_.faces[f].pixels;
   }
 
   SupportedPlan run();
@@ -190,13 +190,13 @@ class FaceOrderRun {
 
   // The verdict of the raster graph.
   void settle() {
-    verdicts_ = raster_verdicts(setting_.maps.grid, slices_, aligned_fold_tolerance_mm(setting_.maps.grid));
+    verdicts_ = raster_verdicts(setting_.maps.grid, raster_plan_, aligned_fold_tolerance_mm(setting_.maps.grid));
     exact_ = false;
   }
-  void adopt(std::shared_ptr<const ExactPlan> build) {
-    last_build_ = std::move(build);
-    result_.plan = last_build_->verdict();
-    confirmed_ = {slices_.face, slices_.faces};
+  void adopt(std::shared_ptr<const ExactPlan> exact_plan) {
+    last_exact_plan_ = std::move(exact_plan);
+    result_.plan = last_exact_plan_->verdict();
+    confirmed_ = {raster_plan_.face, raster_plan_.faces};
     ++report().exact_builds;
     verdicts_ = verdicts_of(result_.plan);
     exact_ = true;
@@ -204,8 +204,8 @@ class FaceOrderRun {
   }
   // The verdict of the exact plan of the slices as they are.
   void confirm() {
-    last_build_.reset();  // one arrangement at a time in memory
-    adopt(std::make_shared<const ExactPlan>(setting_.maps, slices_, setting_.sheet, setting_.plan_options));
+    last_exact_plan_.reset();  // one arrangement at a time in memory
+    adopt(std::make_shared<const ExactPlan>(setting_.maps, raster_plan_, setting_.sheet, setting_.plan_options));
   }
   // Why rounds stopped, and how many faces were invalid then (SupportStop::None: none was).
   struct Stopped {
@@ -229,7 +229,7 @@ class FaceOrderRun {
   SupportedPlan finish();
 
   const OrderSetting& setting_;
-  RasterPlan slices_;
+  RasterPlan raster_plan_;
   OrderRules rules_;
   std::mt19937& random_;
   double tolerance_;
@@ -249,7 +249,7 @@ class FaceOrderRun {
   std::vector<Candidate> painted_since_;
   // The exact plan of the last verdict, kept: the plan kept is drawn in full from it. (Freed here,
   // not on another thread: CGAL is built without thread support, its reference counts not atomic.)
-  std::shared_ptr<const ExactPlan> last_build_;
+  std::shared_ptr<const ExactPlan> last_exact_plan_;
   std::int64_t model_pixels_ = 0, cut_out_pixels_ = 0;
 };
 
@@ -274,9 +274,10 @@ FaceOrderRun::Stopped FaceOrderRun::support_rounds() {
     SupportReach round_reach = rules_.reach;
     round_reach.split_faces = allow_splits_ || split_rounds_left_-- > 0;
     const std::vector<FoldEdge> folds =
-        raster_folds(setting_.maps.grid, slices_, aligned_fold_tolerance_mm(setting_.maps.grid));
-    const SupportChoice choice = choose_supports({setting_.maps, slices_, *last_build_, painted_since_, folds},
-                                                 verdicts_, invalid, setting_.options, round_reach);
+        raster_folds(setting_.maps.grid, raster_plan_, aligned_fold_tolerance_mm(setting_.maps.grid));
+    const SupportChoice choice =
+        choose_supports({setting_.maps, raster_plan_, *last_exact_plan_, painted_since_, folds}, verdicts_, invalid,
+                        setting_.options, round_reach);
     const std::vector<Candidate>& chosen = choice.supports;
     if (chosen.empty() && choice.cut_out.empty()) return {SupportStop::Unreachable, count};
     tally.supports += static_cast<int>(chosen.size());
@@ -284,7 +285,7 @@ FaceOrderRun::Stopped FaceOrderRun::support_rounds() {
     // cuts; a support across the model to a crumb at its back is worse than the crumb's hole), once
     // no support is left to add: the supports of this round may yet bring them a cheaper one.
     if (setting_.options.cut_out_unsupported && chosen.empty()) cut_out_costly(choice.cut_out);
-    paint_supports(chosen, setting_.maps.grid, tolerance_, crumb_px_, slices_);
+    paint_supports(chosen, setting_.maps.grid, tolerance_, crumb_px_, raster_plan_);
     painted_since_.insert(painted_since_.end(), chosen.begin(), chosen.end());
     settle();
   }
@@ -300,7 +301,8 @@ FaceOrderRun::Stopped FaceOrderRun::pass() {
   const bool from_exact = exact_;
   std::size_t invalid_before = invalid_faces().size();
   if (exact_) {
-    const FaceVerdicts raster = raster_verdicts(setting_.maps.grid, slices_, aligned_fold_tolerance_mm(setting_.maps.grid));
+    const FaceVerdicts raster =
+        raster_verdicts(setting_.maps.grid, raster_plan_, aligned_fold_tolerance_mm(setting_.maps.grid));
     invalid_before = std::min(invalid_before, unsupported(raster, setting_.options.allow_dangling).size());
   }
   const int supports_before = report().supports, cut_out_before = report().cut_out;
@@ -308,8 +310,8 @@ FaceOrderRun::Stopped FaceOrderRun::pass() {
   const std::int64_t cut_out_pixels_before = cut_out_pixels_;
   const Stopped why = support_rounds();
   if (from_exact && why.why != SupportStop::None && invalid_faces().size() > invalid_before) {
-    slices_.face = confirmed_.first;
-    slices_.faces = confirmed_.second;
+    raster_plan_.face = confirmed_.first;
+    raster_plan_.faces = confirmed_.second;
     report().supports = supports_before;  // the rounds still count against the bound
     report().cut_out = cut_out_before;
     report().cut_out_faces.resize(cut_out_faces_before);
@@ -336,11 +338,11 @@ FaceOrderRun::Stopped FaceOrderRun::pass() {
 bool FaceOrderRun::part_faces(const std::vector<std::int32_t>& invalid, int loose) {
   std::vector<std::int32_t> apart = invalid;
   if (loose > 0) apart.insert(apart.end(), {kBackFace, kFloorFace});
-  const std::vector<std::int32_t> before = slices_.face.values;
-  const bool parted = !split_disconnected_faces(slices_, apart, crumb_px_, slices_.block_px).empty();
-  if (!parted && slices_.face.values == before) return false;
+  const std::vector<std::int32_t> before = raster_plan_.face.values;
+  const bool parted = !split_disconnected_faces(raster_plan_, apart, crumb_px_, raster_plan_.block_px).empty();
+  if (!parted && raster_plan_.face.values == before) return false;
   allow_splits_ = allow_splits_ && !parted;
-  merge_coplanar_faces(slices_);
+  merge_coplanar_faces(raster_plan_);
   settle();
   return true;
 }
@@ -351,18 +353,18 @@ bool FaceOrderRun::part_faces(const std::vector<std::int32_t>& invalid, int loos
 // nothing is cut, and false returned. (Cutting the smaller half by area at once, as before, took out
 // 17 % of arch_stepped_tower where a face at a time takes out 3 %.)
 bool FaceOrderRun::cut_out_cheapest(std::vector<std::int32_t> invalid) {
-  const SupportPicture picture(setting_.maps, slices_);
+  const SupportPicture picture(setting_.maps, raster_plan_);
   std::ranges::sort(invalid, [&](std::int32_t a, std::int32_t b) {
     return std::pair{picture.hole_error(a), a} < std::pair{picture.hole_error(b), b};
   });
   invalid.resize(std::max<std::size_t>(1, invalid.size() / 4));
   std::int64_t more = 0;
-  for (const std::int32_t f : invalid) more += slices_.faces[static_cast<std::size_t>(f)].pixels;
+  for (const std::int32_t f : invalid) more += raster_plan_.faces[static_cast<std::size_t>(f)].pixels;
   if (4 * (cut_out_pixels_ + more) > model_pixels_) {
     report().stop_at_quota = true;
     return false;
   }
-  const double W = slices_.min_strip_mm;
+  const double W = raster_plan_.min_strip_mm;
   std::vector<std::pair<double, double>> costs;
   for (const std::int32_t f : invalid) costs.emplace_back(-1.0, std::max(0.0, picture.hole_error(f)) / (W * W));
   cut_out(invalid, costs, "no support holds it");
@@ -372,21 +374,21 @@ bool FaceOrderRun::cut_out_cheapest(std::vector<std::int32_t> invalid) {
 void FaceOrderRun::cut_out(const std::vector<std::int32_t>& faces, const std::vector<std::pair<double, double>>& costs,
                        const std::string& reason) {
   if (faces.empty()) return;
-  std::vector<std::int32_t> slot(slices_.faces.size(), -1);
+  std::vector<std::int32_t> slot(raster_plan_.faces.size(), -1);
   for (std::size_t i = 0; i < faces.size(); ++i)
     slot[static_cast<std::size_t>(faces[i])] = static_cast<std::int32_t>(i);
   std::vector<PlanPoint> at(faces.size());
   std::vector<std::uint8_t> found(faces.size(), 0);
   const PixelGrid& grid = setting_.maps.grid;
-  for (int r = 0; r < slices_.face.rows; ++r)
-    for (int c = 0; c < slices_.face.cols; ++c)
-      if (const std::int32_t f = slices_.face(c, r); f >= 0 && slot[static_cast<std::size_t>(f)] >= 0) {
+  for (int r = 0; r < raster_plan_.face.rows; ++r)
+    for (int c = 0; c < raster_plan_.face.cols; ++c)
+      if (const std::int32_t f = raster_plan_.face(c, r); f >= 0 && slot[static_cast<std::size_t>(f)] >= 0) {
         const auto i = static_cast<std::size_t>(slot[static_cast<std::size_t>(f)]);
         if (!found[i]) found[i] = 1, at[i] = {grid.X(c), grid.Y(r)};
       }
   const double pixel_mm2 = 1 / (grid.px_per_mm * grid.px_per_mm);
   for (std::size_t i = 0; i < faces.size(); ++i) {
-    RasterFace& face = slices_.faces[static_cast<std::size_t>(faces[i])];
+    RasterFace& face = raster_plan_.faces[static_cast<std::size_t>(faces[i])];
     face.hole = true;
     ++report().cut_out;
     const bool card = face.depth_mm == 0;  // a piece of the back plane or the floor
@@ -424,7 +426,7 @@ SupportedPlan FaceOrderRun::run() {
     // Pieces of the back plane or the floor that strips around them parted from it are card, not
     // model: a hole there takes nothing from the likeness, so they go first and free of the quota.
     const auto card_piece = [&](std::int32_t f) {
-      return f > kFloorFace && slices_.faces[static_cast<std::size_t>(f)].depth_mm == 0;
+      return f > kFloorFace && raster_plan_.faces[static_cast<std::size_t>(f)].depth_mm == 0;
     };
     const auto model_faces = std::ranges::partition(invalid, card_piece);
     if (model_faces.begin() != invalid.begin()) {
@@ -439,8 +441,8 @@ SupportedPlan FaceOrderRun::run() {
       break;
     }
     // The rounds resume with the holes.
-    merge_coplanar_faces(slices_);
-    slices_ = align_folds_to_lines(std::move(slices_), setting_.maps.grid, tolerance_);
+    merge_coplanar_faces(raster_plan_);
+    raster_plan_ = align_folds_to_lines(std::move(raster_plan_), setting_.maps.grid, tolerance_);
     settle();
   }
   return finish();
@@ -455,11 +457,11 @@ SupportedPlan FaceOrderRun::finish() {
     tally.stop_faces = tally.stop_loose_pieces = 0;
     tally.stop_at_quota = false;
   }
-  slices_.face = std::move(confirmed_.first);
-  slices_.faces = std::move(confirmed_.second);
-  result_.plan = last_build_->full();
-  tally.narrow = narrow_strips(slices_, setting_.maps.grid);
-  result_.slices = std::move(slices_);
+  raster_plan_.face = std::move(confirmed_.first);
+  raster_plan_.faces = std::move(confirmed_.second);
+  result_.plan = last_exact_plan_->full();
+  tally.narrow = narrow_strips(raster_plan_, setting_.maps.grid);
+  result_.raster_plan = std::move(raster_plan_);
   return std::move(result_);
 }
 
@@ -481,22 +483,22 @@ constexpr double kPoorLikenessShare = 0.15;
 
 }  // namespace
 
-SupportedPlan add_supports(const RasterMaps& maps, RasterPlan slices, const Sheet& sheet, const PlanOptions& plan_options,
-                       const SupportOptions& options) {
+SupportedPlan add_supports(const RasterMaps& maps, RasterPlan raster_plan, const Sheet& sheet,
+                           const PlanOptions& plan_options, const SupportOptions& options) {
   const auto lock = exact_run_lock();
   // The greedy choice depends on the order the faces choose in, and one order can paint itself into
   // a corner that another avoids: the next orders of the same random sequence get their turn.
   std::mt19937 random(options.seed);
-  split_into_pieces(slices, std::int64_t{slices.block_px} * slices.block_px / 8);
+  split_into_pieces(raster_plan, std::int64_t{raster_plan.block_px} * raster_plan.block_px / 8);
   const OrderSetting setting{maps, sheet, plan_options, options,
-                             std::make_shared<const ExactPlan>(maps, slices, sheet, plan_options)};
+                             std::make_shared<const ExactPlan>(maps, raster_plan, sheet, plan_options)};
   std::optional<SupportedPlan> best;
   for (int order = 1; order <= std::max(1, options.orders); ++order) {
     const bool last = order >= options.orders;
     const OrderRules rules{order >= std::min(options.orders, kSplitRetryFromOrder),
                            {true, order >= std::min(options.orders, kBelowTipsFromOrder),
                             order >= std::min(options.orders, kCornersFromOrder)}};
-    SupportedPlan run = FaceOrderRun(setting, last ? std::move(slices) : slices, rules, random).run();
+    SupportedPlan run = FaceOrderRun(setting, last ? std::move(raster_plan) : raster_plan, rules, random).run();
     if (!best || shortfall(run, options.allow_dangling) < shortfall(*best, options.allow_dangling))
       best = std::move(run);
     best->report.orders = order;
