@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The raster plan's edits (slice.hpp, raster_plan_edits.cpp), each on its own: coplanar faces
 // merged, folds moved to their lines.
+#include "raster_plan_edits.hpp"
+
 #include <gtest/gtest.h>
 
 #include "origamic/raster.hpp"

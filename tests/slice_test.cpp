@@ -12,6 +12,7 @@
 #include "origamic/design.hpp"
 #include "origamic/likeness.hpp"
 #include "origamic/placement.hpp"
+#include "raster_plan_edits.hpp"
 
 namespace origamic {
 namespace {

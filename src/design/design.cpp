@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "origamic/design.hpp"
-#include "origamic/error.hpp"
-#include "exact_runs.hpp"
-#include "number_text.hpp"
 
 #include <algorithm>
 #include <chrono>
+
+#include "exact_runs.hpp"
+#include "number_text.hpp"
+#include "origamic/error.hpp"
+#include "raster_plan_edits.hpp"
 
 namespace origamic {
 namespace {

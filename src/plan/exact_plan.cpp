@@ -20,6 +20,7 @@
 #include "exact_plan_state.hpp"
 #include "exact_runs.hpp"
 #include "origamic/plan.hpp"
+#include "raster_plan_edits.hpp"
 
 namespace origamic {
 namespace {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Edits of a raster plan's face map that slicing and the support loop share: coplanar faces merged,
-// faces in parts split, V/H boundaries moved onto their fold lines (declared in slice.hpp).
+// faces in parts split, V/H boundaries moved onto their fold lines.
+#include "raster_plan_edits.hpp"
+
 #include <algorithm>
 #include <array>
 #include <climits>

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "origamic/error.hpp"
+#include "raster_plan_edits.hpp"
 
 namespace origamic {
 namespace {

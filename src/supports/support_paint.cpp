@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "bands.hpp"
+#include "raster_plan_edits.hpp"
 #include "support_choice.hpp"
 
 namespace origamic {

@@ -15,6 +15,7 @@
 
 #include "bands.hpp"
 #include "exact_runs.hpp"
+#include "raster_plan_edits.hpp"
 #include "support_choice.hpp"
 #include "support_picture.hpp"
 
