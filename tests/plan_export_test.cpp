@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
+#include <sstream>
 
 #include "helpers.hpp"
 #include "origamic/design.hpp"
@@ -386,6 +387,30 @@ TEST_F(HousePlan, PlanFilesInParallelAreEachExportersOwn) {
   EXPECT_EQ(files[2].bytes, plan_png(house(), options));
   EXPECT_EQ(files[3].path, "out/house.pdf");
   EXPECT_EQ(files[3].bytes, pdf);
+}
+
+// dxflib sets the DIMSTYLE's text style (group 340) only for a style named exactly "Standard"; while
+// ours was "standard" it wrote whatever its memory held, and R2000 files differed from run to run.
+TEST_F(HousePlan, R2000DxfIsTheSameEveryTimeAndItsDimstyleNamesItsTextStyle) {
+  ExportOptions options = exports(FoldStyle::Score);
+  options.dxf_version = DxfVersion::R2000;
+  const std::string dxf = plan_dxf(house(), options);
+  EXPECT_TRUE(plan_dxf(house(), options) == dxf) << "a second write gave other bytes";
+  std::map<std::string, unsigned long> style_handles;  // STYLE records: name -> handle (5)
+  std::vector<unsigned long> dimstyle_text_styles;     // DIMSTYLE records' 340
+  std::istringstream in(dxf);
+  std::string type;
+  unsigned long handle = 0;
+  for (std::string code, value; std::getline(in, code) && std::getline(in, value);) {
+    code.erase(0, code.find_first_not_of(' '));
+    if (code == "0") type = value;
+    if (type == "STYLE" && code == "5") handle = std::stoul(value, nullptr, 16);
+    if (type == "STYLE" && code == "2") style_handles[value] = handle;
+    if (type == "DIMSTYLE" && code == "340") dimstyle_text_styles.push_back(std::stoul(value, nullptr, 16));
+  }
+  ASSERT_EQ(dimstyle_text_styles.size(), 1u);
+  ASSERT_EQ(style_handles.size(), 1u) << "one text style";
+  EXPECT_EQ(dimstyle_text_styles[0], style_handles.begin()->second) << "DIMSTYLE's 340 is the STYLE record's handle";
 }
 
 TEST_F(HousePlan, PerforationsKeepClearOfEveryCutAndCutTheirShareOfEachFold) {

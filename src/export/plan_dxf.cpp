@@ -138,7 +138,9 @@ void write_tables(DL_Dxf& dxf, DL_WriterA& dw, const DxfDrawing& drawing) {
   dw.tableEnd();
   write_layer_table(dxf, dw, drawing);
   dw.tableStyle(1);
-  dxf.writeStyle(dw, DL_StyleData("standard", 0, 2.5, 1.0, 0.0, 0, 2.5, "txt", ""));
+  // dxflib gives R2000's DIMSTYLE the text style's handle (340) only for a style named exactly
+  // "Standard", else an uninitialised value; R12 has no handles and keeps the name it always had.
+  dxf.writeStyle(dw, DL_StyleData(drawing.r2000() ? "Standard" : "standard", 0, 2.5, 1.0, 0.0, 0, 2.5, "txt", ""));
   dw.tableEnd();
   dxf.writeView(dw);
   dxf.writeUcs(dw);
