@@ -11,6 +11,8 @@
 #include <iterator>
 #include <map>
 #include <mutex>
+#include <optional>
+#include <span>
 #include <vector>
 
 #include "exact_plan_state.hpp"
@@ -91,89 +93,109 @@ constexpr std::int32_t kPainted = -2;
 
 exact::Rational exact_Y(const FoldLine& line) { return exact::Rational(line.h) - exact::Rational(line.d); }
 
+// The line's crossings, and the ends of the bands painted over it, as marks: a crossing points at
+// its rational, a band end keeps its fold line, whose rational h - d is made only when needed.
+// Most comparisons are settled by the nearest doubles (rounding is monotone; for a fold line,
+// the IEEE difference h - d is the nearest double), and painting copies no rational.
+struct Mark {
+  const exact::Rational* Y;  // or null: then Y is exactly fold.h - fold.d
+  FoldLine fold;
+  double Y_near;
+  std::int32_t above;
+  exact::Rational exact() const { return Y ? *Y : exact_Y(fold); }
+};
+
+bool below(const Mark& a, const Mark& b) { return a.Y_near != b.Y_near ? a.Y_near < b.Y_near : a.exact() < b.exact(); }
+
+Mark at_fold(const FoldLine& fold, std::int32_t above) { return Mark{nullptr, fold, fold.h - fold.d, above}; }
+
+// A band covers the line from its lower to its upper fold line: the crossings between go, and
+// the label above its top is what the line held there.
+std::vector<Mark> painted_over(std::vector<Mark> line, std::span<const PaintedBand> painted) {
+  for (std::size_t k = 0; k < painted.size() && !line.empty(); ++k) {
+    Mark lo = at_fold(painted[k].a, kPainted - static_cast<std::int32_t>(k)), hi = at_fold(painted[k].b, kNoLabel);
+    if (below(hi, lo)) std::swap(lo.fold, hi.fold), std::swap(lo.Y_near, hi.Y_near);
+    // Within the sheet: a run of rows ends on pixel edges, which may lie beyond its outline.
+    if (below(lo, line.front())) lo = {line.front().Y, line.front().fold, line.front().Y_near, lo.above};
+    if (below(line.back(), hi)) hi = {line.back().Y, line.back().fold, line.back().Y_near, hi.above};
+    if (!below(lo, hi)) continue;
+    const auto first = std::ranges::partition_point(line, [&](const Mark& m) { return below(m, lo); });
+    const auto last = std::partition_point(first, line.end(), [&](const Mark& m) { return !below(hi, m); });
+    hi.above = last == line.begin() ? kNoLabel : std::prev(last)->above;
+    line.insert(line.erase(first, last), {lo, hi});
+  }
+  return line;
+}
+
+// How many marks lie under the ray's start (going up: at or under it). Piece i lies between marks
+// i and i + 1, and the first piece walked holds the start: going up, the one beginning at or below
+// it; going down, the one ending at or above it.
+std::ptrdiff_t marks_under_start(const std::vector<Mark>& line, const ExactPlan::Ray& ray) {
+  const Mark from = at_fold({ray.from_Y, 0}, kNoLabel);
+  const auto n = static_cast<std::ptrdiff_t>(line.size());
+  std::ptrdiff_t under = 0;
+  while (under < n) {
+    const Mark& m = line[static_cast<std::size_t>(under)];
+    if (ray.up ? below(from, m) : !below(m, from)) break;
+    ++under;
+  }
+  return under;
+}
+
+// Whether a fold lands on the piece of the line between marks lo and hi, from the ray's start on.
+// The piece holds its near end, not its far one: a fold there lands on the next piece. Ends are
+// taken as the plan takes fold lines, to kFoldLineTolerance_mm: a support's height is the double
+// nearest edge Y + d, so its fold line h - d lies a rounding off the pixel edge it was drawn from.
+// The near end reaches short_mm farther: a fold that short of it lands on the piece.
+bool lands_between(const FoldLine& fold, const Mark& lo, const Mark& hi, const ExactPlan::Ray& ray) {
+  using exact::Rational;
+  const double slack = kFoldLineTolerance_mm + ray.short_mm + 1e-9;  // closer calls go exact
+  const double Y_near = fold.h - fold.d;
+  if (Y_near < lo.Y_near - slack || Y_near > hi.Y_near + slack) return false;
+  const Rational Y = exact_Y(fold), start(ray.from_Y), tolerance(kFoldLineTolerance_mm);
+  const Rational near_reach = tolerance + Rational(ray.short_mm);
+  return ray.up ? start <= Y && lo.exact() - near_reach <= Y && Y < hi.exact() - tolerance
+                : Y <= start && lo.exact() + tolerance < Y && Y <= hi.exact() + near_reach;
+}
+
+struct Plane {
+  Orientation orientation;
+  double depth_mm;
+};
+
+// The plane of what the line holds above a mark labelled g: a face or a painted band; none for a
+// hole or outside the paper.
+std::optional<Plane> plane_above(std::int32_t g, const std::vector<RasterFace>& faces,
+                                 std::span<const PaintedBand> painted) {
+  if (g >= 0) {
+    const RasterFace& target = faces[static_cast<std::size_t>(g)];
+    if (target.hole) return std::nullopt;
+    return Plane{target.orientation, target.depth_mm};
+  }
+  if (g <= kPainted) {
+    const PaintedBand& band = painted[static_cast<std::size_t>(kPainted - g)];
+    return Plane{band.orientation, band.depth_mm};
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::vector<ExactPlan::Reached> ExactPlan::faces_reached(const Ray& ray) const {
   const auto& [x, from_Y, up, h, d, painted, short_mm] = ray;
-  using Rational = exact::Rational;
-  // The line's crossings, and the ends of the bands painted over it, as marks: a crossing points at
-  // its rational, a band end keeps its fold line, whose rational h - d is made only when needed.
-  // Most comparisons are settled by the nearest doubles (rounding is monotone; for a fold line,
-  // the IEEE difference h - d is the nearest double), and painting copies no rational.
-  struct Mark {
-    const Rational* Y;  // or null: then Y is exactly fold.h - fold.d
-    FoldLine fold;
-    double Y_near;
-    std::int32_t above;
-    Rational exact() const { return Y ? *Y : exact_Y(fold); }
-  };
-  const auto less = [](const Mark& a, const Mark& b) {
-    return a.Y_near != b.Y_near ? a.Y_near < b.Y_near : a.exact() < b.exact();
-  };
-  const auto at_fold = [](const FoldLine& fold, std::int32_t above) {
-    return Mark{nullptr, fold, fold.h - fold.d, above};
-  };
-  std::vector<Mark> line;
-  for (const State::Crossing& c : state_->line_at(x)) line.push_back({&c.Y, {}, c.Y_near, c.above});
-  // A band covers the line from its lower to its upper fold line: the crossings between go, and
-  // the label above its top is what the line held there.
-  for (std::size_t k = 0; k < painted.size() && !line.empty(); ++k) {
-    Mark lo = at_fold(painted[k].a, kPainted - static_cast<std::int32_t>(k)), hi = at_fold(painted[k].b, kNoLabel);
-    if (less(hi, lo)) std::swap(lo.fold, hi.fold), std::swap(lo.Y_near, hi.Y_near);
-    // Within the sheet: a run of rows ends on pixel edges, which may lie beyond its outline.
-    if (less(lo, line.front())) lo = {line.front().Y, line.front().fold, line.front().Y_near, lo.above};
-    if (less(line.back(), hi)) hi = {line.back().Y, line.back().fold, line.back().Y_near, hi.above};
-    if (!less(lo, hi)) continue;
-    const auto first = std::ranges::partition_point(line, [&](const Mark& m) { return less(m, lo); });
-    const auto last = std::partition_point(first, line.end(), [&](const Mark& m) { return !less(hi, m); });
-    hi.above = last == line.begin() ? kNoLabel : std::prev(last)->above;
-    line.insert(line.erase(first, last), {lo, hi});
-  }
-  const std::vector<RasterFace>& faces = state_->faces;
-  const Mark from = at_fold({from_Y, 0}, kNoLabel);
-  // A fold at Y on the piece of the line between crossings i and i + 1, from the ray's start on.
-  // The piece holds its near end, not its far one: a fold there lands on the next piece. Ends are
-  // taken as the plan takes fold lines, to kFoldLineTolerance_mm: a support's height is the double
-  // nearest edge Y + d, so its fold line h - d lies a rounding off the pixel edge it was drawn from.
-  // The near end reaches short_mm farther: a fold that short of it lands on the piece.
-  auto on = [&](const FoldLine& fold, std::size_t i) {
-    const double slack = kFoldLineTolerance_mm + short_mm + 1e-9;  // closer calls go exact
-    const Mark &lo = line[i], &hi = line[i + 1];
-    const double Y_near = fold.h - fold.d;
-    if (Y_near < lo.Y_near - slack || Y_near > hi.Y_near + slack) return false;
-    const Rational Y = exact_Y(fold), start(from_Y), tolerance(kFoldLineTolerance_mm);
-    const Rational near_reach = tolerance + Rational(short_mm);
-    return up ? start <= Y && lo.exact() - near_reach <= Y && Y < hi.exact() - tolerance
-              : Y <= start && lo.exact() + tolerance < Y && Y <= hi.exact() + near_reach;
-  };
+  std::vector<Mark> crossings;
+  for (const State::Crossing& c : state_->line_at(x)) crossings.push_back({&c.Y, {}, c.Y_near, c.above});
+  const std::vector<Mark> line = painted_over(std::move(crossings), painted);
   std::vector<Reached> reached;
   const auto n = static_cast<std::ptrdiff_t>(line.size());
-  // Piece i lies between crossings i and i + 1. The first piece walked holds the start: going up,
-  // the one beginning at or below it; going down, the one ending at or above it.
-  std::ptrdiff_t below = 0;  // crossings under the start (going up: at or under it)
-  while (below < n) {
-    const Mark& m = line[static_cast<std::size_t>(below)];
-    if (up ? less(from, m) : !less(m, from)) break;
-    ++below;
-  }
-  for (std::ptrdiff_t i = below - 1; i >= 0 && i + 1 < n; i += up ? 1 : -1) {
+  for (std::ptrdiff_t i = marks_under_start(line, ray) - 1; i >= 0 && i + 1 < n; i += up ? 1 : -1) {
     const auto k = static_cast<std::size_t>(i);
     const std::int32_t g = line[k].above;
-    Orientation orientation;
-    double depth_mm;
-    if (g >= 0) {
-      const RasterFace& target = faces[static_cast<std::size_t>(g)];
-      if (target.hole) continue;
-      orientation = target.orientation, depth_mm = target.depth_mm;
-    } else if (g <= kPainted) {
-      const PaintedBand& band = painted[static_cast<std::size_t>(kPainted - g)];
-      orientation = band.orientation, depth_mm = band.depth_mm;
-    } else {
-      continue;
-    }
-    if (!support_folds_onto(orientation, depth_mm, up, h, d)) continue;
-    const FoldLine fold = support_fold(orientation, depth_mm, h, d);
-    if (on(fold, k)) reached.push_back({std::max(g, kNoLabel), orientation, depth_mm, fold.h - fold.d});
+    const std::optional<Plane> plane = plane_above(g, state_->faces, painted);
+    if (!plane || !support_folds_onto(plane->orientation, plane->depth_mm, up, h, d)) continue;
+    const FoldLine fold = support_fold(plane->orientation, plane->depth_mm, h, d);
+    if (lands_between(fold, line[k], line[k + 1], ray))
+      reached.push_back({std::max(g, kNoLabel), plane->orientation, plane->depth_mm, fold.h - fold.d});
   }
   return reached;
 }

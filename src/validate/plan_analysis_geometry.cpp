@@ -129,23 +129,37 @@ void add_joined_folds(std::vector<FoldPiece> pieces, Input& in) {
   }
 }
 
-}  // namespace
-
-Input collect(const std::vector<PlanPolyline>& lines, const AnalysisOptions& options) {
-  const FT unit = exact_unit(options.unit);
-  const bool scaled = options.unit != DrawingUnit::Millimetre;
+// The lines' points in exact plan mm; throws if a coordinate is not finite.
+std::vector<std::vector<Point>> exact_points(const std::vector<PlanPolyline>& lines, DrawingUnit drawing_unit) {
+  const FT unit = exact_unit(drawing_unit);
+  const bool scaled = drawing_unit != DrawingUnit::Millimetre;
   auto exact = [&](PlanPoint p) {
     if (!std::isfinite(p.X) || !std::isfinite(p.Y)) throw InputError("lines", "a coordinate is not finite");
     return scaled ? Point(FT(p.X) * unit, FT(p.Y) * unit) : Point(p.X, p.Y);
   };
   std::vector<std::vector<Point>> points(lines.size());
-  bool any_line = false, any_outline = false;
-  for (std::size_t i = 0; i < lines.size(); ++i) {
+  for (std::size_t i = 0; i < lines.size(); ++i)
     for (const PlanPoint& p : lines[i].points) points[i].push_back(exact(p));
-    if (lines[i].points.size() >= 2) (lines[i].kind == LineKind::Outline ? any_outline : any_line) = true;
-  }
-  if (!any_line) throw InputError("lines", "no cut or fold line");
+  return points;
+}
 
+// What the lines of two points or more are drawn as.
+struct Drawn {
+  bool any_line = false;     // a cut or a fold
+  bool any_outline = false;  // on OUTLINE
+};
+
+Drawn drawn_as(const std::vector<PlanPolyline>& lines) {
+  Drawn drawn;
+  for (const PlanPolyline& line : lines)
+    if (line.points.size() >= 2) (line.kind == LineKind::Outline ? drawn.any_outline : drawn.any_line) = true;
+  return drawn;
+}
+
+// An input holding only the sheet: the bounding box of the OUTLINE lines if any, else of every
+// line. Throws if it has no area.
+Input sheet_of(const std::vector<PlanPolyline>& lines, const std::vector<std::vector<Point>>& points,
+               bool any_outline) {
   Input in;
   bool first = true;
   for (std::size_t i = 0; i < lines.size(); ++i) {
@@ -162,59 +176,99 @@ Input collect(const std::vector<PlanPolyline>& lines, const AnalysisOptions& opt
     throw InputError("lines", "the sheet (X " + num(nearest_double(in.min_X)) + " to " + num(nearest_double(in.max_X)) +
                      ", Y " + num(nearest_double(in.min_Y)) + " to " + num(nearest_double(in.max_Y)) +
                      " mm) has no area");
-  // The main fold: Y = 0 where the sheet straddles it (drawn from the main fold), else halfway up
-  // the sheet drawn on OUTLINE (from its lower-left corner, as origamic writes DXF and cutters
-  // expect). Every point moves by it exactly, so the analysis works in plan coordinates either way.
-  // Without an outline the lines' extent is no sheet to halve.
-  if (!(in.min_Y < FT(0) && FT(0) < in.max_Y)) {
-    if (!any_outline)
-      throw InputError("lines", "the lines (Y " + num(nearest_double(in.min_Y)) + " to " +
-                                    num(nearest_double(in.max_Y)) +
-                                    " mm) do not straddle the main fold Y = 0, and no OUTLINE gives the sheet "
-                                    "whose middle it is: draw the sheet's edge on OUTLINE");
-    in.main_fold_Y = (in.min_Y + in.max_Y) / 2;
+  return in;
+}
+
+// The main fold: Y = 0 where the sheet straddles it (drawn from the main fold), else halfway up
+// the sheet drawn on OUTLINE (from its lower-left corner, as origamic writes DXF and cutters
+// expect): then its Y in the drawing. Every point moves by it exactly, so the analysis works in
+// plan coordinates either way. Without an outline the lines' extent is no sheet to halve.
+std::optional<FT> main_fold_off_zero(const Input& sheet, bool any_outline) {
+  if (sheet.min_Y < FT(0) && FT(0) < sheet.max_Y) return std::nullopt;
+  if (!any_outline)
+    throw InputError("lines", "the lines (Y " + num(nearest_double(sheet.min_Y)) + " to " +
+                                  num(nearest_double(sheet.max_Y)) +
+                                  " mm) do not straddle the main fold Y = 0, and no OUTLINE gives the sheet "
+                                  "whose middle it is: draw the sheet's edge on OUTLINE");
+  return (sheet.min_Y + sheet.max_Y) / 2;
+}
+
+// The input's curves: the lines clipped to its sheet, with a warning per line that leaves it, and
+// the horizontal folds drawn in pieces joined.
+class SheetCurves {
+ public:
+  explicit SheetCurves(Input in)
+      : in_(std::move(in)), sheet_(Point(in_.min_X, in_.min_Y), Point(in_.max_X, in_.max_Y)) {}
+
+  void add_outline() {
+    const Point corners[4] = {
+        {in_.min_X, in_.min_Y}, {in_.max_X, in_.min_Y}, {in_.max_X, in_.max_Y}, {in_.min_X, in_.max_Y}};
+    for (int k = 0; k < 4; ++k) add(corners[k], corners[(k + 1) % 4], LineKind::Outline, false);
+  }
+
+  void add_line(const std::vector<Point>& points, LineKind kind, bool perforation) {
+    bool reported = false;
+    for (std::size_t k = 1; k < points.size(); ++k) {
+      const Point &p = points[k - 1], &q = points[k];
+      if (!sheet_.has_on_unbounded_side(p) && !sheet_.has_on_unbounded_side(q)) {
+        add(p, q, kind, perforation);
+        continue;
+      }
+      if (!reported) {
+        reported = true;
+        warn_outside(p, q);
+      }
+      const auto clipped = CGAL::intersection(Kernel::Segment_2(p, q), sheet_);
+      if (!clipped) continue;
+      if (const auto* s = boost::get<Kernel::Segment_2>(&*clipped)) add(s->source(), s->target(), kind, perforation);
+    }
+  }
+
+  Input with_folds_joined() && {
+    add_joined_folds(std::move(fold_pieces_), in_);
+    return std::move(in_);
+  }
+
+ private:
+  void add(const Point& p, const Point& q, LineKind kind, bool perforation) {
+    if (p == q) return;
+    if ((kind == LineKind::Mountain || kind == LineKind::Valley) && p.y() == q.y()) {
+      fold_pieces_.push_back({p.y(), CGAL::min(p.x(), q.x()), CGAL::max(p.x(), q.x()), kind, perforation});
+      return;
+    }
+    in_.curves.emplace_back(Kernel::Segment_2(p, q), static_cast<std::int32_t>(in_.kind.size()));
+    in_.kind.push_back(kind);
+  }
+
+  void warn_outside(const Point& p, const Point& q) {
+    const PlanPoint at = plan_point(sheet_.has_on_unbounded_side(p) ? p : q);
+    in_.warnings.push_back({PlanProblemKind::OutsideSheet, at, plan_point(p), plan_point(q), -1, 0,
+                            "a line leaves the sheet at " + point_text(at) + ": clipped to the sheet"});
+  }
+
+  Input in_;
+  const Kernel::Iso_rectangle_2 sheet_;
+  std::vector<FoldPiece> fold_pieces_;  // horizontal folds, to be joined
+};
+
+}  // namespace
+
+Input collect(const std::vector<PlanPolyline>& lines, const AnalysisOptions& options) {
+  std::vector<std::vector<Point>> points = exact_points(lines, options.unit);
+  const Drawn drawn = drawn_as(lines);
+  if (!drawn.any_line) throw InputError("lines", "no cut or fold line");
+  Input in = sheet_of(lines, points, drawn.any_outline);
+  if (const std::optional<FT> main_fold_Y = main_fold_off_zero(in, drawn.any_outline)) {
+    in.main_fold_Y = *main_fold_Y;
     for (auto& line : points)
       for (Point& p : line) p = Point(p.x(), p.y() - in.main_fold_Y);
     in.min_Y -= in.main_fold_Y;
     in.max_Y -= in.main_fold_Y;
   }
-
-  const Kernel::Iso_rectangle_2 sheet(Point(in.min_X, in.min_Y), Point(in.max_X, in.max_Y));
-  std::vector<FoldPiece> fold_pieces;
-  bool perforation = false;
-  auto add = [&](const Point& p, const Point& q, LineKind kind) {
-    if (p == q) return;
-    if ((kind == LineKind::Mountain || kind == LineKind::Valley) && p.y() == q.y()) {
-      fold_pieces.push_back({p.y(), CGAL::min(p.x(), q.x()), CGAL::max(p.x(), q.x()), kind, perforation});
-      return;
-    }
-    in.curves.emplace_back(Kernel::Segment_2(p, q), static_cast<std::int32_t>(in.kind.size()));
-    in.kind.push_back(kind);
-  };
-  const Point corners[4] = {{in.min_X, in.min_Y}, {in.max_X, in.min_Y}, {in.max_X, in.max_Y}, {in.min_X, in.max_Y}};
-  for (int k = 0; k < 4; ++k) add(corners[k], corners[(k + 1) % 4], LineKind::Outline);
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    perforation = lines[i].perforation;
-    bool reported = false;
-    for (std::size_t k = 1; k < points[i].size(); ++k) {
-      const Point &p = points[i][k - 1], &q = points[i][k];
-      if (!sheet.has_on_unbounded_side(p) && !sheet.has_on_unbounded_side(q)) {
-        add(p, q, lines[i].kind);
-        continue;
-      }
-      if (!reported) {
-        reported = true;
-        const PlanPoint at = plan_point(sheet.has_on_unbounded_side(p) ? p : q);
-        in.warnings.push_back({PlanProblemKind::OutsideSheet, at, plan_point(p), plan_point(q), -1, 0,
-                               "a line leaves the sheet at " + point_text(at) + ": clipped to the sheet"});
-      }
-      const auto clipped = CGAL::intersection(Kernel::Segment_2(p, q), sheet);
-      if (!clipped) continue;
-      if (const auto* s = boost::get<Kernel::Segment_2>(&*clipped)) add(s->source(), s->target(), lines[i].kind);
-    }
-  }
-  add_joined_folds(std::move(fold_pieces), in);
-  return in;
+  SheetCurves curves(std::move(in));
+  curves.add_outline();
+  for (std::size_t i = 0; i < lines.size(); ++i) curves.add_line(points[i], lines[i].kind, lines[i].perforation);
+  return std::move(curves).with_folds_joined();
 }
 
 // ---------------------------------------------------------------------------------------------
