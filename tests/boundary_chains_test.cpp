@@ -50,7 +50,8 @@ TEST(BoundaryChains, EveryEdgeBetweenTwoFacesIsTracedOnce) {
       // The pixels either side of the step, in the plan (Y up, rows down): `left` on its left.
       const double du = (b.u - a.u) / 2.0, dv = (b.v - a.v) / 2.0, mx = (a.u + b.u) / 4.0, my = (a.v + b.v) / 4.0;
       const int left_c = static_cast<int>(std::floor(mx + dv / 2)), left_r = static_cast<int>(std::floor(my - du / 2));
-      const int right_c = static_cast<int>(std::floor(mx - dv / 2)), right_r = static_cast<int>(std::floor(my + du / 2));
+      const int right_c = static_cast<int>(std::floor(mx - dv / 2)),
+                right_r = static_cast<int>(std::floor(my + du / 2));
       EXPECT_EQ(labels(left_c, left_r), chain.left);
       EXPECT_EQ(labels(right_c, right_r), chain.right);
       ++traced;

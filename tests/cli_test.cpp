@@ -70,12 +70,14 @@ TEST(Cli, MistakesAreNamedWithTheNearestRightWord) {
   const struct {
     std::string arguments, message;
   } cases[] = {
-      {"desgin " + house, "origamic: unknown command 'desgin'; did you mean design? (the commands are design, "
-                          "validate and fold; see origamic --help)\n"},
+      {"desgin " + house,
+       "origamic: unknown command 'desgin'; did you mean design? (the commands are design, "
+       "validate and fold; see origamic --help)\n"},
       {"design " + house + " --colour craft",
        "origamic: --colour: no such option of origamic design; did you mean --colours? (see origamic design "
        "--help)\n"},
-      {"fold plan.dxf --out a.obj --angle abc", "origamic: --angle: 'abc' is not a number (see origamic fold --help)\n"},
+      {"fold plan.dxf --out a.obj --angle abc",
+       "origamic: --angle: 'abc' is not a number (see origamic fold --help)\n"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.arguments);
@@ -145,7 +147,8 @@ TEST(Cli, AFailingOutputLeavesNoFileBehind) {
     EXPECT_FALSE(std::filesystem::exists(dir / "out" / name)) << name;
   EXPECT_FALSE(std::filesystem::exists(dir / "maps" / "D.png"));
   std::size_t left = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(dir / "out")) left += entry.path().filename() != "house.png";
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "out"))
+    left += entry.path().filename() != "house.png";
   EXPECT_EQ(left, 0u) << "temporary files left behind";
 }
 
@@ -163,16 +166,16 @@ TEST(Cli, CardOffThePixelLatticeStillGivesAnExactPlan) {
 TEST(Cli, StrictExitsThreeForAnInvalidPlanAfterWritingIt) {
   const test::TempDir dir;
   test::write_obj(dir / "floating.obj", test::box({0, 1, -1}, {2, 2, 0}));  // Y-up: in mid-air
-  const CommandRun r = run("design " + quoted(dir / "floating.obj") + " --scale 30 --offset 60,0,50 --no-supports --strict --out " +
-                           quoted(dir / "out"));
+  const CommandRun r = run("design " + quoted(dir / "floating.obj") +
+                           " --scale 30 --offset 60,0,50 --no-supports --strict --out " + quoted(dir / "out"));
   EXPECT_EQ(r.status, 3) << r.output;
   EXPECT_NE(r.output.find("INVALID"), std::string::npos) << r.output;
   for (const char* name : {"floating.json", "floating.dxf", "floating.svg", "floating.png", "floating.pdf"})
     EXPECT_TRUE(std::filesystem::exists(dir / "out" / name)) << name;
 
   // The same box with its supports stands.
-  const CommandRun supported = run("design " + quoted(dir / "floating.obj") + " --scale 30 --offset 60,0,50 --strict --out " +
-                                   quoted(dir / "supported"));
+  const CommandRun supported = run("design " + quoted(dir / "floating.obj") +
+                                   " --scale 30 --offset 60,0,50 --strict --out " + quoted(dir / "supported"));
   EXPECT_EQ(supported.status, 0) << supported.output;
   test::write_obj(dir / "box.obj", test::box({0, 0, -1}, {2, 1, 0}));  // on the floor, against the back
   const CommandRun valid = run("design " + quoted(dir / "box.obj") + " --strict --out " + quoted(dir / "out"));
@@ -184,7 +187,8 @@ TEST(Cli, StrictExitsThreeForAnInvalidPlanAfterWritingIt) {
 void expect_rejected(const std::string& arguments, const std::string& names, const std::string& problem) {
   SCOPED_TRACE(arguments);
   const test::TempDir out;
-  const CommandRun r = run("design " + arguments + " --out " + quoted(out / "report") + " --dump-maps " + quoted(out / "maps"));
+  const CommandRun r =
+      run("design " + arguments + " --out " + quoted(out / "report") + " --dump-maps " + quoted(out / "maps"));
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_EQ(std::ranges::count(r.output, '\n'), 1) << r.output;
   EXPECT_NE(r.output.find(names), std::string::npos) << r.output;
@@ -257,7 +261,8 @@ TEST(Cli, RunningOutOfMemoryExitsTwoWithOneLine) {
 }
 
 TEST(Cli, FoldModelAndRendersNeedAnOutputFolder) {
-  const CommandRun r = run("design " + quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") + " --renders");
+  const CommandRun r =
+      run("design " + quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") + " --renders");
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("--renders: needs --out"), std::string::npos) << r.output;
 }
@@ -269,7 +274,8 @@ std::pair<int, int> picture_size(const std::filesystem::path& file) {
   in.read(reinterpret_cast<char*>(b.data()), b.size());
   if (std::string(reinterpret_cast<const char*>(b.data()) + 1, 3) == "PNG")
     return {(b[16] << 24) | (b[17] << 16) | (b[18] << 8) | b[19], (b[20] << 24) | (b[21] << 16) | (b[22] << 8) | b[23]};
-  if (std::string(reinterpret_cast<const char*>(b.data()), 6) == "GIF89a") return {b[6] | (b[7] << 8), b[8] | (b[9] << 8)};
+  if (std::string(reinterpret_cast<const char*>(b.data()), 6) == "GIF89a")
+    return {b[6] | (b[7] << 8), b[8] | (b[9] << 8)};
   return {0, 0};
 }
 
@@ -338,9 +344,10 @@ TEST(Cli, SourceDateEpochDatesThePdfAndTwoRunsGiveTheSameBytes) {
 
 TEST(Cli, FabricationOptionsReachTheFiles) {
   const test::TempDir dir;
-  const CommandRun r = run("design " + quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") +
-                           " --card 180x240 --fold-style perforated --perf 1.5,0.5 --fold-inset 0.7 --paper letter --out " +
-                           quoted(dir.path));
+  const CommandRun r =
+      run("design " + quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") +
+          " --card 180x240 --fold-style perforated --perf 1.5,0.5 --fold-inset 0.7 --paper letter --out " +
+          quoted(dir.path));
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("house.{dxf,svg,png,pdf}"), std::string::npos) << r.output;
   const CommandRun info = run_shell("pdfinfo " + quoted(dir / "house.pdf"));
@@ -371,7 +378,8 @@ TEST(Cli, FoldTurnsAnyPlanIntoItsPopUpFlatAt180AndStandingAt90) {
   const test::TempDir dir;
   test::write_obj(dir / "box.obj", test::box({0, 0, -1}, {2, 1, 0}));
   ASSERT_EQ(run("design " + quoted(dir / "box.obj") + " --out " + quoted(dir / "plan")).status, 0);
-  const CommandRun flat = run("fold " + quoted(dir / "plan" / "box.dxf") + " --angle 180 -o " + quoted(dir / "flat.obj"));
+  const CommandRun flat =
+      run("fold " + quoted(dir / "plan" / "box.dxf") + " --angle 180 -o " + quoted(dir / "flat.obj"));
   ASSERT_EQ(flat.status, 0) << flat.output;
   const auto flat_vertices = obj_vertices(dir / "flat.obj");
   ASSERT_GT(flat_vertices.size(), 8u);
@@ -451,7 +459,8 @@ TEST(Cli, AFullDiskIsNamedAndLeavesNoFile) {
                            " --out " + quoted(dir / "small" / "out"));
   std::size_t left = 0;
   std::error_code none;
-  for (const auto& entry : std::filesystem::directory_iterator(dir / "small" / "out", none)) left += !entry.path().empty();
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "small" / "out", none))
+    left += !entry.path().empty();
   test::shell("umount " + quoted(dir / "small"));
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_EQ(std::ranges::count(r.output, '\n'), 1) << r.output;

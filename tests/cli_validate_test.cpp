@@ -231,7 +231,9 @@ TEST(CliValidate, MalformedPlansAreRefusedByValidateAndFold) {
   const auto lwpolyline = [](const std::string& layer, const std::string& count, const std::string& y) {
     return "0\nLWPOLYLINE\n8\n" + layer + "\n90\n" + count + "\n10\n0\n20\n" + y + "\n10\n5\n20\n3\n";
   };
-  const auto plan = [](const std::string& entities) { return "0\nSECTION\n2\nENTITIES\n" + entities + "0\nENDSEC\n0\nEOF\n"; };
+  const auto plan = [](const std::string& entities) {
+    return "0\nSECTION\n2\nENTITIES\n" + entities + "0\nENDSEC\n0\nEOF\n";
+  };
   std::string nan = box;
   nan.replace(nan.find("\n10\n") + 4, nan.find('\n', nan.find("\n10\n") + 4) - nan.find("\n10\n") - 4, "nan");
   test::write_text(dir / "long.dxf", "999\n" + std::string(1500, 'x') + "\n" + box);

@@ -25,7 +25,8 @@ constexpr double kScale = 15, kX = 100;  // mm per unit of the house, and where 
 // A plan's segments of each kind, each with its ends in nanometres, the smaller end first, after
 // mapping X (an exact map, or one rounding: nanometres absorb it). With `edges_stay`, points on the
 // sheet's left and right edges keep their X: the sheet does not move with the model.
-std::multiset<std::array<long long, 5>> segments(const Plan& plan, double X_sign, double X_shift, bool edges_stay = false) {
+std::multiset<std::array<long long, 5>> segments(const Plan& plan, double X_sign, double X_shift,
+                                                 bool edges_stay = false) {
   std::multiset<std::array<long long, 5>> out;
   const auto X_of = [&](double X) {
     return edges_stay && (X == 0 || X == plan.sheet.width_mm) ? X : X_sign * X + X_shift;
@@ -42,7 +43,8 @@ std::multiset<std::array<long long, 5>> segments(const Plan& plan, double X_sign
 }
 
 // What one set of segments has that the other has not, a few of each, for the failure message.
-std::string difference(const std::multiset<std::array<long long, 5>>& a, const std::multiset<std::array<long long, 5>>& b) {
+std::string difference(const std::multiset<std::array<long long, 5>>& a,
+                       const std::multiset<std::array<long long, 5>>& b) {
   std::vector<std::array<long long, 5>> only_a, only_b;
   std::ranges::set_difference(a, b, std::back_inserter(only_a));
   std::ranges::set_difference(b, a, std::back_inserter(only_b));

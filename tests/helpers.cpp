@@ -137,7 +137,8 @@ void write_obj(const std::filesystem::path& file, const TriangleMesh& mesh) {
 }
 
 void write_off(const std::filesystem::path& file, const TriangleMesh& mesh) {
-  std::string text = "OFF\n" + std::to_string(mesh.positions.size()) + " " + std::to_string(mesh.triangles.size()) + " 0\n";
+  std::string text =
+      "OFF\n" + std::to_string(mesh.positions.size()) + " " + std::to_string(mesh.triangles.size()) + " 0\n";
   for (const auto& p : mesh.positions) text += xyz(p) + "\n";
   for (const auto& t : mesh.triangles)
     text += "3 " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) + "\n";

@@ -71,7 +71,8 @@ void expect_exact_construction(const Plan& plan) {
   for (const PlanRegion& region : plan.regions) {
     ASSERT_FALSE(region.rings.empty());
     EXPECT_GT(test::twice_signed_area(region.rings[0]), 0) << "outer ring counter-clockwise";
-    for (std::size_t k = 1; k < region.rings.size(); ++k) EXPECT_LT(test::twice_signed_area(region.rings[k]), 0) << "hole clockwise";
+    for (std::size_t k = 1; k < region.rings.size(); ++k)
+      EXPECT_LT(test::twice_signed_area(region.rings[k]), 0) << "hole clockwise";
     for (const auto& ring : region.rings) {
       total += test::twice_signed_area(ring) / 2;
       region_area[{region.orientation, region.depth_mm}] += test::twice_signed_area(ring) / 2;
@@ -313,7 +314,8 @@ TEST(Plan, ShelfOnTheBackPlaneOnlyIsDangling) {
 }
 
 TEST(Plan, TwoStepStaircaseIsValid) {
-  const Plan plan = plan_of_oa_mesh(test::merged(test::box({40, 0, 0}, {170, 30, 60}), test::box({40, 30, 0}, {170, 60, 30})));
+  const Plan plan =
+      plan_of_oa_mesh(test::merged(test::box({40, 0, 0}, {170, 30, 60}), test::box({40, 30, 0}, {170, 60, 30})));
   expect_exact_construction(plan);
   ASSERT_EQ(plan.faces.size(), 6u);
   EXPECT_TRUE(plan.validity.ok());
@@ -451,7 +453,8 @@ TEST(Plan, EverySeedlikeModelGivesAnExactPlanAndItsFilesCarryTheSameSegments) {
     ASSERT_FALSE(back.is_null()) << "the reader rejected the files";
     EXPECT_EQ(back["insunits"], 4);
     EXPECT_EQ(back["measurement"], 1);
-    for (const LineKind kind : {LineKind::Cut, LineKind::Mountain, LineKind::Valley, LineKind::Outline, LineKind::CutOut}) {
+    for (const LineKind kind :
+         {LineKind::Cut, LineKind::Mountain, LineKind::Valley, LineKind::Outline, LineKind::CutOut}) {
       const std::string layer = layer_style(kind, ColourPreset::Laser).name;
       const std::multiset<SegmentKey> expected = keys_of(plan, kind);
       EXPECT_EQ(keys_of(back["dxf"].value(layer, nlohmann::json::array()), plan.sheet.half_height_mm()), expected)

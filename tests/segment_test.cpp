@@ -38,7 +38,8 @@ TEST(Segment, ABoxIsItsFrontAndItsTopBesideTheBackPlaneAndTheFloor) {
   EXPECT_EQ(front.size(), 1u);
   EXPECT_EQ(top.size(), 1u);
   EXPECT_NE(*front.begin(), *top.begin());
-  EXPECT_EQ(s.pixels[static_cast<std::size_t>(*front.begin())] + s.pixels[static_cast<std::size_t>(*top.begin())], model);
+  EXPECT_EQ(s.pixels[static_cast<std::size_t>(*front.begin())] + s.pixels[static_cast<std::size_t>(*top.begin())],
+            model);
 }
 
 }  // namespace

@@ -43,7 +43,8 @@ TEST(Validity, FaceHeldAlongOneLineByTwoFacesIsDanglingItSwingsAboutIt) {
   const Validity v = validity_of(graph(6, {{1, 2, 0}, {2, 3, 1}, {3, 0, 2}, {4, 2, 7}, {4, 5, 7}, {5, 1, 8}}));
   EXPECT_EQ(v.status[4], FaceStatus::Dangling);
   EXPECT_EQ(v.fold_lines[4], 1);
-  EXPECT_TRUE(v.reaches_back_plane[4] && v.reaches_floor[4]) << "in X and Y, yet it swings: X and Y alone would call it valid";
+  EXPECT_TRUE(v.reaches_back_plane[4] && v.reaches_floor[4])
+      << "in X and Y, yet it swings: X and Y alone would call it valid";
 }
 
 TEST(Validity, TwoStepStaircaseIsValid) {

@@ -263,7 +263,8 @@ Row measure(const Model& model, const DesignOptions& base, const fs::path& out, 
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: bench_likeness MODELS_DIR OUT_DIR [--only NAME]... [--seed N] [--min-strip W] [--where yes]\n");
+    std::fprintf(
+        stderr, "usage: bench_likeness MODELS_DIR OUT_DIR [--only NAME]... [--seed N] [--min-strip W] [--where yes]\n");
     return 2;
   }
   const fs::path models_dir = argv[1], out = argv[2];

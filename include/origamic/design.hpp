@@ -76,6 +76,7 @@ DesignResult design(const std::filesystem::path& model_file, const DesignOptions
 /// The same on a model already read (load_mesh; its file's facts are taken from it, and model_file,
 /// which may be empty, only names it in the result and in errors): a caller that needs the mesh
 /// again, for a picture of the model, reads the file once. No "load" stage time.
-DesignResult design(const LoadedMesh& model, const DesignOptions& options, const std::filesystem::path& model_file = {});
+DesignResult design(const LoadedMesh& model, const DesignOptions& options,
+                    const std::filesystem::path& model_file = {});
 
 }  // namespace origamic

@@ -24,7 +24,9 @@ enum class LineKind : std::uint8_t {
 };
 
 /// Cut, cut-out and outline lines are all cut through the card.
-inline bool is_cut(LineKind kind) { return kind == LineKind::Cut || kind == LineKind::CutOut || kind == LineKind::Outline; }
+inline bool is_cut(LineKind kind) {
+  return kind == LineKind::Cut || kind == LineKind::CutOut || kind == LineKind::Outline;
+}
 
 /// A chain of plan segments of one kind; closed chains repeat their first point at the end.
 struct PlanPolyline {

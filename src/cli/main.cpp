@@ -169,14 +169,16 @@ struct PopupArgs {
 };
 
 void add_popup_options(CLI::App& design, PopupArgs& args) {
-  design.add_flag("--fold-model", args.fold_model,
-                  "also write the pop-up folded at 90 degrees as a mesh: MODEL_popup.obj and its materials MODEL_popup.mtl");
+  design.add_flag(
+      "--fold-model", args.fold_model,
+      "also write the pop-up folded at 90 degrees as a mesh: MODEL_popup.obj and its materials MODEL_popup.mtl");
   design.add_flag("--renders", args.renders,
                   "also write pictures: the pop-up (MODEL_popup.png), the model from the same viewpoint "
                   "(MODEL_model.png) and the card opening (MODEL_opening.gif)");
   design.add_option("--render-size", args.render_size, "size of the pictures in pixels, WIDTHxHEIGHT; the GIF is half")
       ->capture_default_str();
-  design.add_option("--thickness", args.thickness_mm, "paper thickness in mm for --fold-model and --renders (0: sheets)")
+  design
+      .add_option("--thickness", args.thickness_mm, "paper thickness in mm for --fold-model and --renders (0: sheets)")
       ->capture_default_str();
 }
 
@@ -187,10 +189,12 @@ origamic::PopupFileOptions popup_file_options(const PopupArgs& args, const std::
   options.thickness_mm = args.thickness_mm;
   const auto x = args.render_size.find_first_of("xX");
   const auto width = parse_number(std::string_view(args.render_size).substr(0, x));
-  const auto height = x == std::string::npos ? std::nullopt : parse_number(std::string_view(args.render_size).substr(x + 1));
+  const auto height =
+      x == std::string::npos ? std::nullopt : parse_number(std::string_view(args.render_size).substr(x + 1));
   if (!width || !height || *width != std::floor(*width) || *height != std::floor(*height) || std::abs(*width) > 1e6 ||
       std::abs(*height) > 1e6)
-    throw InputError("--render-size: expected WIDTHxHEIGHT in whole pixels, such as 1200x900, not '" + args.render_size + "'");
+    throw InputError("--render-size: expected WIDTHxHEIGHT in whole pixels, such as 1200x900, not '" +
+                     args.render_size + "'");
   options.render.width_px = static_cast<int>(*width);
   options.render.height_px = static_cast<int>(*height);
   if ((args.fold_model || args.renders) && out_dir.empty())
@@ -238,7 +242,9 @@ void add_design_options(CLI::App& design, DesignArgs& args) {
   design.add_option("--dxf", args.dxf, "DXF flavour: r12 (read by everything) or r2000 (LWPOLYLINE)")
       ->check(CLI::IsMember({"r12", "r2000"}))
       ->capture_default_str();
-  design.add_option("--dump-maps", args.maps_dir, "write the maps (D, F, T, N, hit kind, segments S, subsegments SS, faces) and a plan preview as PNGs here");
+  design.add_option(
+      "--dump-maps", args.maps_dir,
+      "write the maps (D, F, T, N, hit kind, segments S, subsegments SS, faces) and a plan preview as PNGs here");
 }
 
 std::string one_line(std::string_view message);
@@ -395,7 +401,8 @@ void add_validate_options(CLI::App& validate, ValidateArgs& args) {
   validate.add_option("PLAN", args.plan, "plan as ASCII DXF: cuts, mountain and valley folds on their layers, in mm, "
                                          "Y = 0 the main fold")
       ->required();
-  validate.add_option("--min-strip", args.min_strip_mm, "W: report faces narrower than this along X or Y, mm (0: no check)")
+  validate
+      .add_option("--min-strip", args.min_strip_mm, "W: report faces narrower than this along X or Y, mm (0: no check)")
       ->capture_default_str();
   validate.add_option("--tolerance", args.tolerance_mm,
                       "a fold and the line Y = h - d of its faces agree within this, mm (absorbs the rounding of "

@@ -62,7 +62,8 @@ LayerStyle layer_style(LineKind kind, ColourPreset preset) {
 }
 
 std::string plan_description(const Plan& plan, const ExportOptions& options) {
-  std::string text = "origamic " + std::string(version) + " plan of " + (options.model.empty() ? "a model" : options.model) +
+  std::string text = "origamic " + std::string(version) + " plan of " +
+                     (options.model.empty() ? "a model" : options.model) +
                      "; units mm, 1:1 (plan X along the main fold from the sheet's left edge, Y up from the main fold);"
                      " sheet " + mm_text(plan.sheet.width_mm) + " x " + mm_text(plan.sheet.height_mm) + " mm";
   if (!options.settings.empty()) text += "; " + options.settings;
@@ -74,15 +75,15 @@ std::string plan_svg(const Plan& plan, const ExportOptions& options) {
   const double width = plan.sheet.width_mm, height = plan.sheet.height_mm, top = plan.sheet.max_Y();
   const std::string title = "origamic plan: " + xml_escaped(options.model);
   const std::string description = xml_escaped(plan_description(plan, options)) +
-                                  ". SVG: 1 user unit = 1 mm; SVG y = " + mm_text(top) + " - plan Y (the main fold is at y = " +
-                                  mm_text(top) + ").";
+                                  ". SVG: 1 user unit = 1 mm; SVG y = " + mm_text(top) +
+                                  " - plan Y (the main fold is at y = " + mm_text(top) + ").";
   std::ostringstream svg;
   svg << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       << "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\""
       << " xmlns:rdf=\"http://www.w3.org/1999/02/22-rdf-syntax-ns#\" xmlns:cc=\"http://creativecommons.org/ns#\""
       << " xmlns:dc=\"http://purl.org/dc/elements/1.1/\""
-      << " width=\"" << mm_text(width) << "mm\" height=\"" << mm_text(height) << "mm\" viewBox=\"0 0 " << mm_text(width) << ' '
-      << mm_text(height) << "\">\n"
+      << " width=\"" << mm_text(width) << "mm\" height=\"" << mm_text(height) << "mm\" viewBox=\"0 0 " << mm_text(width)
+      << ' ' << mm_text(height) << "\">\n"
       << "<title>" << title << "</title>\n"
       << "<desc>" << description << "</desc>\n"
       // Dublin Core in Inkscape's form, so its Document Metadata dialog shows it.
@@ -155,7 +156,8 @@ std::string plan_png(const Plan& plan, const ExportOptions& options) {
     for (int x = 0; x < w; ++x) {
       std::uint32_t pixel;
       std::memcpy(&pixel, data + static_cast<std::ptrdiff_t>(y) * stride + 4 * x, 4);
-      std::uint8_t* out = &rgb[(static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)) * 3];
+      std::uint8_t* out =
+          &rgb[(static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)) * 3];
       out[0] = static_cast<std::uint8_t>(pixel >> 16), out[1] = static_cast<std::uint8_t>(pixel >> 8),
       out[2] = static_cast<std::uint8_t>(pixel);
     }

@@ -120,8 +120,10 @@ std::vector<OutputFile> raster_image_files(const RasterMaps& maps, const std::fi
   std::vector<OutputFile> files;
   for (const auto& [name, map] : {std::pair{"D.png", &maps.D}, {"F.png", &maps.F}, {"T.png", &maps.T}})
     files.push_back({dir / name, encode_png((dir / name).string(), w, h, gray16(*map))});
-  files.push_back({dir / "N.png", encode_png((dir / "N.png").string(), w, h, PngFormat::Rgb8, normal_rgb(maps.normal))});
-  files.push_back({dir / "kind.png", encode_png((dir / "kind.png").string(), w, h, PngFormat::Rgb8, kind_rgb(maps.kind))});
+  files.push_back(
+      {dir / "N.png", encode_png((dir / "N.png").string(), w, h, PngFormat::Rgb8, normal_rgb(maps.normal))});
+  files.push_back(
+      {dir / "kind.png", encode_png((dir / "kind.png").string(), w, h, PngFormat::Rgb8, kind_rgb(maps.kind))});
   return files;
 }
 

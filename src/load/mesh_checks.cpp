@@ -64,7 +64,8 @@ void check_off_header(const std::filesystem::path& file, const std::string& byte
     return;
   }
   // The counts may follow the keyword on its line or stand on the next.
-  std::istringstream rest(binary.empty() ? next_line() : binary + " " + std::string(std::istreambuf_iterator<char>(first), {}));
+  std::istringstream rest(binary.empty() ? next_line()
+                                         : binary + " " + std::string(std::istreambuf_iterator<char>(first), {}));
   if (!(rest >> counts[0] >> counts[1]))
     fail(file, "OFF header has no vertex and face counts (whole numbers from 0 to 2147483647) after " + keyword);
   if (counts[0] < 0 || counts[1] < 0 || counts[0] > INT32_MAX || counts[1] > INT32_MAX)
@@ -82,7 +83,8 @@ void check_off_header(const std::filesystem::path& file, const std::string& byte
     long long corners = -1, listed = 0;
     std::string word;
     if (!(words >> word) || word.find_first_not_of("0123456789") != std::string::npos || word.size() > 10)
-      fail(file, "line " + std::to_string(first_line + number) + ": a face starts with its corner count, a whole number");
+      fail(file,
+           "line " + std::to_string(first_line + number) + ": a face starts with its corner count, a whole number");
     corners = std::stoll(word);
     while (words >> word) ++listed;
     if (corners > listed)
@@ -229,7 +231,8 @@ void check_obj_faces(const std::filesystem::path& file, const std::string& bytes
         from = slash + 1;
       }
       readable = parts.size() <= 3;
-      for (std::size_t k = 0; k < parts.size() && readable; ++k) readable = whole(parts[k], k == 1 && parts.size() == 3);
+      for (std::size_t k = 0; k < parts.size() && readable; ++k)
+        readable = whole(parts[k], k == 1 && parts.size() == 3);
       ++corners;
     }
     if (!readable || corners < 3)

@@ -378,7 +378,8 @@ LoadedMesh load_mesh_unguarded(const std::filesystem::path& file, const LoadOpti
   }
   if (lo == hi) fail(file, "model has zero extent (all vertices at one point)");
   const bool any_area = std::ranges::any_of(loaded.mesh.triangles, [&](const std::array<std::uint32_t, 3>& t) {
-    const glm::dvec3 &a = loaded.mesh.positions[t[0]], &b = loaded.mesh.positions[t[1]], &c = loaded.mesh.positions[t[2]];
+    const glm::dvec3 &a = loaded.mesh.positions[t[0]], &b = loaded.mesh.positions[t[1]],
+                     &c = loaded.mesh.positions[t[2]];
     const glm::dvec3 n = glm::cross(b - a, c - a);
     return n.x != 0 || n.y != 0 || n.z != 0;
   });

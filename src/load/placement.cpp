@@ -51,7 +51,8 @@ void check_options(const Sheet& sheet, const PlacementOptions& options) {
         sheet.height_mm > 0))
     throw InputError("Sheet", "the sheet must have a positive, finite width and height");
   // Beyond any cutter's bed or printer's page (a wide plotter takes 1.6 m).
-  if (sheet.width_mm > 5000 || sheet.height_mm > 5000) throw InputError("Sheet", "a side longer than 5000 mm is no card");
+  if (sheet.width_mm > 5000 || sheet.height_mm > 5000)
+    throw InputError("Sheet", "a side longer than 5000 mm is no card");
   if (!(std::abs(options.rotate_deg) <= 360))
     throw InputError("PlacementOptions::rotate_deg", "must be an angle from -360 to 360 degrees");
   if (options.scale && !(std::isfinite(*options.scale) && *options.scale > 0))
@@ -122,10 +123,11 @@ Placement place(const TriangleMesh& mesh, const Sheet& sheet, const PlacementOpt
   const bool inside = placed.lo.x >= sheet.min_X() - slack && placed.hi.x <= sheet.max_X() + slack &&
                       placed.lo_Y >= sheet.min_Y() - slack && placed.hi_Y <= sheet.max_Y() + slack;
   if (!inside) {
-    const std::string option = options.offset_mm && options.scale ? "PlacementOptions::scale/PlacementOptions::offset_mm"
-                               : options.offset_mm                ? "PlacementOptions::offset_mm"
-                               : options.scale                    ? "PlacementOptions::scale"
-                                                                  : "Sheet/PlacementOptions::margin_mm";
+    const std::string option = options.offset_mm && options.scale
+                                   ? "PlacementOptions::scale/PlacementOptions::offset_mm"
+                               : options.offset_mm ? "PlacementOptions::offset_mm"
+                               : options.scale     ? "PlacementOptions::scale"
+                                                   : "Sheet/PlacementOptions::margin_mm";
     throw InputError(option, "the model's 45-degree projection (X " + mm(placed.lo.x) + " to " +
                      mm(placed.hi.x) + ", Y " + mm(placed.lo_Y) + " to " + mm(placed.hi_Y) +
                      " mm) leaves the " + mm(sheet.width_mm) + " x " + mm(sheet.height_mm) +

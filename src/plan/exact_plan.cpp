@@ -602,7 +602,8 @@ Areas areas_of(const Arrangement& arr, const Pieces& pieces, std::size_t labels)
     ++areas.arrangement_faces;
     double a = 0;
     for (auto ccb = f->outer_ccbs_begin(); ccb != f->outer_ccbs_end(); ++ccb) a += ccb_area(*ccb);
-    for (auto ccb = f->inner_ccbs_begin(); ccb != f->inner_ccbs_end(); ++ccb) a += ccb_area(*ccb);  // clockwise: negative
+    // Holes run clockwise: their areas are negative.
+    for (auto ccb = f->inner_ccbs_begin(); ccb != f->inner_ccbs_end(); ++ccb) a += ccb_area(*ccb);
     if (f->data() < 0) continue;  // an unlabelled face leaves a hole in the tiling
     areas.total += a;
     areas.of_label[static_cast<std::size_t>(f->data())] += a;

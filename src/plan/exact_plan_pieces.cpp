@@ -58,8 +58,8 @@ Pieces pieces_of(const Arrangement& arr) {
   Pieces pieces;
   std::map<std::int32_t, std::int32_t> piece_of_root;
   for (std::size_t i = 0; i < faces.size(); ++i) {
-    const auto [it, fresh] =
-        piece_of_root.try_emplace(sets.root(static_cast<std::int32_t>(i)), static_cast<std::int32_t>(pieces.label.size()));
+    const auto [it, fresh] = piece_of_root.try_emplace(sets.root(static_cast<std::int32_t>(i)),
+                                                       static_cast<std::int32_t>(pieces.label.size()));
     if (fresh) pieces.label.push_back(faces[i]->data());
     pieces.of[faces[i]] = it->second;
   }

@@ -138,7 +138,8 @@ void check_finite(const PlanRegion& region, std::size_t index) {
   for (const auto& ring : region.rings)
     for (const PlanPoint& p : ring)
       if (!std::isfinite(p.X) || !std::isfinite(p.Y))
-        throw InputError("regions", "region " + std::to_string(index) + " has a ring with a coordinate that is not finite");
+        throw InputError("regions",
+                         "region " + std::to_string(index) + " has a ring with a coordinate that is not finite");
 }
 
 // The fold edges of each region: a horizontal ring edge whose reverse is a ring edge of a placed

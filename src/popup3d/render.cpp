@@ -34,7 +34,8 @@ class Tracer {
       : scene_(scene), embree_(scene.positions, scene.triangles, RTC_BUILD_QUALITY_MEDIUM), handle_(embree_.handle()) {
     normals_.reserve(scene.triangles.size());
     for (const auto& t : scene.triangles) {
-      const glm::dvec3 n = glm::cross(scene.positions[t[1]] - scene.positions[t[0]], scene.positions[t[2]] - scene.positions[t[0]]);
+      const glm::dvec3 n =
+          glm::cross(scene.positions[t[1]] - scene.positions[t[0]], scene.positions[t[2]] - scene.positions[t[0]]);
       const double length = glm::length(n);
       normals_.push_back(length > 0 ? n / length : glm::dvec3(0, 1, 0));
     }
@@ -202,7 +203,8 @@ Image render(const ColouredMesh& scene, const View& view, const RenderOptions& o
   std::vector<Tracer::Hit> hits(static_cast<std::size_t>(sw) * sh);
   tbb::parallel_for(tbb::blocked_range<int>(0, sh), [&](const tbb::blocked_range<int>& rows) {
     for (int sy = rows.begin(); sy != rows.end(); ++sy)
-      for (int sx = 0; sx < sw; ++sx) hits[static_cast<std::size_t>(sy) * sw + sx] = tracer.first_hit(view.eye, direction(sx, sy));
+      for (int sx = 0; sx < sw; ++sx)
+        hits[static_cast<std::size_t>(sy) * sw + sx] = tracer.first_hit(view.eye, direction(sx, sy));
   });
   auto part_at = [&](int sx, int sy) {
     if (sx < 0 || sy < 0 || sx >= sw || sy >= sh) return std::numeric_limits<std::int32_t>::min();
@@ -261,7 +263,8 @@ std::string image_png(const Image& image, const std::string& name) {
 }
 
 std::string animated_gif(const std::vector<Image>& frames, const std::vector<int>& delays_cs, const std::string& name) {
-  if (frames.empty() || delays_cs.size() != frames.size()) throw std::invalid_argument("animated_gif: frames and delays");
+  if (frames.empty() || delays_cs.size() != frames.size())
+    throw std::invalid_argument("animated_gif: frames and delays");
   const int width = frames[0].width, height = frames[0].height;
   const std::size_t per_frame = static_cast<std::size_t>(width) * height;
   // One palette for every frame: quantize them all as one tall picture. giflib sorts colours into
@@ -270,7 +273,8 @@ std::string animated_gif(const std::vector<Image>& frames, const std::vector<int
   std::vector<GifByteType> red(per_frame * frames.size()), green(red.size()), blue(red.size()), indices(red.size());
   auto rounded = [](std::uint8_t c) { return static_cast<GifByteType>(std::min(255, c + 4)); };
   for (std::size_t f = 0; f < frames.size(); ++f) {
-    if (frames[f].width != width || frames[f].height != height) throw std::invalid_argument("animated_gif: frame sizes");
+    if (frames[f].width != width || frames[f].height != height)
+      throw std::invalid_argument("animated_gif: frame sizes");
     for (std::size_t i = 0; i < per_frame; ++i) {
       red[f * per_frame + i] = rounded(frames[f].rgb[3 * i]);
       green[f * per_frame + i] = rounded(frames[f].rgb[3 * i + 1]);
@@ -285,7 +289,8 @@ std::string animated_gif(const std::vector<Image>& frames, const std::vector<int
 
   std::string bytes;
   auto append = [](GifFileType* gif, const GifByteType* data, int length) {
-    static_cast<std::string*>(gif->UserData)->append(reinterpret_cast<const char*>(data), static_cast<std::size_t>(length));
+    static_cast<std::string*>(gif->UserData)
+        ->append(reinterpret_cast<const char*>(data), static_cast<std::size_t>(length));
     return length;
   };
   int error = 0;
@@ -322,7 +327,8 @@ std::string animated_gif(const std::vector<Image>& frames, const std::vector<int
       if (EGifPutLine(gif, indices.data() + f * per_frame + static_cast<std::size_t>(row) * width, width) == GIF_ERROR)
         fail();
   }
-  if (EGifCloseFile(gif, &error) == GIF_ERROR) throw OutputError(name + ": cannot encode GIF (" + GifErrorString(error) + ")");
+  if (EGifCloseFile(gif, &error) == GIF_ERROR)
+    throw OutputError(name + ": cannot encode GIF (" + GifErrorString(error) + ")");
   return bytes;
 }
 

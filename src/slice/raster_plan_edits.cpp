@@ -89,7 +89,8 @@ void merge_coplanar_faces(RasterPlan& result) {
       faces.push_back(result.faces[f]);
       faces.back().pixels = pixels[f];
     }
-  for (std::size_t f = 0; f < n; ++f) new_id[f] = new_id[static_cast<std::size_t>(sets.root(static_cast<std::int32_t>(f)))];
+  for (std::size_t f = 0; f < n; ++f)
+    new_id[f] = new_id[static_cast<std::size_t>(sets.root(static_cast<std::int32_t>(f)))];
   for_bands(face.rows, [&](int, int row_begin, int row_end) {
     const std::size_t cols = static_cast<std::size_t>(face.cols);
     for (std::size_t i = row_begin * cols; i < row_end * cols; ++i)

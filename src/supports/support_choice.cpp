@@ -51,11 +51,14 @@ class CandidateFinder {
     using Key = std::pair<std::uint64_t, std::uint64_t>;
     static Key key(std::int32_t x, int c0, int c1, int r0, int r1) {  // each under 2^21
       assert(c1 < (1 << 21) && r1 < (1 << 21));
-      return {static_cast<std::uint64_t>(x) << 21 | static_cast<std::uint64_t>(c0),
-              static_cast<std::uint64_t>(c1) << 42 | static_cast<std::uint64_t>(r0) << 21 | static_cast<std::uint64_t>(r1)};
+      return {
+          static_cast<std::uint64_t>(x) << 21 | static_cast<std::uint64_t>(c0),
+          static_cast<std::uint64_t>(c1) << 42 | static_cast<std::uint64_t>(r0) << 21 | static_cast<std::uint64_t>(r1)};
     }
     struct Hash {
-      std::size_t operator()(const Key& k) const { return std::hash<std::uint64_t>{}(k.first * 0x9E3779B97F4A7C15ULL ^ k.second); }
+      std::size_t operator()(const Key& k) const {
+        return std::hash<std::uint64_t>{}(k.first * 0x9E3779B97F4A7C15ULL ^ k.second);
+      }
     };
     std::unordered_map<Key, bool, Hash> known;
   };
@@ -137,7 +140,8 @@ class CandidateFinder {
       face_pieces_[f] = pieces(face_runs_[f], 0, 0, 0, 0);
       Box& box = face_box_[f];
       for (const Run& run : face_runs_[f])
-        box = {std::min(box.c0, run.c0), std::max(box.c1, run.c1), std::min(box.r0, run.row), std::max(box.r1, run.row + 1)};
+        box = {std::min(box.c0, run.c0), std::max(box.c1, run.c1), std::min(box.r0, run.row),
+               std::max(box.r1, run.row + 1)};
     }
   }
 
@@ -421,7 +425,8 @@ class CandidateFinder {
         std::vector<std::int32_t> crossed;
         for (int between = edge + step; between != r; between += step)
           for (const std::int32_t x : column.faces(column.row(*this, between)))
-            if (std::ranges::find(crossed, x) == crossed.end()) crossed.push_back(x);  // f too: taking its rows may cut it
+            if (std::ranges::find(crossed, x) == crossed.end())
+              crossed.push_back(x);  // f too: taking its rows may cut it
         found.push_back(candidate(start, {row.centre, r, std::move(crossed)}, column, memo));
         break;
       }

@@ -94,7 +94,8 @@ void check_structure(const std::string& bytes, const std::string& name) {
     }
     if (!started) {
       if (code == 999) continue;
-      if (code != 0 || value != "SECTION") throw InputError(name + ": not a DXF file (it does not start with a SECTION)");
+      if (code != 0 || value != "SECTION")
+        throw InputError(name + ": not a DXF file (it does not start with a SECTION)");
       started = true;
     }
     if (is_real_code(code)) {
@@ -223,8 +224,9 @@ class Reader : public DL_CreationAdapter {
       for (const std::string& layer : other_layers_) found += (found.empty() ? "" : ", ") + layer;
       throw InputError(name_ + ": no line on the layers " + layer_name(LineKind::Cut) + ", " +
                        layer_name(LineKind::Mountain) + " or " + layer_name(LineKind::Valley) +
-                       (found.empty() ? std::string(" (the file has no other entity)")
-                                      : " (entities are on: " + found + ": name the layers that hold the plan's lines)"));
+                       (found.empty()
+                            ? std::string(" (the file has no other entity)")
+                            : " (entities are on: " + found + ": name the layers that hold the plan's lines)"));
     }
   }
 
