@@ -25,7 +25,7 @@ TEST(RasterPlanEdits, TouchingCoplanarFacesMergeAndIdsCloseUp) {
     s.face(7, r) = s.face(8, r) = 5;  // 4 px, the same plane, apart from 2 and 3
   }
   for (int c = 0; c < 10; ++c) s.face(c, 3) = kFloorFace;
-  merge_coplanar_faces(s);
+  s = merge_coplanar_faces(std::move(s));
   ASSERT_EQ(s.faces.size(), 5u);
   EXPECT_EQ(s.face(2, 0), 2);
   EXPECT_EQ(s.faces[2].pixels, 6);

@@ -233,7 +233,9 @@ TEST(Slice, FacesInPartsBecomeOneFacePerPartAndCrumbsJoinANeighbour) {
     s.face(5, r) = s.face(9, r) = 3;
   }
   s.face(10, 2) = 2;  // a crumb, touching face 3 on one side and the back plane on three
-  const std::vector<FacePart> parts = split_disconnected_faces(s, {2}, 2, 0);
+  SplitFaces split = split_disconnected_faces(std::move(s), {2}, 2, 0);
+  s = std::move(split.raster_plan);
+  const std::vector<FacePart>& parts = split.parts;
   ASSERT_EQ(parts.size(), 1u);
   EXPECT_EQ(parts[0].face, 4);
   EXPECT_EQ(parts[0].from, 2);
@@ -257,7 +259,9 @@ TEST(Slice, AFaceIsInPartsOnlyWhereNoPathOfSidesJoinsThem) {
     for (int c = 0; c < 2; ++c) s.face(c, r) = 2;               // the square: 4 px, met first in row-major order
   for (int r = 2; r < 7; ++r) s.face(2, r) = s.face(6, r) = 2;  // the U's arms, 5 px each
   for (int c = 3; c < 6; ++c) s.face(c, 6) = 2;                 // its bottom: 3 px
-  const std::vector<FacePart> parts = split_disconnected_faces(s, {2}, 1, 0);
+  SplitFaces split = split_disconnected_faces(std::move(s), {2}, 1, 0);
+  s = std::move(split.raster_plan);
+  const std::vector<FacePart>& parts = split.parts;
   ASSERT_EQ(parts.size(), 1u);
   EXPECT_EQ(parts[0].from, 2);
   EXPECT_EQ(s.faces[2].pixels, 13) << "the U keeps the id";

@@ -23,7 +23,7 @@ constexpr int kStep[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
 
 }  // namespace
 
-void merge_coplanar_faces(RasterPlan& result) {
+RasterPlan merge_coplanar_faces(RasterPlan result) {
   const std::size_t n = result.faces.size();
   UnionFind<std::int32_t> sets(n);
   Grid<std::int32_t>& face = result.face;
@@ -76,7 +76,7 @@ void merge_coplanar_faces(RasterPlan& result) {
       std::any_of(pixels.begin() + std::min<std::size_t>(2, n), pixels.end(), [](std::int64_t p) { return p == 0; });
   if (!merged && !emptied) {  // the ids stay as they are: no pass over the pixels to relabel them
     for (std::size_t f = 0; f < n; ++f) result.faces[f].pixels = pixels[f];
-    return;
+    return result;
   }
   for (std::size_t f = 0; f < n; ++f)
     if (const auto r = static_cast<std::size_t>(sets.root(static_cast<std::int32_t>(f))); r != f)
@@ -97,6 +97,7 @@ void merge_coplanar_faces(RasterPlan& result) {
       if (std::int32_t& f = face.values[i]; f >= 0) f = new_id[static_cast<std::size_t>(f)];
   });
   result.faces = std::move(faces);
+  return result;
 }
 
 namespace {
@@ -179,8 +180,8 @@ std::int32_t most_sides_with(const RasterPlan& plan, const FaceParts& parts, std
 
 }  // namespace
 
-std::vector<FacePart> split_disconnected_faces(RasterPlan& result, const std::vector<std::int32_t>& faces,
-                                               std::int64_t min_part_px, int min_part_cols) {
+SplitFaces split_disconnected_faces(RasterPlan result, const std::vector<std::int32_t>& faces, std::int64_t min_part_px,
+                                    int min_part_cols) {
   Grid<std::int32_t>& face = result.face;
   std::vector<std::uint8_t> wanted(result.faces.size(), 0);
   for (const std::int32_t f : faces)
@@ -230,7 +231,7 @@ std::vector<FacePart> split_disconnected_faces(RasterPlan& result, const std::ve
     paint(i, id);
     created.push_back({id, static_cast<std::int32_t>(f)});
   }
-  return created;
+  return {std::move(result), std::move(created)};
 }
 
 namespace {
@@ -322,7 +323,7 @@ RasterPlan align_folds_to_lines(RasterPlan plan, const PixelGrid& grid, double t
 
 namespace origamic {
 
-void merge_near_coplanar_faces(RasterPlan& result, double tolerance_mm) {
+RasterPlan merge_near_coplanar_faces(RasterPlan result, double tolerance_mm) {
   const Grid<std::int32_t>& face = result.face;
   const std::size_t n = result.faces.size();
   // The pairs of faces of one orientation that touch, each once.
@@ -340,7 +341,7 @@ void merge_near_coplanar_faces(RasterPlan& result, double tolerance_mm) {
         if (std::abs(a.depth_mm - b.depth_mm) <= tolerance_mm) touching.emplace(std::min(f, g), std::max(f, g));
       }
     }
-  if (touching.empty()) return;
+  if (touching.empty()) return result;
   // Closest pairs first; a group's depths stay within the tolerance of each other.
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs(touching.begin(), touching.end());
   const auto gap = [&](const std::pair<std::int32_t, std::int32_t>& p) {
@@ -367,13 +368,13 @@ void merge_near_coplanar_faces(RasterPlan& result, double tolerance_mm) {
     weighted[into] += weighted[from], pixels[into] += pixels[from];
     merged = true;
   }
-  if (!merged) return;
+  if (!merged) return result;
   for (std::size_t f = 0; f < n; ++f)
     if (sets.root(static_cast<std::int32_t>(f)) == static_cast<std::int32_t>(f) && f >= 2)
       result.faces[f].depth_mm = weighted[f] / static_cast<double>(pixels[f]);
   for (std::int32_t& f : result.face.values)
     if (f >= 0) f = sets.root(f);
-  merge_coplanar_faces(result);
+  return merge_coplanar_faces(std::move(result));
 }
 
 }  // namespace origamic

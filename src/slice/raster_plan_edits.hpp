@@ -15,26 +15,30 @@ namespace origamic {
 /// Touching faces of one orientation and one depth lie in one plane: they become one face (a
 /// removed thin face or a support had parted them). Faces left without pixels are dropped, except
 /// the back plane and the floor; ids are renumbered in order and pixel counts recomputed.
-void merge_coplanar_faces(RasterPlan& result);
+RasterPlan merge_coplanar_faces(RasterPlan result);
 
 /// Touching faces of one orientation whose depths differ by at most tolerance_mm are one sheet of
 /// paper: a faceted tower's facets a fraction of a millimetre apart, which no support can join (the
 /// fold would need a strip thinner than a pixel). Each group, its depths within the tolerance of each
 /// other, becomes one face at their mean depth by pixels (the back plane and the floor keep depth 0);
 /// supports and holes are left alone. Ids are renumbered as merge_coplanar_faces does.
-void merge_near_coplanar_faces(RasterPlan& result, double tolerance_mm);
+RasterPlan merge_near_coplanar_faces(RasterPlan result, double tolerance_mm);
 
 /// A face whose pixels fall apart into several 4-connected parts (a support cut through it, or the
 /// exact plan found it in pieces) is that many pieces of paper: each part but the largest becomes a
 /// face of its own, with the same plane, appended in order; a part under `min_part_px` pixels or
 /// `min_part_cols` columns wide (a crumb, a sliver; a whole face under `min_part_px`, the back
-/// plane and the floor aside) joins the neighbouring face it shares the most pixel sides with. Returns the new faces.
+/// plane and the floor aside) joins the neighbouring face it shares the most pixel sides with.
 struct FacePart {
   std::int32_t face = 0;  // the new face
   std::int32_t from = 0;  // the face it was part of
 };
-std::vector<FacePart> split_disconnected_faces(RasterPlan& result, const std::vector<std::int32_t>& faces,
-                                               std::int64_t min_part_px, int min_part_cols);
+struct SplitFaces {
+  RasterPlan raster_plan;
+  std::vector<FacePart> parts;  // the new faces
+};
+SplitFaces split_disconnected_faces(RasterPlan raster_plan, const std::vector<std::int32_t>& faces,
+                                    std::int64_t min_part_px, int min_part_cols);
 
 /// Seed §4.5 on the raster: where a V(d) face and an H(h) face meet one above the other within
 /// `tolerance_mm` of their fold line Y = h - d, the boundary moves to the pixel boundary nearest

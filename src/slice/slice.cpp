@@ -412,10 +412,10 @@ void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vec
     }
   fill_holes(maps.grid, seg.segment, result.faces, result.face);
   keep_within_card(maps.grid, result);
-  merge_coplanar_faces(result);
+  result = merge_coplanar_faces(std::move(result));
   // Slices of one segment are W apart; faces of different segments nearer than a quarter of it in
   // depth are one plane of paper (the 0.2 mm between two facets of arch_one_wtc).
-  merge_near_coplanar_faces(result, W / 4);
+  result = merge_near_coplanar_faces(std::move(result), W / 4);
 }
 
 }  // namespace

@@ -103,11 +103,11 @@ SupportChoice choose_supports(const SupportRound& round, const FaceVerdicts& ver
 /// 4-connected part of a face (a loose piece of the back plane or the floor too) becomes a face of
 /// its own, a part under crumb_px pixels joins a neighbour. The face graph of the rounds is then the
 /// exact plan's graph of pieces.
-void split_into_pieces(RasterPlan& raster_plan, std::int64_t crumb_px);
+RasterPlan split_into_pieces(RasterPlan raster_plan, std::int64_t crumb_px);
 
 /// Paints the chosen supports into the raster plan as faces of their own (RasterFace::support),
 /// then splits it into pieces.
-void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid, double tolerance,
-                    std::int64_t crumb_px, RasterPlan& raster_plan);
+RasterPlan paint_supports(RasterPlan raster_plan, const std::vector<Candidate>& chosen, const PixelGrid& grid,
+                          double tolerance, std::int64_t crumb_px);
 
 }  // namespace origamic

@@ -17,8 +17,8 @@ namespace origamic {
 // Paints the chosen supports as faces of their own. A support crossing a face can leave a strip of
 // it beside the support, narrower than W and within the support's rows: a piece of paper too thin
 // to hold, which becomes part of the support (a wider support, the same folds).
-void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid, double tolerance,
-                    std::int64_t crumb_px, RasterPlan& raster_plan) {
+RasterPlan paint_supports(RasterPlan raster_plan, const std::vector<Candidate>& chosen, const PixelGrid& grid,
+                          double tolerance, std::int64_t crumb_px) {
   Grid<std::int32_t>& face = raster_plan.face;
   const auto first_support = static_cast<std::int32_t>(raster_plan.faces.size());
   std::set<std::int32_t> crossed;
@@ -30,8 +30,10 @@ void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid,
       for (int c = s.c0; c < s.c1; ++c) crossed.insert(std::exchange(face(c, r), id));
     crossed.insert(s.face), crossed.insert(s.target);  // what is left of them may be a crumb
   }
-  const std::vector<FacePart> parts =
-      split_disconnected_faces(raster_plan, std::vector<std::int32_t>(crossed.begin(), crossed.end()), crumb_px, 0);
+  SplitFaces split = split_disconnected_faces(std::move(raster_plan),
+                                              std::vector<std::int32_t>(crossed.begin(), crossed.end()), crumb_px, 0);
+  raster_plan = std::move(split.raster_plan);
+  const std::vector<FacePart>& parts = split.parts;
   // The faces and parts a support crossed: their extent, and the support they touch (-1 none, -2
   // several).
   const std::size_t n = raster_plan.faces.size();
@@ -86,15 +88,17 @@ void paint_supports(const std::vector<Candidate>& chosen, const PixelGrid& grid,
     for (std::size_t i = row_begin * cols; i < row_end * cols; ++i)
       if (std::int32_t& f = face.values[i]; f >= 0) f = into[static_cast<std::size_t>(f)];
   });
-  merge_coplanar_faces(raster_plan);
+  raster_plan = merge_coplanar_faces(std::move(raster_plan));
   raster_plan = align_folds_to_lines(std::move(raster_plan), grid, tolerance);
-  split_into_pieces(raster_plan, crumb_px);
+  return split_into_pieces(std::move(raster_plan), crumb_px);
 }
 
-void split_into_pieces(RasterPlan& raster_plan, std::int64_t crumb_px) {
+RasterPlan split_into_pieces(RasterPlan raster_plan, std::int64_t crumb_px) {
   std::vector<std::int32_t> all(raster_plan.faces.size());
   std::iota(all.begin(), all.end(), 0);
-  if (!split_disconnected_faces(raster_plan, all, crumb_px, 0).empty()) merge_coplanar_faces(raster_plan);
+  SplitFaces split = split_disconnected_faces(std::move(raster_plan), all, crumb_px, 0);
+  if (split.parts.empty()) return std::move(split.raster_plan);
+  return merge_coplanar_faces(std::move(split.raster_plan));
 }
 
 }  // namespace origamic

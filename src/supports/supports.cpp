@@ -286,7 +286,7 @@ FaceOrderRun::Stopped FaceOrderRun::support_rounds() {
     // cuts; a support across the model to a crumb at its back is worse than the crumb's hole), once
     // no support is left to add: the supports of this round may yet bring them a cheaper one.
     if (setting_.options.cut_out_unsupported && chosen.empty()) cut_out_costly(choice.cut_out);
-    paint_supports(chosen, setting_.maps.grid, tolerance_, crumb_px_, raster_plan_);
+    raster_plan_ = paint_supports(std::move(raster_plan_), chosen, setting_.maps.grid, tolerance_, crumb_px_);
     painted_since_.insert(painted_since_.end(), chosen.begin(), chosen.end());
     settle();
   }
@@ -340,10 +340,13 @@ bool FaceOrderRun::part_faces(const std::vector<std::int32_t>& invalid, int loos
   std::vector<std::int32_t> apart = invalid;
   if (loose > 0) apart.insert(apart.end(), {kBackFace, kFloorFace});
   const std::vector<std::int32_t> before = raster_plan_.face.values;
-  const bool parted = !split_disconnected_faces(raster_plan_, apart, crumb_px_, raster_plan_.block_px).empty();
+  const int block_px = raster_plan_.block_px;
+  SplitFaces split = split_disconnected_faces(std::move(raster_plan_), apart, crumb_px_, block_px);
+  raster_plan_ = std::move(split.raster_plan);
+  const bool parted = !split.parts.empty();
   if (!parted && raster_plan_.face.values == before) return false;
   allow_splits_ = allow_splits_ && !parted;
-  merge_coplanar_faces(raster_plan_);
+  raster_plan_ = merge_coplanar_faces(std::move(raster_plan_));
   settle();
   return true;
 }
@@ -442,7 +445,7 @@ SupportedPlan FaceOrderRun::run() {
       break;
     }
     // The rounds resume with the holes.
-    merge_coplanar_faces(raster_plan_);
+    raster_plan_ = merge_coplanar_faces(std::move(raster_plan_));
     raster_plan_ = align_folds_to_lines(std::move(raster_plan_), setting_.maps.grid, tolerance_);
     settle();
   }
@@ -490,7 +493,8 @@ SupportedPlan add_supports(const RasterMaps& maps, RasterPlan raster_plan, const
   // The greedy choice depends on the order the faces choose in, and one order can paint itself into
   // a corner that another avoids: the next orders of the same random sequence get their turn.
   std::mt19937 random(options.seed);
-  split_into_pieces(raster_plan, std::int64_t{raster_plan.block_px} * raster_plan.block_px / 8);
+  const std::int64_t crumb_px = std::int64_t{raster_plan.block_px} * raster_plan.block_px / 8;
+  raster_plan = split_into_pieces(std::move(raster_plan), crumb_px);
   const OrderSetting setting{maps, sheet, plan_options, options,
                              std::make_shared<const ExactPlan>(maps, raster_plan, sheet, plan_options)};
   std::optional<SupportedPlan> best;
