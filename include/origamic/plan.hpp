@@ -96,8 +96,8 @@ inline double fold_snap_tolerance_mm(const PlanOptions& options, const RasterPla
   return options.fold_snap_fraction_of_W * raster_plan.min_strip_mm + 1 / grid.px_per_mm;
 }
 
-/// After align_folds_to_lines, how far from its fold line an aligned boundary lies at most: half a
-/// pixel, and a hair for the rounding of Y.
+/// Once the raster plan's V/H boundaries are moved to the pixel edge nearest their fold line, how
+/// far from that line such a boundary lies at most: half a pixel, and a hair for the rounding of Y.
 inline double aligned_fold_tolerance_mm(const PixelGrid& grid) { return 1 / grid.px_per_mm + 1e-9; }
 
 /// Builds the exact plan from the raster plan (sheet in mm). Deterministic. The exact numbers are built

@@ -141,30 +141,30 @@ int keep_faces_on_the_card(const std::vector<RasterFace>& faces, Built& built) {
 
 }  // namespace
 
-ExactPlan::ExactPlan(const RasterMaps& maps, const RasterPlan& sliced, const Sheet& sheet, const PlanOptions& options) {
+ExactPlan::ExactPlan(const RasterMaps& maps, const RasterPlan& raster_plan, const Sheet& sheet,
+                     const PlanOptions& options) {
   const auto lock = exact_run_lock();  // held until the exact numbers are made, or freed on an error
   state_ = std::make_unique<State>();
   try {
-    build(*state_, maps, sliced, sheet, options);
+    build(*state_, maps, raster_plan, sheet, options);
   } catch (...) {
     state_.reset();
     throw;
   }
 }
 
-// Built in place: the handles read off the arrangement stay valid.
 namespace {
 
 // The faces the plan is built from, their V/H boundaries moved to the pixel row nearest their fold
 // line where they can (§4.5's first step; a no-op on a plan already aligned).
-RasterPlan aligned_faces(const RasterPlan& sliced, const PixelGrid& grid, const PlanOptions& options) {
-  RasterPlan faces;  // the fields a plan is built of (a field it comes to read must be copied here)
-  faces.min_strip_mm = sliced.min_strip_mm;
-  faces.block_px = sliced.block_px;
-  faces.face = sliced.face;
-  faces.faces = sliced.faces;
-  const double tolerance = fold_snap_tolerance_mm(options, faces, grid);
-  return align_folds_to_lines(std::move(faces), grid, tolerance);
+RasterPlan aligned_faces(const RasterPlan& raster_plan, const PixelGrid& grid, const PlanOptions& options) {
+  RasterPlan copy;  // the fields a plan is built of (a field it comes to read must be copied here)
+  copy.min_strip_mm = raster_plan.min_strip_mm;
+  copy.block_px = raster_plan.block_px;
+  copy.face = raster_plan.face;
+  copy.faces = raster_plan.faces;
+  const double tolerance = fold_snap_tolerance_mm(options, copy, grid);
+  return align_folds_to_lines(std::move(copy), grid, tolerance);
 }
 
 // Areas from the arrangement's faces: per raster face's label, per piece of paper, in all.
@@ -277,16 +277,34 @@ std::vector<std::uint8_t> among_holes(const Arrangement& arr, const Pieces& piec
   return among;
 }
 
+// The plan's faces: each raster face's plane, exact area, folded sides and verdict.
+std::vector<PlanFace> plan_faces(const std::vector<RasterFace>& faces, const std::vector<double>& area,
+                                 const EdgeReading& reading, const Validity& validity) {
+  std::vector<PlanFace> result(faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    PlanFace& face = result[f];
+    face.orientation = faces[f].orientation;
+    face.depth_mm = faces[f].depth_mm;
+    face.area_mm2 = area[f];
+    face.fold_on_top = reading.fold_on_top[f];
+    face.fold_on_bottom = reading.fold_on_bottom[f];
+    face.support = faces[f].support;
+    face.status = validity.status[f];
+  }
+  return result;
+}
+
 }  // namespace
 
-void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& sliced, const Sheet& sheet,
+// Built in place: the handles read off the arrangement stay valid.
+void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& raster_plan, const Sheet& sheet,
                       const PlanOptions& options) {
   state.grid = maps.grid;
   // §4.5 in two steps: the raster boundaries move to the pixel row nearest their fold line where
   // they can, then only those within half a pixel snap onto it. Snapping farther could carry a fold
   // across a neighbouring boundary, which forced the whole chain back to its pixel contour and lost
   // the fold.
-  RasterPlan aligned = aligned_faces(sliced, maps.grid, options);
+  RasterPlan aligned = aligned_faces(raster_plan, maps.grid, options);
   const std::vector<RasterFace>& faces = aligned.faces;
   const Lattice lattice(maps, sheet);
   state.labels = labels_inside_sheet(std::move(aligned.face));  // the face map is not read again
@@ -334,17 +352,7 @@ void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& sl
   plan.loose_card_pieces = verdict.loose_card_pieces;
   plan.crumbs_cut_out = static_cast<int>(std::ranges::count(verdict.cut_out, 1));
   plan.pieces = static_cast<int>(pieces.label.size());
-  plan.faces.resize(n);
-  for (std::size_t f = 0; f < n; ++f) {
-    PlanFace& face = plan.faces[f];
-    face.orientation = faces[f].orientation;
-    face.depth_mm = faces[f].depth_mm;
-    face.area_mm2 = areas.of_label[f];
-    face.fold_on_top = reading.fold_on_top[f];
-    face.fold_on_bottom = reading.fold_on_bottom[f];
-    face.support = faces[f].support;
-    face.status = plan.validity.status[f];
-  }
+  plan.faces = plan_faces(faces, areas.of_label, reading, plan.validity);
   state.area = std::move(areas.of_label);
   state.cut_out = verdict.cut_out;
   state.faces = std::move(aligned.faces);

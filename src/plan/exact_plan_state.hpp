@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Internal: what the translation units of the exact plan share. exact_plan.cpp builds the
-// arrangement and decides the verdict on the pieces of paper exact_plan_pieces.cpp finds in it;
-// exact_plan_drawing.cpp draws the plan in full, and exact_plan_rays.cpp shoots rays on it.
+// Internal: what the translation units of the exact plan share. exact_plan_chains.cpp builds the
+// arrangement from the traced chains; exact_plan.cpp decides the verdict on the pieces of paper
+// exact_plan_pieces.cpp finds in it; exact_plan_drawing.cpp draws the plan in full, and
+// exact_plan_rays.cpp shoots rays on it.
 // Include after defining CGAL_HAS_NO_THREADS (see exact_kernel.hpp).
 #pragma once
 

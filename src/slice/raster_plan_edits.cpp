@@ -12,16 +12,12 @@
 #include <utility>
 
 #include "bands.hpp"
+#include "four_neighbours.hpp"
 #include "origamic/slice.hpp"
 #include "plane_numbers.hpp"
 #include "union_find.hpp"
 
 namespace origamic {
-namespace {
-
-constexpr int kStep[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
-
-}  // namespace
 
 RasterPlan merge_coplanar_faces(RasterPlan result) {
   const std::size_t n = result.faces.size();
@@ -168,7 +164,7 @@ std::int32_t most_sides_with(const RasterPlan& plan, const FaceParts& parts, std
   for (const std::uint32_t k : parts.runs_of[part]) {
     const Run& run = parts.runs[k];
     for (int c = run.c0; c < run.c1; ++c)
-      for (const auto& [dc, dr] : kStep)
+      for (const auto& [dc, dr] : kFourNeighbours)
         if (face.contains(c + dc, run.row + dr)) {
           const std::int32_t g = face(c + dc, run.row + dr);
           if (g >= 0 && g != own && !plan.faces[static_cast<std::size_t>(g)].hole) ++sides[g];
@@ -290,7 +286,7 @@ std::vector<int> align_sweep(RasterPlan& result, const FoldRows& folds) {
   for (int r = 0; r + 1 < face.rows; ++r) {
     const std::int32_t* above = &face.values[face.index(0, r)];
     const std::int32_t* below = above + face.cols;
-    bool last_off = false;  // fold_row of the previous column's pair: the same pair gives the same row
+    bool last_off = false;  // FoldRows::row of the previous column's pair: the same pair gives the same row
     for (int col = 0; col < face.cols; ++col) {
       if (above[col] == below[col]) continue;
       if (col == 0 || above[col] != above[col - 1] || below[col] != below[col - 1]) {

@@ -15,14 +15,14 @@ namespace origamic {
 /// Touching faces of one orientation and one depth lie in one plane: they become one face (a
 /// removed thin face or a support had parted them). Faces left without pixels are dropped, except
 /// the back plane and the floor; ids are renumbered in order and pixel counts recomputed.
-RasterPlan merge_coplanar_faces(RasterPlan result);
+RasterPlan merge_coplanar_faces(RasterPlan raster_plan);
 
 /// Touching faces of one orientation whose depths differ by at most tolerance_mm are one sheet of
 /// paper: a faceted tower's facets a fraction of a millimetre apart, which no support can join (the
 /// fold would need a strip thinner than a pixel). Each group, its depths within the tolerance of each
 /// other, becomes one face at their mean depth by pixels (the back plane and the floor keep depth 0);
 /// supports and holes are left alone. Ids are renumbered as merge_coplanar_faces does.
-RasterPlan merge_near_coplanar_faces(RasterPlan result, double tolerance_mm);
+RasterPlan merge_near_coplanar_faces(RasterPlan raster_plan, double tolerance_mm);
 
 /// A face whose pixels fall apart into several 4-connected parts (a support cut through it, or the
 /// exact plan found it in pieces) is that many pieces of paper: each part but the largest becomes a
@@ -45,7 +45,7 @@ SplitFaces split_disconnected_faces(RasterPlan raster_plan, const std::vector<st
 /// that line, column by column, as long as both faces keep a pixel in the column. The exact plan
 /// then moves it onto the line by under half a pixel and cannot cross a neighbouring boundary on
 /// the way. Pixel counts are kept up to date.
-RasterPlan align_folds_to_lines(RasterPlan plan, const PixelGrid& grid, double tolerance_mm);
+RasterPlan align_folds_to_lines(RasterPlan raster_plan, const PixelGrid& grid, double tolerance_mm);
 
 /// The smaller side, in pixels, of the oriented bounding box (principal axes) of a pixel set.
 double oriented_box_min_side_px(const std::vector<std::pair<int, int>>& pixels);

@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "four_neighbours.hpp"
 #include "origamic/error.hpp"
 #include "raster_plan_edits.hpp"
 #include "thin_subsegments.hpp"
@@ -15,7 +16,6 @@
 namespace origamic {
 namespace {
 
-constexpr int kStep[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
 constexpr std::int32_t kUnassigned = -2;
 
 // §4.3.1: per column of the image, the segment's vertical (h) and horizontal (d) spans; the larger
@@ -121,9 +121,8 @@ std::vector<Subsegment> level_subsegments(const RasterMaps& maps, const Segmenta
           static_cast<std::int32_t>(std::min(levels[k] - 1, std::floor((depth_at(i) - nearest[k]) / step[k])));
     }
   subsegment = Grid<std::int32_t>(cols, seg.segment.rows, -1);
-  SubsegmentSet set;
-  std::vector<Subsegment>& subsegments = set.subsegments;
-  std::vector<double>& pixels = set.pixels;
+  std::vector<Subsegment> subsegments;
+  std::vector<double> pixels;
   std::vector<std::size_t> run;
   for (std::size_t i0 = 0; i0 < level.size(); ++i0) {
     if (level.values[i0] < 0 || subsegment.values[i0] >= 0) continue;
@@ -140,7 +139,7 @@ std::vector<Subsegment> level_subsegments(const RasterMaps& maps, const Segmenta
       offset_sum += depth_at(i) - base;
       const int col = static_cast<int>(i % static_cast<std::size_t>(cols)),
                 row = static_cast<int>(i / static_cast<std::size_t>(cols));
-      for (const auto& [dc, dr] : kStep) {
+      for (const auto& [dc, dr] : kFourNeighbours) {
         if (!level.contains(col + dc, row + dr)) continue;
         const std::size_t j = level.index(col + dc, row + dr);
         if (subsegment.values[j] >= 0 || level.values[j] != l || part(j) != k) continue;
@@ -152,8 +151,8 @@ std::vector<Subsegment> level_subsegments(const RasterMaps& maps, const Segmenta
                            part_of[i0] ? Orientation::H : Orientation::V});
     pixels.push_back(static_cast<double>(run.size()));
   }
-  merge_thin_subsegments(seg.segment, W * maps.grid.px_per_mm, set, subsegment);
-  return std::move(set.subsegments);
+  return merge_thin_subsegments(seg.segment, W * maps.grid.px_per_mm, {std::move(subsegments), std::move(pixels)},
+                                subsegment);
 }
 
 // Pixels the slicing left without a face (removed thin faces, segments the sampling missed) take a
@@ -167,7 +166,7 @@ void fill_holes(const PixelGrid& grid, const Grid<std::int32_t>& segment, const 
   std::vector<std::int32_t> labels;
   for (const bool same_segment_only : {true, false}) {
     auto label_of = [&](int col, int row) {
-      for (const auto& step : kStep) {
+      for (const auto& step : kFourNeighbours) {
         const int c = col + step[0], r = row + step[1];
         if (!face.contains(c, r) || face(c, r) < 0) continue;
         if (same_segment_only && faces[static_cast<std::size_t>(face(c, r))].segment != segment(col, row)) continue;
@@ -194,7 +193,7 @@ void fill_holes(const PixelGrid& grid, const Grid<std::int32_t>& segment, const 
       }
       for (std::size_t i = 0; i < ring.size(); ++i) {
         if (labels[i] == kUnassigned) continue;
-        for (const auto& step : kStep) {
+        for (const auto& step : kFourNeighbours) {
           const int c = ring[i].first + step[0], r = ring[i].second + step[1];
           if (!face.contains(c, r) || face(c, r) != kUnassigned || queued(c, r)) continue;
           queued(c, r) = 1;
@@ -252,7 +251,7 @@ void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vec
       visited(col0, row0) = 1;
       for (std::size_t head = 0; head < piece.size(); ++head) {
         const auto [col, row] = piece[head];
-        for (const auto& step : kStep) {
+        for (const auto& step : kFourNeighbours) {
           const int c = col + step[0], r = row + step[1];
           if (!visited.contains(c, r) || visited(c, r) || result.subsegment(c, r) != k) continue;
           visited(c, r) = 1;

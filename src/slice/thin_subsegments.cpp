@@ -7,12 +7,21 @@
 #include <limits>
 #include <numeric>
 
+#include "four_neighbours.hpp"
 #include "raster_plan_edits.hpp"
 
 namespace origamic {
 namespace {
 
-constexpr int kStep[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
+// The subsegments as merge_thin_subsegments works on them, pass after pass.
+struct SubsegmentSet {
+  std::vector<Subsegment> subsegments;
+  std::vector<double> pixels;
+  // Each one's pixels in row-major order, and whether it is thin: kept from pass to pass for the
+  // subsegments no merge touched.
+  std::vector<std::vector<std::pair<int, int>>> members;
+  std::vector<std::uint8_t> thin;
+};
 
 bool is_thin(const std::vector<std::pair<int, int>>& pixels_of, double min_side_px) {
   return !pixels_of.empty() && oriented_box_min_side_px(pixels_of) < min_side_px;
@@ -42,7 +51,7 @@ std::vector<std::int32_t> thin_pairs(const SubsegmentSet& set, const Grid<std::i
     };
     std::int32_t best = -1;
     for (const auto& [col, row] : set.members[k])
-      for (const auto& [dc, dr] : kStep) {
+      for (const auto& [dc, dr] : kFourNeighbours) {
         if (!segment.contains(col + dc, row + dr)) continue;
         const std::int32_t j = id_at(col + dc, row + dr);
         if (j < 0 || static_cast<std::size_t>(j) == k || paired[static_cast<std::size_t>(j)] ||
@@ -106,13 +115,9 @@ std::vector<std::int32_t> merge_pairs(SubsegmentSet& set, const std::vector<std:
 
 }  // namespace
 
-// Where a surface runs steeper than 45 degrees across the slicing direction, its levels are strips
-// narrower than W: each joins the neighbouring subsegment of its segment nearest in depth, pass after
-// pass, until it is W wide or has no such neighbour. Levels thus merge into wider steps exactly where
-// the surface is steep: the quantization adapts to it (seed Figure 4.6). `subsegment` is the map of
-// their ids, renumbered to the merged ones.
-void merge_thin_subsegments(const Grid<std::int32_t>& segment, double min_side_px, SubsegmentSet& set,
-                            Grid<std::int32_t>& subsegment) {
+std::vector<Subsegment> merge_thin_subsegments(const Grid<std::int32_t>& segment, double min_side_px,
+                                               SizedSubsegments sized, Grid<std::int32_t>& subsegment) {
+  SubsegmentSet set{std::move(sized.subsegments), std::move(sized.pixels), {}, {}};
   set.members.assign(set.subsegments.size(), {});
   for (int row = 0; row < subsegment.rows; ++row)
     for (int col = 0; col < subsegment.cols; ++col)
@@ -138,6 +143,7 @@ void merge_thin_subsegments(const Grid<std::int32_t>& segment, double min_side_p
   }
   for (auto& k : subsegment.values)
     if (k >= 0) k = current[static_cast<std::size_t>(k)];
+  return std::move(set.subsegments);
 }
 
 }  // namespace origamic

@@ -66,7 +66,7 @@ class CandidateFinder {
   // Candidates will be asked of the faces in `wanted` only.
   CandidateFinder(const SupportRound& round, const std::vector<std::int32_t>& wanted, const SupportPicture& picture,
                   SupportReach reach)
-      : exact_(round.exact),
+      : exact_plan_(round.exact_plan),
         picture_(picture),
         painted_(round.painted),
         grid_(round.maps.grid),
@@ -84,7 +84,7 @@ class CandidateFinder {
     {
       PlaneNumbers plane;
       for (const RasterFace& f : faces_) plane_now_.push_back(plane(f));
-      for (const RasterFace& f : exact_.faces()) plane_then_.push_back(plane(f));
+      for (const RasterFace& f : exact_plan_.faces()) plane_then_.push_back(plane(f));
       changed_.resize(static_cast<std::size_t>(face_.cols));
     }
     first_.assign(columns_.size() * static_cast<std::size_t>(face_.cols), -1);
@@ -94,7 +94,7 @@ class CandidateFinder {
     for_bands(face_.cols, [&](int band, int c_begin, int c_end) {
       std::vector<std::pair<int, int>>& columns = band_columns[static_cast<std::size_t>(band)];
       columns.assign(columns_.size(), {INT_MAX, -1});
-      const Grid<std::int32_t>& then = exact_.face_map();
+      const Grid<std::int32_t>& then = exact_plan_.face_map();
       for (int r = 0; r < face_.rows; ++r) {
         const std::int32_t* row = &face_.values[face_.index(0, r)];
         const std::int32_t* was_row = &then.values[then.index(0, r)];
@@ -405,7 +405,7 @@ class CandidateFinder {
     // hold the face where its exact boundary, simplified, passes, and the support painted there has
     // its end within half a pixel of the fold, which the next plan snaps onto it.
     for (const ExactPlan::Reached& reached :
-         exact_.faces_reached({(centre + 0.75) * px_mm_, from_Y, up, h, d, column.painted(), px_mm_ / 2})) {
+         exact_plan_.faces_reached({(centre + 0.75) * px_mm_, from_Y, up, h, d, column.painted(), px_mm_ / 2})) {
       // The row the fold falls in; on a row's edge, the row beyond, so that the support ends on the
       // fold, or else the row before, where the target may fill the block when it does not beyond.
       // A fold a rounding short of the edge counts as on it, as faces_reached took it.
@@ -473,7 +473,7 @@ class CandidateFinder {
     return s;
   }
 
-  const ExactPlan& exact_;
+  const ExactPlan& exact_plan_;
   const SupportPicture& picture_;
   std::span<const Candidate> painted_;
   const PixelGrid& grid_;

@@ -67,18 +67,11 @@ struct SupportReach {
 struct SupportRound {
   const RasterMaps& maps;
   const RasterPlan& raster_plan;
-  const ExactPlan& exact;
+  const ExactPlan& exact_plan;
   std::span<const Candidate> painted;
   std::span<const FoldEdge> folds;
 };
 
-/// Supports for the invalid faces, chosen ear by ear (support_ears.hpp), the cheapest first, over
-/// the plan's folds and the candidates of both edges of every invalid face; widened, never
-/// overlapping; not yet painted. The face each support reaches is found on the round's exact plan
-/// and the supports painted since (ExactPlan::faces_reached). A
-/// candidate costs the error it adds to the picture and a little for its length (and much for
-/// each face it cuts in two). A face is held only where that costs no more than the error a hole
-/// in its place would add (seed §4.4 shows supports always exist; here they must also be worth it).
 /// The candidate supports from both edges of the faces (seed §4.4, a few per ray: the first faces
 /// it can fold onto), each with its cost and the faces it cuts in two; what choose_supports chooses
 /// among (the round's folds are not read).
@@ -95,6 +88,14 @@ struct SupportChoice {
   };
   std::vector<CostlyFace> cut_out;
 };
+
+/// Supports for the invalid faces, chosen ear by ear (support_ears.hpp), the cheapest first, over
+/// the plan's folds and the candidates of both edges of every invalid face; widened, never
+/// overlapping; not yet painted. The face each support reaches is found on the round's exact plan
+/// and the supports painted since (ExactPlan::faces_reached). A candidate costs the error it adds
+/// to the picture and a little for its length (and much for each face it cuts in two). A face is
+/// held only where that costs no more than the error a hole in its place would add (seed §4.4 shows
+/// supports always exist; here they must also be worth it).
 SupportChoice choose_supports(const SupportRound& round, const FaceVerdicts& verdicts,
                               const std::vector<std::int32_t>& invalid, const SupportOptions& options,
                               SupportReach reach);

@@ -60,8 +60,8 @@ EarSearch::Choice EarSearch::cheapest(const std::vector<std::uint8_t>& standing,
   return pick(standing, open, limit, usable, false);
 }
 
-// The search's paths (hardest's Dijkstra): its labels, and per state (a face and the line it is
-// entered on) the two cheapest labels of different sources.
+// The search's paths (the Dijkstra that hardest describes, for both picks): its labels, and per
+// state (a face and the line it is entered on) the two cheapest labels of different sources.
 class EarSearch::Paths {
  public:
   Paths(const EarSearch& graph, const std::vector<std::uint8_t>& open, const std::vector<std::uint8_t>& usable)

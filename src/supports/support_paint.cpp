@@ -19,7 +19,6 @@ namespace origamic {
 // to hold, which becomes part of the support (a wider support, the same folds).
 RasterPlan paint_supports(RasterPlan raster_plan, const std::vector<Candidate>& chosen, const PixelGrid& grid,
                           double tolerance, std::int64_t crumb_px) {
-  Grid<std::int32_t>& face = raster_plan.face;
   const auto first_support = static_cast<std::int32_t>(raster_plan.faces.size());
   std::set<std::int32_t> crossed;
   for (const Candidate& s : chosen) {
@@ -27,13 +26,14 @@ RasterPlan paint_supports(RasterPlan raster_plan, const std::vector<Candidate>& 
     raster_plan.faces.push_back(
         {s.orientation, s.depth_mm, raster_plan.faces[static_cast<std::size_t>(s.face)].segment, 0, true});
     for (int r = s.r0; r < s.r1; ++r)
-      for (int c = s.c0; c < s.c1; ++c) crossed.insert(std::exchange(face(c, r), id));
+      for (int c = s.c0; c < s.c1; ++c) crossed.insert(std::exchange(raster_plan.face(c, r), id));
     crossed.insert(s.face), crossed.insert(s.target);  // what is left of them may be a crumb
   }
   SplitFaces split = split_disconnected_faces(std::move(raster_plan),
                                               std::vector<std::int32_t>(crossed.begin(), crossed.end()), crumb_px, 0);
   raster_plan = std::move(split.raster_plan);
   const std::vector<FacePart>& parts = split.parts;
+  Grid<std::int32_t>& face = raster_plan.face;
   // The faces and parts a support crossed: their extent, and the support they touch (-1 none, -2
   // several).
   const std::size_t n = raster_plan.faces.size();

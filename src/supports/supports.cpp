@@ -155,7 +155,7 @@ struct OrderSetting {
   const Sheet& sheet;
   const PlanOptions& plan_options;
   const SupportOptions& options;
-  std::shared_ptr<const ExactPlan> initial;  // the exact plan of the slices
+  std::shared_ptr<const ExactPlan> initial;  // the exact plan of the raster plan
 };
 
 // What one order may do beyond the plain rules.
@@ -203,7 +203,7 @@ class FaceOrderRun {
     exact_ = true;
     painted_since_.clear();
   }
-  // The verdict of the exact plan of the slices as they are.
+  // The verdict of the exact plan of the raster plan as it is.
   void confirm() {
     last_exact_plan_.reset();  // one arrangement at a time in memory
     adopt(std::make_shared<const ExactPlan>(setting_.maps, raster_plan_, setting_.sheet, setting_.plan_options));
@@ -236,7 +236,7 @@ class FaceOrderRun {
   double tolerance_;
   std::int64_t crumb_px_;
   SupportedPlan result_;
-  bool exact_ = false;  // whether verdicts_ is the exact plan's word on slices_
+  bool exact_ = false;  // whether verdicts_ is the exact plan's word on raster_plan_
   bool allow_splits_ = true;
   bool splits_retried_ = false;
   int split_rounds_left_ = 0;
@@ -294,7 +294,7 @@ FaceOrderRun::Stopped FaceOrderRun::support_rounds() {
 
 // A pass of rounds from the last verdict, and the exact plan's verdict on where it ends; returns why
 // the rounds stopped. A pass from an exact verdict that leaves more faces invalid than it found is
-// undone: its supports did harm, and the exact plan of the slices before it is at hand. (Undoing
+// undone: its supports did harm, and the exact plan of the raster plan before it is at hand. (Undoing
 // passes that left as many, as the greedy choice did, repeats them: the ears of a state are the
 // same each time.) Found is the fewer of the exact count and the raster graph's: the pass's end is counted on
 // the raster graph, which may miss a face the exact plan sees.
@@ -323,7 +323,7 @@ FaceOrderRun::Stopped FaceOrderRun::pass() {
     exact_ = true;
     painted_since_.clear();
     ++report().passes_undone;
-  } else if (!exact_) {  // else the slices are still the exact plan's, and it stands as it is
+  } else if (!exact_) {  // else the raster plan is still the exact plan's, and it stands as it is
     confirm();
   }
   return why;
@@ -334,7 +334,7 @@ FaceOrderRun::Stopped FaceOrderRun::pass() {
 // support may cut a face in two: the pieces it made would need supports of their own, whose
 // supports cut more faces, without end. A part under the crumb size (or a whole face) joins a
 // neighbour instead: a face left without pixels is merged away, not a face the rounds would have to
-// hold. A join adds no piece, so supports may still cut faces in two. Either way the slices are no
+// hold. A join adds no piece, so supports may still cut faces in two. Either way the raster plan is no
 // longer the exact plan's. Returns whether the face map changed.
 bool FaceOrderRun::part_faces(const std::vector<std::int32_t>& invalid, int loose) {
   std::vector<std::int32_t> apart = invalid;
@@ -452,7 +452,7 @@ SupportedPlan FaceOrderRun::run() {
   return finish();
 }
 
-// The plan kept: drawn in full from the last verdict, with the slices it was built of.
+// The plan kept: drawn in full from the last verdict, with the raster plan it was built of.
 SupportedPlan FaceOrderRun::finish() {
   SupportReport& tally = report();
   tally.converged = tally.cut_out == 0 && invalid_faces().empty() && result_.plan.loose_card_pieces == 0;

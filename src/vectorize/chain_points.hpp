@@ -59,11 +59,11 @@ struct DrawTolerance {
 
 /// Douglas-Peucker over the chain's edge midpoints between its two fixed end corners: a midpoint
 /// whose pixel edge the picture breaks across, in a run of 8 or more such edges, is moved onto the
-/// break and kept within `tolerance.break_mm` of the result, any other within `lattice_mm`. Where such a run
-/// meets a straight lattice run, the corner between them moves to where their lines meet and is
-/// kept. Ends whose junctions moved are measured where they moved to, and a midpoint beyond such an
-/// end (its last pixel edge ran past where the model edge meets the other line) is dropped.
-/// `lattice_mm` <= 0 gives the chain's own corners.
+/// break and kept within `tolerance.break_mm` of the result, any other within
+/// `tolerance.lattice_mm`. Where such a run meets a straight lattice run, the corner between them
+/// moves to where their lines meet and is kept. Ends whose junctions moved are measured where they
+/// moved to, and a midpoint beyond such an end (its last pixel edge ran past where the model edge
+/// meets the other line) is dropped. `tolerance.lattice_mm` <= 0 gives the chain's own corners.
 /// \pre the chain has at least 2 corners.
 DrawnChain simplified(const Chain& chain, const LatticeScale& lattice, const PictureBreaks& breaks,
                       DrawTolerance tolerance, const MovedEnds& moved_ends = {});
