@@ -180,7 +180,8 @@ struct Bisected {
 // The way from plan point a to plan point b, and what the tracer found at each.
 struct Way {
   glm::dvec2 a, b;
-  Traced at_a, at_b;
+  const Traced& at_a;
+  const Traced& at_b;
 };
 
 // Bisects the way, 10 times (to 1/1024 of it), on which side of a change a point lies.
