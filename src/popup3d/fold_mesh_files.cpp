@@ -3,7 +3,7 @@
 #include "origamic/fold3d.hpp"
 
 // OpenMesh's VectorT leaves its elements uninitialized by default, which GCC 12 reports wherever a
-// colour property grows (OpenMesh/Core/Utils/Property.hh, push_back of T()); the values are set.
+// point or colour property grows (OpenMesh/Core/Utils/Property.hh, push_back of T()); the values are set.
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 
 #include <stdlib.h>
