@@ -58,4 +58,10 @@ Depth fold_line_Y(Orientation a_is, const Depth& depth_a, const Depth& depth_b) 
   return a_is == Orientation::H ? depth_a - depth_b : depth_b - depth_a;
 }
 
+/// The 45-degree key h + d of a face's plane at plan height Y: a V face at depth d holds h = Y + d
+/// there, an H face at height h holds d = h - Y (depth_mm is d of a V face, h of an H face).
+inline double key_of_plane(Orientation orientation, double depth_mm, double Y) {
+  return orientation == Orientation::V ? Y + 2 * depth_mm : 2 * depth_mm - Y;
+}
+
 }  // namespace origamic

@@ -16,11 +16,6 @@ CardSurface surface_of(Orientation orientation, double depth_mm, bool support) {
   return support ? CardSurface::Support : CardSurface::Model;
 }
 
-// The 45-degree key h + d of a face's plane at plan height Y.
-double key_of(Orientation orientation, double depth_mm, double Y) {
-  return orientation == Orientation::V ? Y + 2 * depth_mm : 2 * depth_mm - Y;
-}
-
 // Through a hole one sees the plane the card would be: the back plane above the fold, the floor below.
 double hole_key(double Y) { return std::abs(Y); }
 
@@ -40,7 +35,7 @@ CardView card_view(const PixelGrid& grid, const Grid<std::int32_t>& face, const 
       const RasterFace& rf = faces[static_cast<std::size_t>(f)];
       const CardSurface surface = rf.hole ? CardSurface::Hole : surface_of(rf.orientation, rf.depth_mm, rf.support);
       card.surface(col, row) = surface;
-      card.key_mm(col, row) = rf.hole ? hole_key(Y) : key_of(rf.orientation, rf.depth_mm, Y);
+      card.key_mm(col, row) = rf.hole ? hole_key(Y) : key_of_plane(rf.orientation, rf.depth_mm, Y);
     }
   });
   return card;
@@ -77,7 +72,7 @@ CardView card_view(const PixelGrid& grid, std::span<const PlanRegion> regions, c
       const double x1 = crossings[k + 1].second;
       assert(crossings[k + 1].first == row);
       const double Y = grid.Y(row);
-      const double key = hole ? hole_key(Y) : key_of(region.orientation, region.depth_mm, Y);
+      const double key = hole ? hole_key(Y) : key_of_plane(region.orientation, region.depth_mm, Y);
       // Centres X = (col + 0.5) / px in [x0, x1).
       const int c0 = std::max(0, static_cast<int>(std::ceil(x0 * px - 0.5)));
       const int c1 = std::min(grid.cols, static_cast<int>(std::ceil(x1 * px - 0.5)));

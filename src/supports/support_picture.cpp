@@ -34,7 +34,7 @@ SupportPicture::SupportPicture(const RasterMaps& maps, const RasterPlan& raster_
   model_key_ = Grid<float>(c_end - c0_, r_end - r0_, std::numeric_limits<float>::quiet_NaN());
   error_ = Grid<float>(c_end - c0_, r_end - r0_, 0.0f);
   const auto key_of = [&](const RasterFace& face, double Y) {
-    return face.hole ? std::abs(Y) : face.orientation == Orientation::V ? Y + 2 * face.depth_mm : 2 * face.depth_mm - Y;
+    return face.hole ? std::abs(Y) : key_of_plane(face.orientation, face.depth_mm, Y);
   };
   tbb::parallel_for(r0_, r_end, [&](int row) {
     const double Y = grid_.Y(row);
@@ -69,7 +69,7 @@ double SupportPicture::added_error(Orientation orientation, double depth_mm, Pix
   double sum = 0;
   for (int row = r0; row < r1; ++row) {
     const double Y = grid_.Y(row);
-    const auto key = static_cast<float>(orientation == Orientation::V ? Y + 2 * depth_mm : 2 * depth_mm - Y);
+    const auto key = static_cast<float>(key_of_plane(orientation, depth_mm, Y));
     const float* model = &model_key_.values[model_key_.index(0, row - r0_)];
     const float* now = &error_.values[error_.index(0, row - r0_)];
     for (int k = c0 - c0_; k < c1 - c0_; ++k)
