@@ -5,10 +5,10 @@
 
 #include <fstream>
 #include <functional>
-#include <limits>
-
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <limits>
+#include <sstream>
 
 #include "helpers.hpp"
 #include "origamic/error.hpp"
@@ -108,6 +108,56 @@ TEST(MeshIo, FileNormalsAreUsedWhenPresent) {
   const LoadedMesh loaded = load_mesh(dir / "tri.obj");
   EXPECT_TRUE(loaded.file_normals);
   for (const auto& n : loaded.mesh.corner_normals) EXPECT_EQ(n, glm::vec3(0, 0, 1));  // normalised
+}
+
+// A unit cube whose file normals point from its centre through each corner, as a low-poly model's
+// per-vertex normals do (55 degrees off every face); `inward` winds its faces the other way.
+std::string cube_with_corner_normals(bool inward) {
+  std::ostringstream text;
+  for (int v = 0; v < 8; ++v) text << "v " << (v & 1) << ' ' << (v >> 1 & 1) << ' ' << (v >> 2 & 1) << '\n';
+  for (int v = 0; v < 8; ++v)
+    text << "vn " << 2 * (v & 1) - 1 << ' ' << 2 * (v >> 1 & 1) - 1 << ' ' << 2 * (v >> 2 & 1) - 1 << '\n';
+  // Quads wound outwards (corners numbered from 0).
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : quads) {
+    text << 'f';
+    for (int k = 0; k < 4; ++k) {
+      const int v = (inward ? q[3 - k] : q[k]) + 1;
+      text << ' ' << v << "//" << v;
+    }
+    text << '\n';
+  }
+  return text.str();
+}
+
+TEST(MeshIo, FileNormalsFartherThanTheFeatureAngleFromTheirFaceTakeItsNormal) {
+  const TempDir dir;
+  for (const bool inward : {false, true}) {
+    SCOPED_TRACE(inward ? "wound inwards" : "wound outwards");
+    test::write_text(dir / "cube.obj", cube_with_corner_normals(inward));
+    const LoadedMesh loaded = load_mesh(dir / "cube.obj");
+    ASSERT_TRUE(loaded.file_normals);
+    ASSERT_EQ(loaded.mesh.triangles.size(), 12u);
+    for (std::size_t f = 0; f < 12; ++f) {
+      // The face's outward normal: the axis its corners share, away from the centre.
+      const auto& t = loaded.mesh.triangles[f];
+      const glm::dvec3 centre =
+          (loaded.mesh.positions[t[0]] + loaded.mesh.positions[t[1]] + loaded.mesh.positions[t[2]]) / 3.0;
+      glm::dvec3 outward(0.0);
+      for (int axis = 0; axis < 3; ++axis)
+        if (std::abs(centre[axis] - 0.5) > 0.49) outward[axis] = centre[axis] > 0.5 ? 1 : -1;
+      for (std::size_t c = 0; c < 3; ++c)
+        EXPECT_LT(glm::length(glm::dvec3(loaded.mesh.corner_normals[3 * f + c]) - outward), 1e-6) << "triangle " << f;
+    }
+  }
+}
+
+TEST(MeshIo, FileNormalsWithinTheFeatureAngleOfTheirFaceAreKept) {
+  const TempDir dir;
+  // 30 degrees off the face's normal (0, 0, 1), inside the default feature angle of 40.
+  test::write_text(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0.5 0 0.8660254\nf 1//1 2//1 3//1\n");
+  const LoadedMesh loaded = load_mesh(dir / "tri.obj");
+  for (const auto& n : loaded.mesh.corner_normals) EXPECT_LT(glm::length(n - glm::vec3(0.5f, 0, 0.8660254f)), 1e-6f);
 }
 
 // Every bad input gets an InputError whose one-line message names the file and the problem.

@@ -7,6 +7,7 @@
 #include <array>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include "helpers.hpp"
 #include "origamic/design.hpp"
@@ -193,6 +194,33 @@ TEST(Slice, ThinPoleIsRemovedAndItsHoleFilled) {
     }
   EXPECT_GE(p.raster_plan.removed_thin, 1);
   EXPECT_EQ(p.raster_plan.faces.size(), 4u);  // back, floor, and the house's front and top
+}
+
+// A low-poly model's file normals, one per vertex and averaged over the faces around it, turn 55
+// degrees from every face of a box; the loader gives each face its own, and the box slices as it
+// does with no normals in its file: one front, one top.
+TEST(Slice, ABoxWithNormalsAveragedAtItsCornersSlicesAsTheBoxWithout) {
+  const test::TempDir dir;
+  std::ostringstream vertices, normals;
+  for (int v = 0; v < 8; ++v) {
+    vertices << "v " << 80 * (v & 1) << ' ' << 50 * (v >> 1 & 1) << ' ' << 40 * (v >> 2 & 1) << '\n';
+    normals << "vn " << 2 * (v & 1) - 1 << ' ' << 2 * (v >> 1 & 1) - 1 << ' ' << 2 * (v >> 2 & 1) - 1 << '\n';
+  }
+  std::ostringstream plain_faces, faces_with_normals;
+  for (const auto& q : {std::array{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}}) {
+    plain_faces << 'f', faces_with_normals << 'f';
+    for (const int v : q) plain_faces << ' ' << v + 1, faces_with_normals << ' ' << v + 1 << "//" << v + 1;
+    plain_faces << '\n', faces_with_normals << '\n';
+  }
+  test::write_text(dir / "plain.obj", vertices.str() + plain_faces.str());
+  test::write_text(dir / "normals.obj", vertices.str() + normals.str() + faces_with_normals.str());
+  DesignOptions options;
+  options.supports.enabled = false;
+  const DesignResult plain = design(dir / "plain.obj", options), with_normals = design(dir / "normals.obj", options);
+  EXPECT_EQ(plain.segmentation.count, 4);  // back, floor, front, top
+  EXPECT_EQ(with_normals.segmentation.count, plain.segmentation.count);
+  ASSERT_EQ(with_normals.raster_plan.faces.size(), 4u);
+  EXPECT_EQ(with_normals.raster_plan.face.values, plain.raster_plan.face.values);
 }
 
 TEST(Slice, SameInputGivesByteIdenticalFaceMaps) {

@@ -385,9 +385,10 @@ LoadedMesh load_mesh_unguarded(const std::filesystem::path& file, const LoadOpti
   });
   if (!any_area) fail(file, "model has no area (every triangle's corners lie on a line)");
 
-  if (loaded.file_normals)
+  if (loaded.file_normals) {
     unit_or_face_normals(loaded.mesh);
-  else
+    sharpen_file_normals(loaded.mesh, options.feature_angle_deg);
+  } else
     loaded.mesh.corner_normals = feature_corner_normals(loaded.mesh, options.feature_angle_deg);
   return loaded;
 }

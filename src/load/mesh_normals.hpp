@@ -19,4 +19,9 @@ std::vector<glm::vec3> feature_corner_normals(const TriangleMesh& mesh, double f
 /// its face's normal. \pre mesh.corner_normals holds 3 normals per triangle.
 void unit_or_face_normals(TriangleMesh& mesh);
 
+/// Replaces each unit file normal in mesh.corner_normals that lies farther than feature_angle_deg
+/// from its face's plane normal (either side) by feature_corner_normals', turned to the side of the
+/// face its triangle's file normals are on. \pre unit corner normals, 3 per triangle.
+void sharpen_file_normals(TriangleMesh& mesh, double feature_angle_deg);
+
 }  // namespace origamic
