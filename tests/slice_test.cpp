@@ -223,6 +223,56 @@ TEST(Slice, ABoxWithNormalsAveragedAtItsCornersSlicesAsTheBoxWithout) {
   EXPECT_EQ(with_normals.raster_plan.face.values, plain.raster_plan.face.values);
 }
 
+// A plate of 2 mm slats side by side, their fronts alternately 20.5 and 21.5 mm deep, hanging from
+// h 50 to 80 mm (a lattice sail): each front is a segment of its own and thinner than W = 3.
+TriangleMesh slatted_plate() {
+  TriangleMesh plate;
+  for (int j = 0; j < 20; ++j)
+    plate = test::merged(plate, test::box({60.0 + 2 * j, 50, 15}, {62.0 + 2 * j, 80, j % 2 ? 21.5 : 20.5}));
+  return plate;
+}
+
+// Faces of the plan at the pixels whose centres lie in the plan box [X0, X1] x [Y0, Y1].
+std::set<std::int32_t> faces_in(const Planned& p, double X0, double X1, double Y0, double Y1) {
+  std::set<std::int32_t> faces;
+  for (int row = 0; row < p.maps.grid.rows; ++row)
+    for (int col = 0; col < p.maps.grid.cols; ++col)
+      if (const double X = p.maps.grid.X(col), Y = p.maps.grid.Y(row); X0 <= X && X <= X1 && Y0 <= Y && Y <= Y1)
+        faces.insert(p.raster_plan.face(col, row));
+  return faces;
+}
+
+TEST(Slice, ThinPiecesInOnePlaneBeforeTheBackPlaneAreOneFace) {
+  const Planned p = plan_of_oa_mesh(slatted_plate());
+  ASSERT_GE(p.segmentation.count, 2 + 20);
+  // The fronts, Y = h - d from 50 - 20.5 to 80 - 21.5 (a pixel in from each side): one V face at
+  // their mean depth, 21 mm.
+  const std::set<std::int32_t> front = faces_in(p, 61, 99, 30, 58);
+  ASSERT_EQ(front.size(), 1u);
+  const RasterFace& face = p.raster_plan.faces[static_cast<std::size_t>(*front.begin())];
+  EXPECT_EQ(face.orientation, Orientation::V);
+  EXPECT_NEAR(face.depth_mm, 21.0, 0.05);
+  // The slats' tops, 2 mm wide each: one H face at 80 mm, from Y = 80 - 20.5 up to 80 - 15.
+  const std::set<std::int32_t> top = faces_in(p, 61, 99, 60, 64.5);
+  ASSERT_EQ(top.size(), 1u);
+  EXPECT_EQ(p.raster_plan.faces[static_cast<std::size_t>(*top.begin())].orientation, Orientation::H);
+  EXPECT_DOUBLE_EQ(p.raster_plan.faces[static_cast<std::size_t>(*top.begin())].depth_mm, 80.0);
+}
+
+// The same slats against a wall: among faces of the model they are a detail, filled from the faces
+// around (as faces of their own such details cost arch_temple and arch_water_tower more in supports
+// than they gave), and the thin pieces count as removed one by one.
+TEST(Slice, ThinPiecesInOnePlaneAgainstAModelFaceAreFilledFromIt) {
+  const Planned p = plan_of_oa_mesh(test::merged(test::box({30, 0, 0}, {130, 100, 15}), slatted_plate()));
+  for (const std::int32_t f : faces_in(p, 61, 99, 30, 58)) {
+    const RasterFace& face = p.raster_plan.faces[static_cast<std::size_t>(f)];
+    // The wall's front, or the slats' tops (one face 6 mm deep) grown down over them.
+    EXPECT_TRUE(face.orientation == Orientation::V ? face.depth_mm == 15.0 : face.depth_mm == 80.0)
+        << (face.orientation == Orientation::V ? "V " : "H ") << face.depth_mm;
+  }
+  EXPECT_GE(p.raster_plan.removed_thin, 20);
+}
+
 TEST(Slice, SameInputGivesByteIdenticalFaceMaps) {
   const TriangleMesh shape = test::sphere({105, 40, 40}, 38, 96, 48);
   const Planned a = plan_of_oa_mesh(shape), b = plan_of_oa_mesh(shape);
