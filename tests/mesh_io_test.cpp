@@ -160,6 +160,24 @@ TEST(MeshIo, FileNormalsWithinTheFeatureAngleOfTheirFaceAreKept) {
   for (const auto& n : loaded.mesh.corner_normals) EXPECT_LT(glm::length(n - glm::vec3(0.5f, 0, 0.8660254f)), 1e-6f);
 }
 
+// Two triangles folded 20 degrees along a seam, once sharing the seam's vertices and once each with
+// its own copies at the same points (a mesh cut along its patch seams, as res_teapot's is): the
+// computed normals are the same, smooth across the seam.
+TEST(MeshIo, ComputedNormalsAreSmoothAcrossASeamOfRepeatedVertices) {
+  const TempDir dir;
+  const std::string points = "v 0 0 0\nv 0 1 0\nv -1 0.5 0\nv 0.9396926 0.5 0.3420201\n";
+  test::write_text(dir / "shared.obj", points + "f 1 2 3\nf 2 1 4\n");
+  test::write_text(dir / "seam.obj", points + "v 0 0 0\nv 0 1 0\nf 1 2 3\nf 6 5 4\n");
+  const LoadedMesh shared = load_mesh(dir / "shared.obj"), seam = load_mesh(dir / "seam.obj");
+  ASSERT_EQ(shared.mesh.corner_normals.size(), 6u);
+  ASSERT_EQ(seam.mesh.corner_normals.size(), 6u);
+  for (std::size_t k = 0; k < 6; ++k)
+    EXPECT_LT(glm::length(seam.mesh.corner_normals[k] - shared.mesh.corner_normals[k]), 1e-6f) << "corner " << k;
+  // On the seam the normal lies between the two faces' (0, 0, 1) and (-0.34, 0, 0.94).
+  EXPECT_GT(glm::dot(seam.mesh.corner_normals[0], glm::vec3(0, 0, 1)), 0.98f);
+  EXPECT_LT(glm::dot(seam.mesh.corner_normals[0], glm::vec3(0, 0, 1)), 0.99999f);
+}
+
 // Every bad input gets an InputError whose one-line message names the file and the problem.
 void expect_input_error(const std::filesystem::path& file, const std::string& problem) {
   SCOPED_TRACE(file.filename().string());
