@@ -397,6 +397,30 @@ DesignResult standing_design(const char* model, int orders = DesignOptions{}.sup
   return r;
 }
 
+// The sphere's crumbs at its rim, which no support holds, were cut out of the sheet (12 holes, 1.4%
+// of the model showing the back plane or the floor). Each is now given to the neighbour whose plane
+// shows the model over it better than a hole would: the sphere stands with no hole, and the report
+// says where each went and what it cost against its hole.
+TEST(Supports, AFaceNoSupportHoldsJoinsTheNeighbourNearestTheModelRatherThanLeaveAHole) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  const DesignResult r = standing_design("seedlike/sphere.stl");
+  EXPECT_EQ(r.supports.cut_out, 0);
+  EXPECT_EQ(r.plan.validity.removed, 0);
+  EXPECT_EQ(r.likeness.cut_out_share, 0);
+  ASSERT_FALSE(r.supports.joined_faces.empty());
+  for (const JoinedFace& f : r.supports.joined_faces) {
+    EXPECT_GT(f.area_mm2, 0);
+    EXPECT_LT(f.joined_cost, f.hole_cost) << "at " << f.at.X << ", " << f.at.Y;
+    // Where it was is a face of the plan now, not a hole.
+    const auto col = static_cast<int>(f.at.X * r.maps.grid.px_per_mm);
+    const auto row = static_cast<int>(r.maps.grid.rows_above_fold - f.at.Y * r.maps.grid.px_per_mm);
+    const std::int32_t there = r.raster_plan.face(col, row);
+    ASSERT_GE(there, 0);
+    EXPECT_FALSE(r.raster_plan.faces[static_cast<std::size_t>(there)].hole);
+  }
+  EXPECT_GE(r.likeness.coverage, 0.99);
+}
+
 // A flat torus lying on the floor. Its rings of slices fold onto each other in chains; one ear
 // through each chain holds it (the old greedy choice left most of the ring to slats or cut it out:
 // 5.5 % of the model). Measured on the finished plan.

@@ -53,6 +53,14 @@ struct CutOutFace {
   std::string reason;
 };
 
+/// A face no support held, given to the neighbour whose plane shows the model over it best: that
+/// showed it better than a hole would (costs as CutOutFace's).
+struct JoinedFace {
+  PlanPoint at;  // a pixel centre of it, in plan mm
+  double area_mm2 = 0;
+  double joined_cost = 0, hole_cost = 0;
+};
+
 /// Why supports alone did not make every face stand.
 enum class SupportStop : std::uint8_t {
   None,          // they did, or nothing needed them
@@ -79,6 +87,7 @@ struct SupportReport {
   bool stop_at_quota = false;            // cutting the rest out would have removed over a quarter of the model
   int cut_out = 0;                        // faces cut out of the sheet as the last resort
   std::vector<CutOutFace> cut_out_faces;  // each, with its place and why
+  std::vector<JoinedFace> joined_faces;   // faces given to a neighbour instead of cut out
   std::vector<NarrowStrip> narrow;        // faces and supports narrower than W, with their place
 };
 

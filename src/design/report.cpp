@@ -85,6 +85,16 @@ nlohmann::json cut_out_json(const std::vector<CutOutFace>& faces) {
   return list;
 }
 
+nlohmann::json joined_json(const std::vector<JoinedFace>& faces) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const JoinedFace& f : faces)
+    list.push_back({{"at_XY", {f.at.X, f.at.Y}},
+                    {"area_mm2", f.area_mm2},
+                    {"joined_cost", f.joined_cost},
+                    {"hole_cost", f.hole_cost}});
+  return list;
+}
+
 // The places the plan is narrower than W, from the exact measure of its lines.
 nlohmann::json narrow_places_json(const std::vector<PlanProblem>& narrow) {
   nlohmann::json list = nlohmann::json::array();
@@ -207,6 +217,7 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
         {"cut_out", result.supports.cut_out},
         {"cut_out_share", result.supports.cut_out_share},
         {"cut_out_faces", cut_out_json(result.supports.cut_out_faces)},
+        {"joined_to_neighbour", joined_json(result.supports.joined_faces)},
         {"narrow_strips", narrow_json(result.supports.narrow)},
         {"round_bound", result.supports.round_bound},
         {"orders", result.supports.orders},
