@@ -412,17 +412,17 @@ TEST(Cli, FoldTurnsAnyPlanIntoItsPopUpFlatAt180AndStandingAt90) {
 }
 
 // One plan, one pop-up: the design's --fold-model and `fold` of its DXF give the same mesh, faces cut
-// out of the sheet left out of both (they were pink panels floating in the design's). The torus
+// out of the sheet left out of both (they were pink panels floating in the design's). The chapel
 // has faces cut out.
 TEST(Cli, TheDesignsPopUpIsTheFoldOfItsPlan) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   const test::TempDir dir;
-  const CommandRun designed = run("design " + quoted(test::models_dir() / "seedlike/torus.stl") +
+  const CommandRun designed = run("design " + quoted(test::models_dir() / "seedlike/chapel.stl") +
                                   " --up z --fold-model --out " + quoted(dir.path));
   ASSERT_EQ(designed.status, 0) << designed.output;
-  const auto report = nlohmann::json::parse(std::ifstream(dir / "torus.json"));
+  const auto report = nlohmann::json::parse(std::ifstream(dir / "chapel.json"));
   ASSERT_GT(report["plan"]["counts"]["removed"].get<int>(), 0) << "the case needs faces cut out";
-  const CommandRun folded = run("fold " + quoted(dir / "torus.dxf") + " --out " + quoted(dir / "folded.obj"));
+  const CommandRun folded = run("fold " + quoted(dir / "chapel.dxf") + " --out " + quoted(dir / "folded.obj"));
   ASSERT_EQ(folded.status, 0) << folded.output;
   const auto faces_of = [](const std::filesystem::path& obj) {
     std::ifstream in(obj);
@@ -431,7 +431,7 @@ TEST(Cli, TheDesignsPopUpIsTheFoldOfItsPlan) {
     return faces;
   };
   EXPECT_GT(faces_of(dir / "folded.obj"), 0);
-  EXPECT_EQ(faces_of(dir / "torus_popup.obj"), faces_of(dir / "folded.obj"));
+  EXPECT_EQ(faces_of(dir / "chapel_popup.obj"), faces_of(dir / "folded.obj"));
 }
 
 // A run killed while it wrote left NAME.partPID files: the next run into the folder removes those

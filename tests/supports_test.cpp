@@ -15,6 +15,7 @@
 #include "origamic/design.hpp"
 #include "origamic/plan_analysis.hpp"
 #include "support_choice.hpp"
+#include "support_picture.hpp"
 
 namespace origamic {
 namespace {
@@ -454,12 +455,40 @@ TEST(Supports, AConicalRoofOnColumnsStands) {
   EXPECT_LE(r.supports.cut_out_share, 0.1);
 }
 
+// A box before the back plane: its front V(40) and its top H(50) are each other's only neighbours
+// but the back plane and the floor, which take nothing (a hole shows them). Given to the top, the
+// front would show the model 20 - 2Y mm off at plan height Y (the top's key 100 - Y against the
+// front's Y + 80), capped at 2 W; a hole shows it |Y| - Y - 80 off, capped, and 2 W more.
+TEST(Supports, AFaceJoinsTheNeighbourWhosePlaneShowsTheModelBestAndCostsWhatItAdds) {
+  const RayScene scene(test::box({60, 0, 0}, {150, 50, 40}));
+  const RasterMaps maps = raster(scene, Sheet{}, RasterOptions{});
+  const RasterPlan raster_plan = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{.min_strip_mm = 3});
+  ASSERT_EQ(raster_plan.faces.size(), 4u);
+  const std::int32_t front = raster_plan.faces[2].orientation == Orientation::V ? 2 : 3, top = 5 - front;
+  const SupportPicture picture(maps, raster_plan);
+  EXPECT_EQ(picture.nearest_join(front).into, top);
+  EXPECT_EQ(picture.nearest_join(top).into, front);
+  // The expected sums, pixel by pixel, in mm of error times mm² of plan.
+  const double W = 3, cap = 2 * W, pixel_mm2 = 1 / (maps.grid.px_per_mm * maps.grid.px_per_mm);
+  double joined = 0, hole = 0;
+  for (int r = 0; r < maps.grid.rows; ++r)
+    for (int c = 0; c < maps.grid.cols; ++c)
+      if (raster_plan.face(c, r) == front) {
+        const double Y = maps.grid.Y(r);
+        joined += std::min(cap, std::abs(20 - 2 * Y)) * pixel_mm2;
+        hole += (std::min(cap, std::abs(std::abs(Y) - Y - 80)) + 2 * W) * pixel_mm2;
+      }
+  EXPECT_NEAR(picture.nearest_join(front).error, joined, 1e-3 * joined);
+  EXPECT_NEAR(picture.hole_error(front), hole, 1e-3 * hole);
+  EXPECT_LT(picture.nearest_join(front).error, picture.hole_error(front));
+}
+
 // Passes of rounds that held nothing are undone: the slices go back to those of the last exact
 // verdict. The plan kept must be the exact plan of the slices kept, built afresh: no pass, undone
 // or not, may leave them apart.
 TEST(Supports, ThePlanKeptIsTheExactPlanOfTheSlicesKept) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
-  const DesignResult r = standing_design("seedlike/torus.stl");
+  const DesignResult r = standing_design("seedlike/sphere.stl");
   ASSERT_GT(r.supports.passes_undone, 0) << "a design with undone passes";
   const Plan fresh = build_plan(r.maps, r.raster_plan, DesignOptions{}.sheet, PlanOptions{});
   EXPECT_EQ(fresh.validity.status, r.plan.validity.status);

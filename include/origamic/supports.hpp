@@ -53,11 +53,13 @@ struct CutOutFace {
   std::string reason;
 };
 
-/// A face no support held, given to the neighbour whose plane shows the model over it best: that
-/// showed it better than a hole would (costs as CutOutFace's).
+/// A face no support held (or none for less), given to the neighbour whose plane shows the model
+/// over it best, which showed it better than a hole would.
 struct JoinedFace {
   PlanPoint at;  // a pixel centre of it, in plan mm
   double area_mm2 = 0;
+  // What joining it and cutting it out added to the picture, in CutOutFace's units (negative where
+  // the neighbour's plane shows the model better than the face did).
   double joined_cost = 0, hole_cost = 0;
 };
 

@@ -615,11 +615,13 @@ class EarTaker {
     const std::vector<RasterFace>& faces = round.raster_plan.faces;
     for (std::size_t f = 0; f < faces.size() && f < verdicts.validity.status.size(); ++f)
       stands_[f] = verdicts.validity.status[f] == FaceStatus::Valid && !faces[f].hole;
-    // A face is held only while that costs the picture no more than cutting it out.
+    // A face is held only while that costs the picture no more than giving it to its nearest
+    // neighbour or, where that shows the model worse, cutting it out.
     const double W = round.raster_plan.min_strip_mm;
     for (const std::int32_t f : invalid) {
       open_[static_cast<std::size_t>(f)] = 1;
-      limit_[static_cast<std::size_t>(f)] = std::max(0.0, picture_.hole_error(f)) / (W * W);
+      limit_[static_cast<std::size_t>(f)] =
+          std::max(0.0, std::min(picture_.hole_error(f), picture_.nearest_join(f).error)) / (W * W);
     }
   }
 

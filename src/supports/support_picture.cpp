@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include "four_neighbours.hpp"
+
 namespace origamic {
 namespace {
 
@@ -61,6 +63,48 @@ SupportPicture::SupportPicture(const RasterMaps& maps, const RasterPlan& raster_
     }
   }
   for (double& e : hole_error_) e /= grid_.px_per_mm * grid_.px_per_mm;
+  nearest_join_ = nearest_joins(maps, raster_plan);
+}
+
+// Per face, the neighbour it would best be given to: one pass gathers each face's pixels and
+// neighbours, then each neighbour's plane is tried over the face's pixels.
+std::vector<SupportPicture::Join> SupportPicture::nearest_joins(const RasterMaps& maps,
+                                                                const RasterPlan& raster_plan) const {
+  const std::size_t n = raster_plan.faces.size();
+  std::vector<std::vector<std::int32_t>> neighbours(n);
+  std::vector<std::vector<std::pair<int, int>>> pixels(n);
+  const Grid<std::int32_t>& face = raster_plan.face;
+  for (int r = 0; r < face.rows; ++r)
+    for (int c = 0; c < face.cols; ++c) {
+      const std::int32_t f = face(c, r);
+      if (f <= kFloorFace) continue;
+      pixels[static_cast<std::size_t>(f)].emplace_back(c, r);
+      for (const auto& [dc, dr] : kFourNeighbours) {
+        if (!face.contains(c + dc, r + dr)) continue;
+        const std::int32_t g = face(c + dc, r + dr);
+        if (g <= kFloorFace || g == f || raster_plan.faces[static_cast<std::size_t>(g)].hole) continue;
+        std::vector<std::int32_t>& around = neighbours[static_cast<std::size_t>(f)];
+        if (std::find(around.begin(), around.end(), g) == around.end()) around.push_back(g);
+      }
+    }
+  std::vector<Join> nearest(n);
+  const double pixel_mm2 = 1 / (grid_.px_per_mm * grid_.px_per_mm);
+  tbb::parallel_for(std::size_t{2}, n, [&](std::size_t f) {
+    for (const std::int32_t g : neighbours[f]) {
+      const RasterFace& plane = raster_plan.faces[static_cast<std::size_t>(g)];
+      double sum = 0;
+      bool on_card = true;
+      for (const auto& [c, r] : pixels[f]) {
+        const double Y = grid_.Y(r);
+        on_card &= plane.orientation == Orientation::V ? Y >= -plane.depth_mm : Y <= plane.depth_mm;
+        if (maps.kind(c, r) != HitKind::Model) continue;
+        const auto key = static_cast<float>(key_of_plane(plane.orientation, plane.depth_mm, Y));
+        sum += std::min(cap_mm_, std::abs(key - model_key_(c - c0_, r - r0_))) - error_(c - c0_, r - r0_);
+      }
+      if (on_card && sum * pixel_mm2 < nearest[f].error) nearest[f] = {g, sum * pixel_mm2};
+    }
+  });
+  return nearest;
 }
 
 double SupportPicture::added_error(Orientation orientation, double depth_mm, PixelBox box) const {

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "origamic/grid.hpp"
@@ -32,6 +33,15 @@ class SupportPicture {
   /// above the main fold and the floor below it, and no model. In mm times mm², as added_error.
   double hole_error(std::int32_t f) const { return hole_error_[static_cast<std::size_t>(f)]; }
 
+  /// The neighbour of face f (not the back plane, the floor or a hole) whose plane shows the model
+  /// over f best and stays on the card there (V(d) above Y = -d, H(h) below Y = h), and the error
+  /// giving f to it would add, as hole_error; none (-1, infinite) where no neighbour's plane can.
+  struct Join {
+    std::int32_t into = -1;
+    double error = std::numeric_limits<double>::infinity();
+  };
+  const Join& nearest_join(std::int32_t f) const { return nearest_join_[static_cast<std::size_t>(f)]; }
+
  private:
   const PixelGrid& grid_;
   float cap_mm_;
@@ -39,6 +49,8 @@ class SupportPicture {
   Grid<float> model_key_;           // h + d of the model, NaN off it
   Grid<float> error_;               // |key of the face there - model key| up to the cap, 0 off the model
   std::vector<double> hole_error_;  // per face
+  std::vector<Join> nearest_join_;  // per face
+  std::vector<Join> nearest_joins(const RasterMaps& maps, const RasterPlan& raster_plan) const;
 };
 
 }  // namespace origamic
