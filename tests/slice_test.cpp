@@ -265,6 +265,7 @@ TEST(Slice, ThinPiecesInOnePlaneBeforeTheBackPlaneAreOneFace) {
 TEST(Slice, ThinPiecesInOnePlaneAgainstAModelFaceAreFilledFromIt) {
   const Planned p = plan_of_oa_mesh(test::merged(test::box({30, 0, 0}, {130, 100, 15}), slatted_plate()));
   for (const std::int32_t f : faces_in(p, 61, 99, 30, 58)) {
+    ASSERT_GE(f, 0);
     const RasterFace& face = p.raster_plan.faces[static_cast<std::size_t>(f)];
     // The wall's front, or the slats' tops (one face 6 mm deep) grown down over them.
     EXPECT_TRUE(face.orientation == Orientation::V ? face.depth_mm == 15.0 : face.depth_mm == 80.0)

@@ -411,7 +411,6 @@ TEST(Supports, AFaceNoSupportHoldsJoinsTheNeighbourNearestTheModelRatherThanLeav
   ASSERT_FALSE(r.supports.joined_faces.empty());
   for (const JoinedFace& f : r.supports.joined_faces) {
     EXPECT_GT(f.area_mm2, 0);
-    EXPECT_LT(f.joined_cost, f.hole_cost) << "at " << f.at.X << ", " << f.at.Y;
     // Where it was is a face of the plan now, not a hole.
     const auto col = static_cast<int>(f.at.X * r.maps.grid.px_per_mm);
     const auto row = static_cast<int>(r.maps.grid.rows_above_fold - f.at.Y * r.maps.grid.px_per_mm);
@@ -466,8 +465,11 @@ TEST(Supports, AFaceJoinsTheNeighbourWhosePlaneShowsTheModelBestAndCostsWhatItAd
   ASSERT_EQ(raster_plan.faces.size(), 4u);
   const std::int32_t front = raster_plan.faces[2].orientation == Orientation::V ? 2 : 3, top = 5 - front;
   const SupportPicture picture(maps, raster_plan);
-  EXPECT_EQ(picture.nearest_join(front).into, top);
-  EXPECT_EQ(picture.nearest_join(top).into, front);
+  const std::vector<std::int32_t> both = {front, top};
+  const std::vector<SupportPicture::Join> joins = picture.nearest_joins(raster_plan, both);
+  ASSERT_EQ(joins.size(), 2u);
+  EXPECT_EQ(joins[0].into, top);
+  EXPECT_EQ(joins[1].into, front);
   // The expected sums, pixel by pixel, in mm of error times mm² of plan.
   const double W = 3, cap = 2 * W, pixel_mm2 = 1 / (maps.grid.px_per_mm * maps.grid.px_per_mm);
   double joined = 0, hole = 0;
@@ -478,9 +480,13 @@ TEST(Supports, AFaceJoinsTheNeighbourWhosePlaneShowsTheModelBestAndCostsWhatItAd
         joined += std::min(cap, std::abs(20 - 2 * Y)) * pixel_mm2;
         hole += (std::min(cap, std::abs(std::abs(Y) - Y - 80)) + 2 * W) * pixel_mm2;
       }
-  EXPECT_NEAR(picture.nearest_join(front).error, joined, 1e-3 * joined);
+  EXPECT_NEAR(joins[0].error, joined, 1e-3 * joined);
   EXPECT_NEAR(picture.hole_error(front), hole, 1e-3 * hole);
-  EXPECT_LT(picture.nearest_join(front).error, picture.hole_error(front));
+  // With the top to be cut out too, the front has no neighbour to go to.
+  const std::vector<std::int32_t> only_front = {front}, not_top = {top};
+  const SupportPicture::Join none = picture.nearest_joins(raster_plan, only_front, not_top).front();
+  EXPECT_EQ(none.into, -1);
+  EXPECT_TRUE(std::isinf(none.error));
 }
 
 // Passes of rounds that held nothing are undone: the slices go back to those of the last exact

@@ -64,4 +64,10 @@ inline double key_of_plane(Orientation orientation, double depth_mm, double Y) {
   return orientation == Orientation::V ? Y + 2 * depth_mm : 2 * depth_mm - Y;
 }
 
+/// Whether a face's plane is on the card at plan height Y: a V face at depth d above the floor's
+/// fold with it (Y >= -d), an H face at height h before the back plane's (Y <= h).
+inline bool on_card(Orientation orientation, double depth_mm, double Y) {
+  return orientation == Orientation::V ? Y >= -depth_mm : Y <= depth_mm;
+}
+
 }  // namespace origamic

@@ -41,7 +41,7 @@ struct RasterPlan {
   Grid<std::int32_t> face;                       // the raster plan: face id per pixel, kNoFace outside
   std::vector<RasterFace> faces;                 // faces[kBackFace] is V(0), faces[kFloorFace] is H(0)
   int subsegments = 0;
-  int removed_thin = 0;  // faces whose oriented box had a side under W
+  int removed_thin = 0;  // pieces whose oriented box had a side under W, filled from their neighbours
 };
 
 /// Slices every segment. Deterministic: the same maps and options give the same face map.

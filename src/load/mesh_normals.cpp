@@ -112,6 +112,7 @@ void sharpen_file_normals(TriangleMesh& mesh, double feature_angle_deg) {
   std::vector<glm::vec3> computed;
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     const glm::dvec3 face = face_normal(mesh, mesh.triangles[f]);
+    if (face == glm::dvec3(0.0)) continue;  // no area: no plane to be near
     double side = 0;
     bool far = false;
     for (std::size_t c = 0; c < 3; ++c) {

@@ -220,11 +220,8 @@ void keep_within_card(const PixelGrid& grid, RasterPlan& result) {
       std::int32_t& f = result.face(col, row);
       if (f < 2) continue;
       const RasterFace& face = result.faces[static_cast<std::size_t>(f)];
-      const double Y = grid.Y(row);
-      if (face.orientation == Orientation::H && Y > face.depth_mm)
-        f = kBackFace;
-      else if (face.orientation == Orientation::V && Y < -face.depth_mm)
-        f = kFloorFace;
+      if (!on_card(face.orientation, face.depth_mm, grid.Y(row)))
+        f = face.orientation == Orientation::H ? kBackFace : kFloorFace;
     }
 }
 
@@ -250,11 +247,11 @@ void for_touching_pieces(const std::vector<ThinPiece>& thin, int cols, int rows,
     }
 }
 
-// Thin pieces that touch and face one way, each within W / 2 of its neighbour's depth, are one
-// surface of paper: the bars and panels of a lattice (arch_windmill's sails: each panel its own
-// segment, all under W, 94 pieces over 4.1 mm of depth on one sail). The surface is sliced as a
-// segment is, into the most levels at least W deep; each connected run of pieces within a level is
-// one piece at their mean depth, weighted by area, in the segment of its largest piece.
+// Thin pieces that touch and face one way, each within W / 2 of its neighbour's depth (half the
+// depth between two levels of a slice, so no two levels of one surface chain), are one surface: the bars and panels of
+// a lattice (arch_windmill's sails: each panel its own segment, all under W, 94 pieces over 4.1 mm of depth on one
+// sail). The surface is sliced as a segment is, into the most levels at least W deep; each connected run of pieces
+// within a level is one piece at their mean depth, weighted by area, in the segment of its largest piece.
 std::vector<ThinPiece> join_coplanar_thin_pieces(std::vector<ThinPiece> thin, int cols, int rows, double W) {
   const auto at = [](std::int32_t p) { return static_cast<std::size_t>(p); };
   UnionFind<std::int32_t> surface(thin.size());
@@ -266,7 +263,7 @@ std::vector<ThinPiece> join_coplanar_thin_pieces(std::vector<ThinPiece> thin, in
   std::vector<double> nearest(thin.size(), kInfinity), farthest(thin.size(), -kInfinity);
   for (std::size_t p = 0; p < thin.size(); ++p) {
     const std::size_t s = at(surface.root(static_cast<std::int32_t>(p)));
-    nearest[s] = std::min(nearest[s], thin[p].plane.depth_mm),
+    nearest[s] = std::min(nearest[s], thin[p].plane.depth_mm);
     farthest[s] = std::max(farthest[s], thin[p].plane.depth_mm);
   }
   std::vector<std::int32_t> level(thin.size());
@@ -366,14 +363,20 @@ void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vec
       result.faces.push_back({sub.orientation, sub.depth_mm, sub.segment, 0});
       for (const auto& [col, row] : piece) result.face(col, row) = id;
     }
-  for (ThinPiece& joined : join_coplanar_thin_pieces(std::move(thin), cols, rows, W)) {
-    if (oriented_box_min_side_px(joined.pixels) < min_side_px || !stands_clear(joined, result)) {
-      result.removed_thin += joined.pieces;
+  // Which joined pieces stand clear is decided on the faces placed before any of them, so that
+  // neither decides for another (two levels of one sail).
+  std::vector<ThinPiece> joined = join_coplanar_thin_pieces(std::move(thin), cols, rows, W);
+  std::vector<std::uint8_t> kept(joined.size());
+  for (std::size_t i = 0; i < joined.size(); ++i)
+    kept[i] = oriented_box_min_side_px(joined[i].pixels) >= min_side_px && stands_clear(joined[i], result);
+  for (std::size_t i = 0; i < joined.size(); ++i) {
+    if (!kept[i]) {
+      result.removed_thin += joined[i].pieces;
       continue;
     }
     const auto id = static_cast<std::int32_t>(result.faces.size());
-    result.faces.push_back({joined.plane.orientation, joined.plane.depth_mm, joined.plane.segment, 0});
-    for (const auto& [col, row] : joined.pixels) result.face(col, row) = id;
+    result.faces.push_back({joined[i].plane.orientation, joined[i].plane.depth_mm, joined[i].plane.segment, 0});
+    for (const auto& [col, row] : joined[i].pixels) result.face(col, row) = id;
   }
   fill_holes(maps.grid, seg.segment, result.faces, result.face);
   keep_within_card(maps.grid, result);

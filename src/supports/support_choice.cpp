@@ -615,13 +615,16 @@ class EarTaker {
     const std::vector<RasterFace>& faces = round.raster_plan.faces;
     for (std::size_t f = 0; f < faces.size() && f < verdicts.validity.status.size(); ++f)
       stands_[f] = verdicts.validity.status[f] == FaceStatus::Valid && !faces[f].hole;
-    // A face is held only while that costs the picture no more than giving it to its nearest
-    // neighbour or, where that shows the model worse, cutting it out.
+    // A face is held only while that costs the picture no more than cutting it out or, where it
+    // may be cut out, giving it to its nearest neighbour (supports.cpp, FaceOrderRun::give_away).
     const double W = round.raster_plan.min_strip_mm;
-    for (const std::int32_t f : invalid) {
-      open_[static_cast<std::size_t>(f)] = 1;
-      limit_[static_cast<std::size_t>(f)] =
-          std::max(0.0, std::min(picture_.hole_error(f), picture_.nearest_join(f).error)) / (W * W);
+    const std::vector<SupportPicture::Join> joins = options.cut_out_unsupported
+                                                        ? picture_.nearest_joins(round.raster_plan, invalid)
+                                                        : std::vector<SupportPicture::Join>(invalid.size());
+    for (std::size_t i = 0; i < invalid.size(); ++i) {
+      const auto f = static_cast<std::size_t>(invalid[i]);
+      open_[f] = 1;
+      limit_[f] = std::max(0.0, std::min(picture_.hole_error(invalid[i]), joins[i].error)) / (W * W);
     }
   }
 

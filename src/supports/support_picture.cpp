@@ -14,7 +14,7 @@ namespace {
 
 // A pixel's error counts up to 2 W, the p95 error the finished card aims at: beyond it a pixel is
 // wrong, whatever by how much, so a support that shows a strip 3 W off costs what one 2 W off
-// costs, and a hole no more per pixel than the worst support. A pixel in a hole costs 1 W more: it
+// costs, and a hole no more per pixel than the worst support. A pixel in a hole costs 2 W more: it
 // shows no model at all (coverage).
 constexpr double kErrorCap_W = 2;
 constexpr double kHoleExtra_W = 2;
@@ -63,47 +63,52 @@ SupportPicture::SupportPicture(const RasterMaps& maps, const RasterPlan& raster_
     }
   }
   for (double& e : hole_error_) e /= grid_.px_per_mm * grid_.px_per_mm;
-  nearest_join_ = nearest_joins(maps, raster_plan);
 }
 
-// Per face, the neighbour it would best be given to: one pass gathers each face's pixels and
-// neighbours, then each neighbour's plane is tried over the face's pixels.
-std::vector<SupportPicture::Join> SupportPicture::nearest_joins(const RasterMaps& maps,
-                                                                const RasterPlan& raster_plan) const {
+// One pass gathers the pixels and the neighbours of the faces asked about; then each neighbour's
+// plane is tried over a face's pixels, in pixel order.
+std::vector<SupportPicture::Join> SupportPicture::nearest_joins(const RasterPlan& raster_plan,
+                                                                std::span<const std::int32_t> faces,
+                                                                std::span<const std::int32_t> not_into) const {
   const std::size_t n = raster_plan.faces.size();
-  std::vector<std::vector<std::int32_t>> neighbours(n);
-  std::vector<std::vector<std::pair<int, int>>> pixels(n);
+  std::vector<std::int32_t> slot(n, -1);
+  for (std::size_t i = 0; i < faces.size(); ++i)
+    slot[static_cast<std::size_t>(faces[i])] = static_cast<std::int32_t>(i);
+  std::vector<std::uint8_t> target(n, 0);
+  for (std::size_t g = kFloorFace + 1; g < n; ++g)
+    target[g] = !raster_plan.faces[g].hole && !raster_plan.faces[g].support;
+  for (const std::int32_t g : not_into) target[static_cast<std::size_t>(g)] = 0;
+  std::vector<std::vector<std::int32_t>> neighbours(faces.size());
+  std::vector<std::vector<std::pair<int, int>>> pixels(faces.size());
   const Grid<std::int32_t>& face = raster_plan.face;
   for (int r = 0; r < face.rows; ++r)
     for (int c = 0; c < face.cols; ++c) {
       const std::int32_t f = face(c, r);
-      if (f <= kFloorFace) continue;
-      pixels[static_cast<std::size_t>(f)].emplace_back(c, r);
+      if (f < 0 || slot[static_cast<std::size_t>(f)] < 0) continue;
+      const auto i = static_cast<std::size_t>(slot[static_cast<std::size_t>(f)]);
+      pixels[i].emplace_back(c, r);
       for (const auto& [dc, dr] : kFourNeighbours) {
         if (!face.contains(c + dc, r + dr)) continue;
         const std::int32_t g = face(c + dc, r + dr);
-        if (g <= kFloorFace || g == f || raster_plan.faces[static_cast<std::size_t>(g)].hole) continue;
-        std::vector<std::int32_t>& around = neighbours[static_cast<std::size_t>(f)];
-        if (std::find(around.begin(), around.end(), g) == around.end()) around.push_back(g);
+        if (g < 0 || g == f || !target[static_cast<std::size_t>(g)]) continue;
+        if (std::find(neighbours[i].begin(), neighbours[i].end(), g) == neighbours[i].end()) neighbours[i].push_back(g);
       }
     }
-  std::vector<Join> nearest(n);
+  std::vector<Join> nearest(faces.size());
   const double pixel_mm2 = 1 / (grid_.px_per_mm * grid_.px_per_mm);
-  tbb::parallel_for(std::size_t{2}, n, [&](std::size_t f) {
-    for (const std::int32_t g : neighbours[f]) {
+  for (std::size_t i = 0; i < faces.size(); ++i)
+    for (const std::int32_t g : neighbours[i]) {
       const RasterFace& plane = raster_plan.faces[static_cast<std::size_t>(g)];
       double sum = 0;
-      bool on_card = true;
-      for (const auto& [c, r] : pixels[f]) {
+      bool stays = true;
+      for (const auto& [c, r] : pixels[i]) {
         const double Y = grid_.Y(r);
-        on_card &= plane.orientation == Orientation::V ? Y >= -plane.depth_mm : Y <= plane.depth_mm;
-        if (maps.kind(c, r) != HitKind::Model) continue;
-        const auto key = static_cast<float>(key_of_plane(plane.orientation, plane.depth_mm, Y));
-        sum += std::min(cap_mm_, std::abs(key - model_key_(c - c0_, r - r0_))) - error_(c - c0_, r - r0_);
+        stays &= on_card(plane.orientation, plane.depth_mm, Y);
+        if (model_key_.contains(c - c0_, r - r0_) && !std::isnan(model_key_(c - c0_, r - r0_)))
+          sum += added_at(c, r, key_of_plane(plane.orientation, plane.depth_mm, Y));
       }
-      if (on_card && sum * pixel_mm2 < nearest[f].error) nearest[f] = {g, sum * pixel_mm2};
+      if (stays && sum * pixel_mm2 < nearest[i].error) nearest[i] = {g, sum * pixel_mm2};
     }
-  });
   return nearest;
 }
 

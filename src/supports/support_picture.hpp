@@ -6,8 +6,11 @@
 // (under an overhang, behind a face).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "origamic/grid.hpp"
@@ -33,14 +36,16 @@ class SupportPicture {
   /// above the main fold and the floor below it, and no model. In mm times mm², as added_error.
   double hole_error(std::int32_t f) const { return hole_error_[static_cast<std::size_t>(f)]; }
 
-  /// The neighbour of face f (not the back plane, the floor or a hole) whose plane shows the model
-  /// over f best and stays on the card there (V(d) above Y = -d, H(h) below Y = h), and the error
-  /// giving f to it would add, as hole_error; none (-1, infinite) where no neighbour's plane can.
+  /// Where face f would best go when no support holds it: the neighbour (not the back plane, the
+  /// floor, a hole, a support or a face in `not_into`) whose plane shows the model over f best and
+  /// stays on the card there (on_card), and the error giving f to it would add, as hole_error; none
+  /// (-1, infinite) where no neighbour's plane can. One entry per face of `faces`.
   struct Join {
     std::int32_t into = -1;
     double error = std::numeric_limits<double>::infinity();
   };
-  const Join& nearest_join(std::int32_t f) const { return nearest_join_[static_cast<std::size_t>(f)]; }
+  std::vector<Join> nearest_joins(const RasterPlan& raster_plan, std::span<const std::int32_t> faces,
+                                  std::span<const std::int32_t> not_into = {}) const;
 
  private:
   const PixelGrid& grid_;
@@ -49,8 +54,12 @@ class SupportPicture {
   Grid<float> model_key_;           // h + d of the model, NaN off it
   Grid<float> error_;               // |key of the face there - model key| up to the cap, 0 off the model
   std::vector<double> hole_error_;  // per face
-  std::vector<Join> nearest_join_;  // per face
-  std::vector<Join> nearest_joins(const RasterMaps& maps, const RasterPlan& raster_plan) const;
+  // The error a pixel (c, r) of the model, at plan height Y, adds shown at `key` instead of what
+  // shows there now, capped.
+  float added_at(int c, int r, double key) const {
+    return std::min(cap_mm_, std::abs(static_cast<float>(key) - model_key_(c - c0_, r - r0_))) -
+           error_(c - c0_, r - r0_);
+  }
 };
 
 }  // namespace origamic
