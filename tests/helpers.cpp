@@ -57,6 +57,26 @@ double twice_signed_area(const std::vector<PlanPoint>& ring) {
   return twice;
 }
 
+std::string box_obj(const glm::dvec3& size, bool corner_normals, bool inward) {
+  std::ostringstream text;
+  for (int v = 0; v < 8; ++v)
+    text << "v " << size.x * (v & 1) << ' ' << size.y * (v >> 1 & 1) << ' ' << size.z * (v >> 2 & 1) << '\n';
+  if (corner_normals)
+    for (int v = 0; v < 8; ++v)
+      text << "vn " << 2 * (v & 1) - 1 << ' ' << 2 * (v >> 1 & 1) - 1 << ' ' << 2 * (v >> 2 & 1) - 1 << '\n';
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : quads) {
+    text << 'f';
+    for (int k = 0; k < 4; ++k) {
+      const int v = (inward ? q[3 - k] : q[k]) + 1;
+      text << ' ' << v;
+      if (corner_normals) text << "//" << v;
+    }
+    text << '\n';
+  }
+  return text.str();
+}
+
 TriangleMesh merged(const TriangleMesh& a, const TriangleMesh& b) {
   TriangleMesh m = a;
   const auto offset = static_cast<std::uint32_t>(a.positions.size());

@@ -17,6 +17,11 @@ namespace origamic::test {
 /// An axis-aligned box from lo to hi, 12 triangles wound outwards.
 TriangleMesh box(const glm::dvec3& lo, const glm::dvec3& hi);
 
+/// An OBJ text of the box from the origin to `size`, its quads wound outwards (inwards with
+/// `inward`). With `corner_normals`, a normal per vertex from the centre through it, as a low-poly
+/// model's per-vertex normals are (55 degrees off every face of a cube).
+std::string box_obj(const glm::dvec3& size, bool corner_normals, bool inward = false);
+
 /// Both meshes in one (b's vertices after a's).
 TriangleMesh merged(const TriangleMesh& a, const TriangleMesh& b);
 

@@ -8,7 +8,6 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <limits>
-#include <sstream>
 
 #include "helpers.hpp"
 #include "origamic/error.hpp"
@@ -110,31 +109,11 @@ TEST(MeshIo, FileNormalsAreUsedWhenPresent) {
   for (const auto& n : loaded.mesh.corner_normals) EXPECT_EQ(n, glm::vec3(0, 0, 1));  // normalised
 }
 
-// A unit cube whose file normals point from its centre through each corner, as a low-poly model's
-// per-vertex normals do (55 degrees off every face); `inward` winds its faces the other way.
-std::string cube_with_corner_normals(bool inward) {
-  std::ostringstream text;
-  for (int v = 0; v < 8; ++v) text << "v " << (v & 1) << ' ' << (v >> 1 & 1) << ' ' << (v >> 2 & 1) << '\n';
-  for (int v = 0; v < 8; ++v)
-    text << "vn " << 2 * (v & 1) - 1 << ' ' << 2 * (v >> 1 & 1) - 1 << ' ' << 2 * (v >> 2 & 1) - 1 << '\n';
-  // Quads wound outwards (corners numbered from 0).
-  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& q : quads) {
-    text << 'f';
-    for (int k = 0; k < 4; ++k) {
-      const int v = (inward ? q[3 - k] : q[k]) + 1;
-      text << ' ' << v << "//" << v;
-    }
-    text << '\n';
-  }
-  return text.str();
-}
-
 TEST(MeshIo, FileNormalsFartherThanTheFeatureAngleFromTheirFaceTakeItsNormal) {
   const TempDir dir;
   for (const bool inward : {false, true}) {
     SCOPED_TRACE(inward ? "wound inwards" : "wound outwards");
-    test::write_text(dir / "cube.obj", cube_with_corner_normals(inward));
+    test::write_text(dir / "cube.obj", test::box_obj({1, 1, 1}, true, inward));
     const LoadedMesh loaded = load_mesh(dir / "cube.obj");
     ASSERT_TRUE(loaded.file_normals);
     ASSERT_EQ(loaded.mesh.triangles.size(), 12u);

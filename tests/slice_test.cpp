@@ -7,7 +7,6 @@
 #include <array>
 #include <map>
 #include <set>
-#include <sstream>
 
 #include "helpers.hpp"
 #include "origamic/design.hpp"
@@ -201,19 +200,8 @@ TEST(Slice, ThinPoleIsRemovedAndItsHoleFilled) {
 // does with no normals in its file: one front, one top.
 TEST(Slice, ABoxWithNormalsAveragedAtItsCornersSlicesAsTheBoxWithout) {
   const test::TempDir dir;
-  std::ostringstream vertices, normals;
-  for (int v = 0; v < 8; ++v) {
-    vertices << "v " << 80 * (v & 1) << ' ' << 50 * (v >> 1 & 1) << ' ' << 40 * (v >> 2 & 1) << '\n';
-    normals << "vn " << 2 * (v & 1) - 1 << ' ' << 2 * (v >> 1 & 1) - 1 << ' ' << 2 * (v >> 2 & 1) - 1 << '\n';
-  }
-  std::ostringstream plain_faces, faces_with_normals;
-  for (const auto& q : {std::array{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}}) {
-    plain_faces << 'f', faces_with_normals << 'f';
-    for (const int v : q) plain_faces << ' ' << v + 1, faces_with_normals << ' ' << v + 1 << "//" << v + 1;
-    plain_faces << '\n', faces_with_normals << '\n';
-  }
-  test::write_text(dir / "plain.obj", vertices.str() + plain_faces.str());
-  test::write_text(dir / "normals.obj", vertices.str() + normals.str() + faces_with_normals.str());
+  test::write_text(dir / "plain.obj", test::box_obj({80, 50, 40}, false));
+  test::write_text(dir / "normals.obj", test::box_obj({80, 50, 40}, true));
   DesignOptions options;
   options.supports.enabled = false;
   const DesignResult plain = design(dir / "plain.obj", options), with_normals = design(dir / "normals.obj", options);
