@@ -22,8 +22,10 @@ constexpr double kHoleExtra_W = 2;
 }  // namespace
 
 SupportPicture::SupportPicture(const RasterMaps& maps, const RasterPlan& raster_plan)
-    : grid_(maps.grid),
+    : maps_(maps),
+      grid_(maps.grid),
       cap_mm_(static_cast<float>(kErrorCap_W * raster_plan.min_strip_mm)),
+      hole_extra_mm_(static_cast<float>(kHoleExtra_W * raster_plan.min_strip_mm)),
       hole_error_(raster_plan.faces.size(), 0.0) {
   // Off the model nothing is compared: the tables cover the model's bounding box only.
   int c_end = 0, r_end = 0;
@@ -50,7 +52,6 @@ SupportPicture::SupportPicture(const RasterMaps& maps, const RasterPlan& raster_
     }
   });
   // In row order, one pixel after another: the sums do not depend on the threads.
-  const auto extra = static_cast<float>(kHoleExtra_W * raster_plan.min_strip_mm);
   for (int row = r0_; row < r_end; ++row) {
     const double Y = grid_.Y(row);
     for (int col = c0_; col < c_end; ++col) {
@@ -59,14 +60,42 @@ SupportPicture::SupportPicture(const RasterMaps& maps, const RasterPlan& raster_
       const double model = maps.h_mm(col, row) + maps.d_mm(col, row);
       const float error = error_(col - c0_, row - r0_);
       hole_error_[static_cast<std::size_t>(f)] +=
-          std::min(cap_mm_, static_cast<float>(std::abs(std::abs(Y) - model))) + extra - error;
+          std::min(cap_mm_, static_cast<float>(std::abs(std::abs(Y) - model))) + hole_extra_mm_ - error;
     }
   }
   for (double& e : hole_error_) e /= grid_.px_per_mm * grid_.px_per_mm;
 }
 
-// One pass gathers the pixels and the neighbours of the faces asked about; then each neighbour's
-// plane is tried over a face's pixels, in pixel order.
+std::vector<std::uint8_t> SupportPicture::join_targets(const RasterPlan& raster_plan,
+                                                       std::span<const std::int32_t> not_into) const {
+  std::vector<std::uint8_t> target(raster_plan.faces.size(), 0);
+  for (std::size_t g = kFloorFace + 1; g < target.size(); ++g)
+    target[g] = !raster_plan.faces[g].hole && !raster_plan.faces[g].support;
+  for (const std::int32_t g : not_into) target[static_cast<std::size_t>(g)] = 0;
+  return target;
+}
+
+// Each neighbour's plane is tried over the face's pixels, in pixel order; the first best is kept.
+SupportPicture::Join SupportPicture::best_join(const RasterPlan& raster_plan, std::span<const PixelAt> pixels,
+                                               std::span<const std::int32_t> neighbours) const {
+  Join nearest;
+  const double pixel_mm2 = 1 / (grid_.px_per_mm * grid_.px_per_mm);
+  for (const std::int32_t g : neighbours) {
+    const RasterFace& plane = raster_plan.faces[static_cast<std::size_t>(g)];
+    double sum = 0;
+    bool stays = true;
+    for (const auto& [c, r] : pixels) {
+      const double Y = grid_.Y(r);
+      stays &= on_card(plane.orientation, plane.depth_mm, Y);
+      if (model_key_.contains(c - c0_, r - r0_) && !std::isnan(model_key_(c - c0_, r - r0_)))
+        sum += added_at(c, r, key_of_plane(plane.orientation, plane.depth_mm, Y));
+    }
+    if (stays && sum * pixel_mm2 < nearest.error) nearest = {g, sum * pixel_mm2};
+  }
+  return nearest;
+}
+
+// One pass gathers the pixels and the neighbours of the faces asked about.
 std::vector<SupportPicture::Join> SupportPicture::nearest_joins(const RasterPlan& raster_plan,
                                                                 std::span<const std::int32_t> faces,
                                                                 std::span<const std::int32_t> not_into) const {
@@ -74,19 +103,16 @@ std::vector<SupportPicture::Join> SupportPicture::nearest_joins(const RasterPlan
   std::vector<std::int32_t> slot(n, -1);
   for (std::size_t i = 0; i < faces.size(); ++i)
     slot[static_cast<std::size_t>(faces[i])] = static_cast<std::int32_t>(i);
-  std::vector<std::uint8_t> target(n, 0);
-  for (std::size_t g = kFloorFace + 1; g < n; ++g)
-    target[g] = !raster_plan.faces[g].hole && !raster_plan.faces[g].support;
-  for (const std::int32_t g : not_into) target[static_cast<std::size_t>(g)] = 0;
+  const std::vector<std::uint8_t> target = join_targets(raster_plan, not_into);
   std::vector<std::vector<std::int32_t>> neighbours(faces.size());
-  std::vector<std::vector<std::pair<int, int>>> pixels(faces.size());
+  std::vector<std::vector<PixelAt>> pixels(faces.size());
   const Grid<std::int32_t>& face = raster_plan.face;
   for (int r = 0; r < face.rows; ++r)
     for (int c = 0; c < face.cols; ++c) {
       const std::int32_t f = face(c, r);
       if (f < 0 || slot[static_cast<std::size_t>(f)] < 0) continue;
       const auto i = static_cast<std::size_t>(slot[static_cast<std::size_t>(f)]);
-      pixels[i].emplace_back(c, r);
+      pixels[i].push_back({c, r});
       for (const auto& [dc, dr] : kFourNeighbours) {
         if (!face.contains(c + dc, r + dr)) continue;
         const std::int32_t g = face(c + dc, r + dr);
@@ -95,21 +121,39 @@ std::vector<SupportPicture::Join> SupportPicture::nearest_joins(const RasterPlan
       }
     }
   std::vector<Join> nearest(faces.size());
-  const double pixel_mm2 = 1 / (grid_.px_per_mm * grid_.px_per_mm);
-  for (std::size_t i = 0; i < faces.size(); ++i)
-    for (const std::int32_t g : neighbours[i]) {
-      const RasterFace& plane = raster_plan.faces[static_cast<std::size_t>(g)];
-      double sum = 0;
-      bool stays = true;
-      for (const auto& [c, r] : pixels[i]) {
-        const double Y = grid_.Y(r);
-        stays &= on_card(plane.orientation, plane.depth_mm, Y);
-        if (model_key_.contains(c - c0_, r - r0_) && !std::isnan(model_key_(c - c0_, r - r0_)))
-          sum += added_at(c, r, key_of_plane(plane.orientation, plane.depth_mm, Y));
-      }
-      if (stays && sum * pixel_mm2 < nearest[i].error) nearest[i] = {g, sum * pixel_mm2};
-    }
+  for (std::size_t i = 0; i < faces.size(); ++i) nearest[i] = best_join(raster_plan, pixels[i], neighbours[i]);
   return nearest;
+}
+
+SupportPicture::Join SupportPicture::nearest_join(const RasterPlan& raster_plan, std::span<const PixelAt> pixels,
+                                                  std::span<const std::int32_t> not_into) const {
+  if (pixels.empty()) return {};
+  const std::vector<std::uint8_t> target = join_targets(raster_plan, not_into);
+  const Grid<std::int32_t>& face = raster_plan.face;
+  const std::int32_t f = face(pixels.front().c, pixels.front().r);
+  std::vector<std::int32_t> neighbours;
+  for (const auto& [c, r] : pixels)
+    for (const auto& [dc, dr] : kFourNeighbours) {
+      if (!face.contains(c + dc, r + dr)) continue;
+      const std::int32_t g = face(c + dc, r + dr);
+      if (g < 0 || g == f || !target[static_cast<std::size_t>(g)]) continue;
+      if (std::find(neighbours.begin(), neighbours.end(), g) == neighbours.end()) neighbours.push_back(g);
+    }
+  return best_join(raster_plan, pixels, neighbours);
+}
+
+void SupportPicture::give(std::int32_t f, std::int32_t into, const RasterFace& plane, std::span<const PixelAt> pixels) {
+  double moved = 0;
+  for (const auto& [c, r] : pixels) {
+    if (!model_key_.contains(c - c0_, r - r0_) || maps_.kind(c, r) != HitKind::Model) continue;
+    const double model = maps_.h_mm(c, r) + maps_.d_mm(c, r);
+    const double Y = grid_.Y(r);
+    float& error = error_(c - c0_, r - r0_);
+    error = std::min(cap_mm_, static_cast<float>(std::abs(key_of_plane(plane.orientation, plane.depth_mm, Y) - model)));
+    moved += std::min(cap_mm_, static_cast<float>(std::abs(std::abs(Y) - model))) + hole_extra_mm_ - error;
+  }
+  hole_error_[static_cast<std::size_t>(into)] += moved / (grid_.px_per_mm * grid_.px_per_mm);
+  hole_error_[static_cast<std::size_t>(f)] = 0;
 }
 
 double SupportPicture::added_error(Orientation orientation, double depth_mm, PixelBox box) const {

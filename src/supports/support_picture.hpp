@@ -20,6 +20,11 @@
 
 namespace origamic {
 
+// A pixel of the raster plan: (column, row).
+struct PixelAt {
+  int c, r;
+};
+
 class SupportPicture {
  public:
   /// The picture of the raster plan as it is.
@@ -46,14 +51,28 @@ class SupportPicture {
   };
   std::vector<Join> nearest_joins(const RasterPlan& raster_plan, std::span<const std::int32_t> faces,
                                   std::span<const std::int32_t> not_into = {}) const;
+  /// The same for one face, of its pixels (in row order) as the plan is now.
+  Join nearest_join(const RasterPlan& raster_plan, std::span<const PixelAt> pixels,
+                    std::span<const std::int32_t> not_into = {}) const;
+
+  /// The picture once face f's pixels (in row order) show face `into`'s plane, as a join makes them
+  /// (the raster plan's face map may already say so): what one built afresh would find, but for the
+  /// order in which the hole error of `into` is summed.
+  void give(std::int32_t f, std::int32_t into, const RasterFace& plane, std::span<const PixelAt> pixels);
 
  private:
+  const RasterMaps& maps_;
   const PixelGrid& grid_;
-  float cap_mm_;
+  float cap_mm_, hole_extra_mm_;
   int c0_ = 0, r0_ = 0;             // the model's first column and row: the tables start there
   Grid<float> model_key_;           // h + d of the model, NaN off it
   Grid<float> error_;               // |key of the face there - model key| up to the cap, 0 off the model
   std::vector<double> hole_error_;  // per face
+  // The faces a join may give to (not the back plane, the floor, a hole, a support or one of
+  // `not_into`); the best of `neighbours` over `pixels`.
+  std::vector<std::uint8_t> join_targets(const RasterPlan& raster_plan, std::span<const std::int32_t> not_into) const;
+  Join best_join(const RasterPlan& raster_plan, std::span<const PixelAt> pixels,
+                 std::span<const std::int32_t> neighbours) const;
   // The error a pixel (c, r) of the model, at plan height Y, adds shown at `key` instead of what
   // shows there now, capped.
   float added_at(int c, int r, double key) const {

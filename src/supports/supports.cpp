@@ -10,6 +10,7 @@
 #include <optional>
 #include <random>
 #include <set>
+#include <span>
 #include <tuple>
 #include <utility>
 
@@ -224,7 +225,8 @@ class FaceOrderRun {
   // Gives each face (but pieces of card) to its nearest neighbour where that shows the model better
   // than its hole would; returns the indices of those it did not give away.
   std::vector<std::size_t> give_away(const std::vector<std::int32_t>& faces);
-  void join(std::int32_t f, const SupportPicture::Join& to, double hole_error);
+  void join(std::int32_t f, const SupportPicture::Join& to, double hole_error, std::span<const PixelAt> pixels);
+  std::vector<std::vector<PixelAt>> pixels_of(const std::vector<std::int32_t>& faces) const;
   bool card_piece(std::int32_t f) const {  // a piece of the back plane or the floor
     return f > kFloorFace && raster_plan_.faces[static_cast<std::size_t>(f)].depth_mm == 0;
   }
@@ -401,15 +403,29 @@ bool FaceOrderRun::cut_out_cheapest(std::vector<std::int32_t> invalid) {
 std::vector<std::size_t> FaceOrderRun::give_away(const std::vector<std::int32_t>& faces) {
   std::vector<std::size_t> kept;
   std::vector<std::int32_t> kept_faces;
-  std::optional<SupportPicture> picture;  // as the plan is now: each join changes the faces around the next
+  // The picture as the plan is now, each join given to it: it changes the faces around the next.
+  std::optional<SupportPicture> picture;
+  std::vector<std::vector<PixelAt>> pixels = pixels_of(faces);
   for (std::size_t i = 0; i < faces.size(); ++i) {
     const std::int32_t f = faces[i];
     if (!card_piece(f)) {
       if (!picture) picture.emplace(setting_.maps, raster_plan_);
-      const SupportPicture::Join to = picture->nearest_joins(raster_plan_, {&f, 1}, kept_faces).front();
+      const SupportPicture::Join to = picture->nearest_join(raster_plan_, pixels[i], kept_faces);
       if (to.error < picture->hole_error(f)) {
-        join(f, to, picture->hole_error(f));
-        picture.reset();
+        join(f, to, picture->hole_error(f), pixels[i]);
+        picture->give(f, to.into, raster_plan_.faces[static_cast<std::size_t>(to.into)], pixels[i]);
+        // A face still to come that f joined takes f's pixels with it, in row order.
+        if (const auto later =
+                std::ranges::find(faces.begin() + static_cast<std::ptrdiff_t>(i) + 1, faces.end(), to.into);
+            later != faces.end()) {
+          std::vector<PixelAt>& into = pixels[static_cast<std::size_t>(later - faces.begin())];
+          const std::size_t before = into.size();
+          into.insert(into.end(), pixels[i].begin(), pixels[i].end());
+          std::ranges::inplace_merge(into, into.begin() + static_cast<std::ptrdiff_t>(before),
+                                     [](PixelAt a, PixelAt b) {
+                                       return std::pair{a.r, a.c} < std::pair{b.r, b.c};
+                                     });
+        }
         continue;
       }
     }
@@ -417,6 +433,20 @@ std::vector<std::size_t> FaceOrderRun::give_away(const std::vector<std::int32_t>
     kept_faces.push_back(f);
   }
   return kept;
+}
+
+// The pixels of each of the faces, in row order, in one pass over the plan.
+std::vector<std::vector<PixelAt>> FaceOrderRun::pixels_of(const std::vector<std::int32_t>& faces) const {
+  std::vector<std::int32_t> slot(raster_plan_.faces.size(), -1);
+  for (std::size_t i = 0; i < faces.size(); ++i)
+    slot[static_cast<std::size_t>(faces[i])] = static_cast<std::int32_t>(i);
+  std::vector<std::vector<PixelAt>> pixels(faces.size());
+  const Grid<std::int32_t>& face = raster_plan_.face;
+  for (int r = 0; r < face.rows; ++r)
+    for (int c = 0; c < face.cols; ++c)
+      if (const std::int32_t f = face(c, r); f >= 0 && slot[static_cast<std::size_t>(f)] >= 0)
+        pixels[static_cast<std::size_t>(slot[static_cast<std::size_t>(f)])].push_back({c, r});
+  return pixels;
 }
 
 void FaceOrderRun::cut_out(const std::vector<std::int32_t>& faces, const std::vector<std::pair<double, double>>& costs,
@@ -451,18 +481,14 @@ void FaceOrderRun::cut_out(const std::vector<std::int32_t>& faces, const std::ve
       static_cast<double>(cut_out_pixels_) / static_cast<double>(std::max<std::int64_t>(1, model_pixels_));
 }
 
-// Gives face f's pixels to the neighbour `to` names, and reports it.
-void FaceOrderRun::join(std::int32_t f, const SupportPicture::Join& to, double hole_error) {
+// Gives face f's pixels (in row order) to the neighbour `to` names, and reports it.
+void FaceOrderRun::join(std::int32_t f, const SupportPicture::Join& to, double hole_error,
+                        std::span<const PixelAt> pixels) {
   const PixelGrid& grid = setting_.maps.grid;
   const double W = raster_plan_.min_strip_mm;
   JoinedFace entry;
-  bool first = true;
-  for (int r = 0; r < raster_plan_.face.rows; ++r)
-    for (int c = 0; c < raster_plan_.face.cols; ++c)
-      if (std::int32_t& at = raster_plan_.face(c, r); at == f) {
-        if (first) entry.at = {grid.X(c), grid.Y(r)}, first = false;
-        at = to.into;
-      }
+  if (!pixels.empty()) entry.at = {grid.X(pixels.front().c), grid.Y(pixels.front().r)};
+  for (const auto& [c, r] : pixels) raster_plan_.face(c, r) = to.into;
   RasterFace& joined = raster_plan_.faces[static_cast<std::size_t>(f)];
   raster_plan_.faces[static_cast<std::size_t>(to.into)].pixels += joined.pixels;
   entry.area_mm2 = static_cast<double>(joined.pixels) / (grid.px_per_mm * grid.px_per_mm);
