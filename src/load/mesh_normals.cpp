@@ -4,8 +4,10 @@
 #include "mesh_normals.hpp"
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <numbers>
@@ -22,13 +24,22 @@ glm::dvec3 face_normal(const TriangleMesh& mesh, const std::array<std::uint32_t,
   return length > 0 ? n / length : glm::dvec3(0.0);
 }
 
-double corner_angle(const TriangleMesh& mesh, const std::array<std::uint32_t, 3>& t, int corner) {
-  const glm::dvec3& p = mesh.positions[t[static_cast<std::size_t>(corner)]];
-  const glm::dvec3 a = mesh.positions[t[static_cast<std::size_t>((corner + 1) % 3)]] - p;
-  const glm::dvec3 b = mesh.positions[t[static_cast<std::size_t>((corner + 2) % 3)]] - p;
-  const double la = glm::length(a), lb = glm::length(b);
-  if (la == 0 || lb == 0) return 0;
-  return std::acos(std::clamp(glm::dot(a, b) / (la * lb), -1.0, 1.0));
+// The cosine of the angle at each corner, from the three edges (p1 - p0 is -(p0 - p1) to the bit),
+// clamped; 1 (no angle) where an edge has no length.
+std::array<double, 3> corner_cosines(const TriangleMesh& mesh, const std::array<std::uint32_t, 3>& t) {
+  std::array<glm::dvec3, 3> edge;  // edge k runs from corner k to corner k + 1
+  std::array<double, 3> length{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    edge[k] = mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]];
+    length[k] = glm::length(edge[k]);
+  }
+  std::array<double, 3> cosines{};
+  for (std::size_t c = 0; c < 3; ++c) {
+    const std::size_t back = (c + 2) % 3;  // the edge into corner c, reversed
+    const double la = length[c], lb = length[back];
+    cosines[c] = la == 0 || lb == 0 ? 1.0 : std::clamp(-glm::dot(edge[c], edge[back]) / (la * lb), -1.0, 1.0);
+  }
+  return cosines;
 }
 
 // Per vertex, the smallest index of a vertex at exactly its position.
@@ -39,7 +50,8 @@ std::vector<std::uint32_t> same_point_ids(const std::vector<glm::dvec3>& positio
     const glm::dvec3& p = positions[v];
     return std::tuple(p.x, p.y, p.z, v);
   };
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+  // The key is a total order (the index breaks ties): any sort gives the same order.
+  tbb::parallel_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
   std::vector<std::uint32_t> id(positions.size());
   for (std::size_t i = 0; i < order.size(); ++i)
     id[order[i]] = i > 0 && positions[order[i]] == positions[order[i - 1]] ? id[order[i - 1]] : order[i];
@@ -70,7 +82,8 @@ std::vector<glm::vec3> feature_corner_normals(const TriangleMesh& mesh, double f
   std::vector<double> angles(3 * mesh.triangles.size());
   tbb::parallel_for(std::size_t{0}, mesh.triangles.size(), [&](std::size_t f) {
     normals[f] = face_normal(mesh, mesh.triangles[f]);
-    for (int c = 0; c < 3; ++c) angles[3 * f + c] = corner_angle(mesh, mesh.triangles[f], c);
+    const std::array<double, 3> cosines = corner_cosines(mesh, mesh.triangles[f]);
+    for (int c = 0; c < 3; ++c) angles[3 * f + c] = std::acos(cosines[static_cast<std::size_t>(c)]);
   });
 
   const double cos_feature = std::cos(feature_angle_deg * std::numbers::pi / 180);
