@@ -489,6 +489,45 @@ TEST(Supports, AFaceJoinsTheNeighbourWhosePlaneShowsTheModelBestAndCostsWhatItAd
   EXPECT_TRUE(std::isinf(none.error));
 }
 
+// Where every neighbour's plane is wrong over all of a face, the face joins the least wrong. The
+// box's top is split at its middle into H(90) on the left, which the front's first pixel meets
+// first, and H(65) on the right. Over the front (key Y + 80, Y from -40 to 10) they are 100 - 2Y and
+// 50 - 2Y mm off, beyond the 2 W cap everywhere: each adds the cap at every pixel, and only how
+// far beyond it tells them apart.
+TEST(Supports, AFaceWhoseNeighboursAreAllWrongJoinsTheLeastWrong) {
+  const RayScene scene(test::box({60, 0, 0}, {150, 50, 40}));
+  const RasterMaps maps = raster(scene, Sheet{}, RasterOptions{});
+  RasterPlan raster_plan = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{.min_strip_mm = 3});
+  ASSERT_EQ(raster_plan.faces.size(), 4u);
+  const std::int32_t front = raster_plan.faces[2].orientation == Orientation::V ? 2 : 3, top = 5 - front;
+  const auto far_left = static_cast<std::int32_t>(raster_plan.faces.size()), near_right = far_left + 1;
+  raster_plan.faces.push_back({.orientation = Orientation::H, .depth_mm = 90});
+  raster_plan.faces.push_back({.orientation = Orientation::H, .depth_mm = 65});
+  for (int r = 0; r < raster_plan.face.rows; ++r)
+    for (int c = 0; c < raster_plan.face.cols; ++c)
+      if (std::int32_t& f = raster_plan.face(c, r); f == top) {
+        f = maps.grid.X(c) < 105 ? far_left : near_right;
+        ++raster_plan.faces[static_cast<std::size_t>(f)].pixels;
+      }
+  raster_plan.faces[static_cast<std::size_t>(top)].pixels = 0;
+  ASSERT_GT(raster_plan.faces[static_cast<std::size_t>(far_left)].pixels, 0);
+  ASSERT_GT(raster_plan.faces[static_cast<std::size_t>(near_right)].pixels, 0);
+  const SupportPicture picture(maps, raster_plan);
+  const std::vector<std::int32_t> faces = {front};
+  const SupportPicture::Join join = picture.nearest_joins(raster_plan, faces).front();
+  EXPECT_EQ(join.into, near_right);
+  // What it adds is the cap at every pixel, less what the front shows there now (its own plane).
+  const double cap = 2 * 3.0, pixel_mm2 = 1 / (maps.grid.px_per_mm * maps.grid.px_per_mm);
+  double added = 0;
+  for (int r = 0; r < maps.grid.rows; ++r)
+    for (int c = 0; c < maps.grid.cols; ++c)
+      if (raster_plan.face(c, r) == front && maps.kind(c, r) == HitKind::Model) {
+        const double model = maps.h_mm(c, r) + maps.d_mm(c, r), Y = maps.grid.Y(r);
+        added += (cap - std::min(cap, std::abs(Y + 80 - model))) * pixel_mm2;
+      }
+  EXPECT_NEAR(join.error, added, 1e-3 * added);
+}
+
 // Passes of rounds that held nothing are undone: the slices go back to those of the last exact
 // verdict. The plan kept must be the exact plan of the slices kept, built afresh: no pass, undone
 // or not, may leave them apart.

@@ -42,8 +42,9 @@ class SupportPicture {
   double hole_error(std::int32_t f) const { return hole_error_[static_cast<std::size_t>(f)]; }
 
   /// Where face f would best go when no support holds it: the neighbour (not the back plane, the
-  /// floor, a hole, a support or a face in `not_into`) whose plane shows the model over f best and
-  /// stays on the card there (on_card), and the error giving f to it would add, as hole_error; none
+  /// floor, a hole, a support or a face in `not_into`) whose plane shows the model over f best (the
+  /// least error added up to the cap, and a little for how far beyond it) and stays on the card
+  /// there (on_card), and the error giving f to it would add, as hole_error; none
   /// (-1, infinite) where no neighbour's plane can. One entry per face of `faces`.
   struct Join {
     std::int32_t into = -1;
