@@ -387,6 +387,38 @@ TEST(Plan, AFaceReachingBehindTheBackPlaneIsTrimmedToIt) {
   for (const PlanProblem& p : read.problems) EXPECT_NE(p.kind, PlanProblemKind::OutsideCard) << p.message;
 }
 
+// A crumb the exact plan cuts out is a hole in the DXF, and so no region of the design: the pop-up
+// the design folds (its regions) is the fold of its plan. The cone's plan cuts out one, 0.03 mm²;
+// the design's regions had kept it as a face of its own.
+TEST(Plan, ACrumbCutOutIsNoRegionOfTheDesign) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  DesignOptions options;
+  options.placement.up = UpAxis::Z;
+  const DesignResult r = design(test::models_dir() / "prim_cone.stl", options);
+  ASSERT_GE(r.plan.crumbs_cut_out, 1) << "the case this test is about";
+  const test::TempDir dir;
+  write_files({{dir / "cone.dxf", plan_dxf(r.plan, ExportOptions{})}});
+  const PlanAnalysis read = analyze_plan(read_plan_dxf(dir / "cone.dxf", {}), {});
+  const auto inside = [](const PlanRegion& region, PlanPoint p) {  // even-odd over all its rings
+    bool in = false;
+    for (const auto& ring : region.rings)
+      for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
+        if ((ring[i].Y > p.Y) != (ring[j].Y > p.Y) &&
+            p.X < ring[j].X + (p.Y - ring[j].Y) * (ring[i].X - ring[j].X) / (ring[i].Y - ring[j].Y))
+          in = !in;
+    return in;
+  };
+  int crumbs = 0;
+  for (const PlanRegion& hole : read.regions) {
+    if (hole.status != FaceStatus::Removed) continue;
+    ++crumbs;
+    for (const PlanRegion& region : r.plan.regions)
+      EXPECT_FALSE(inside(region, hole.inside))
+          << "a region of the design over the hole at (" << hole.inside.X << ", " << hole.inside.Y << ")";
+  }
+  EXPECT_EQ(crumbs, r.plan.crumbs_cut_out);
+}
+
 TEST(Plan, R2000DxfWithCraftColoursReadsBackTheSame) {
   const Plan plan = plan_of_oa_mesh(test::box({40.2, 0, 0}, {151.9, 61.7, 37.3}));
   const test::TempDir dir;

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <functional>
 #include <iterator>
 #include <map>
 #include <utility>
@@ -65,8 +66,10 @@ std::vector<PlanPolyline> chain_segments(LineKind kind,
 // region per set of same-label faces connected through such edges. Its rings are the cycles of
 // halfedges with the region on their left and another label on their right: the outer one
 // counter-clockwise, holes clockwise, at the nearest doubles of their vertices (a vertex repeating
-// the previous one's doubles is dropped).
-std::vector<PlanRegion> regions_of(const Arrangement& arr, const std::vector<PlanFace>& faces) {
+// the previous one's doubles is dropped). Pieces cut out (crumbs, ExactPlan's verdict) are no
+// region, as the DXF, which draws them as holes, is read: the pop-up is the fold of the plan.
+std::vector<PlanRegion> regions_of(const Arrangement& arr, const std::vector<PlanFace>& faces,
+                                   const std::function<bool(Arrangement::Face_const_handle)>& cut_out) {
   using Face = Arrangement::Face_const_handle;
   using Halfedge = Arrangement::Halfedge_const_handle;
   auto each_halfedge = [](Face f, auto&& visit) {
@@ -86,7 +89,7 @@ std::vector<PlanRegion> regions_of(const Arrangement& arr, const std::vector<Pla
   std::vector<PlanRegion> regions;
   for (auto start = arr.faces_begin(); start != arr.faces_end(); ++start) {
     const std::int32_t label = start->data();
-    if (start->is_unbounded() || label < 0 || joined[start]) continue;
+    if (start->is_unbounded() || label < 0 || joined[start] || cut_out(start)) continue;
     // The connected set of faces with this label, and the halfedges that bound it.
     std::vector<Face> stack = {start};
     std::vector<Halfedge> boundary;
@@ -96,7 +99,7 @@ std::vector<PlanRegion> regions_of(const Arrangement& arr, const std::vector<Pla
       stack.pop_back();
       each_halfedge(f, [&](Halfedge he) {
         const Face other = he->twin()->face();
-        if (other->data() != label)
+        if (other->data() != label || cut_out(other))
           boundary.push_back(he);
         else if (!joined[other])
           joined[other] = true, stack.push_back(other);
@@ -105,7 +108,7 @@ std::vector<PlanRegion> regions_of(const Arrangement& arr, const std::vector<Pla
     // Around each boundary vertex, turn through faces of the set to the next boundary halfedge.
     auto next_on_boundary = [&](Halfedge he) {
       Halfedge next = he->next();
-      while (next->twin()->face()->data() == label) next = next->twin()->next();
+      while (next->twin()->face()->data() == label && !cut_out(next->twin()->face())) next = next->twin()->next();
       return next;
     };
     std::vector<std::vector<PlanPoint>> rings;
@@ -226,7 +229,7 @@ Plan ExactPlan::full() const {
   draw_lines(edges, plan);
   place_inside_points(state.labels, state.grid, plan.faces);
   count_vanished_faces(state.labels, state.faces, state.area, plan);
-  plan.regions = regions_of(state.built.arrangement, plan.faces);
+  plan.regions = regions_of(state.built.arrangement, plan.faces, cut_out);
   return plan;
 }
 
