@@ -528,6 +528,34 @@ TEST(Supports, AFaceWhoseNeighboursAreAllWrongJoinsTheLeastWrong) {
   EXPECT_NEAR(join.error, added, 1e-3 * added);
 }
 
+// A join handed to the picture (SupportPicture::give) leaves it as one built afresh on the joined
+// plan: the same error at every pixel, so the same added error over any box, and the hole errors
+// but for the order of one sum.
+TEST(Supports, APictureGivenAJoinIsThePictureOfTheJoinedPlan) {
+  const RayScene scene(test::box({60, 0, 0}, {150, 50, 40}));
+  const RasterMaps maps = raster(scene, Sheet{}, RasterOptions{});
+  const RasterPlan raster_plan = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{.min_strip_mm = 3});
+  ASSERT_EQ(raster_plan.faces.size(), 4u);
+  const std::int32_t front = raster_plan.faces[2].orientation == Orientation::V ? 2 : 3, top = 5 - front;
+  RasterPlan joined = raster_plan;
+  std::vector<PixelAt> pixels;
+  for (int r = 0; r < joined.face.rows; ++r)
+    for (int c = 0; c < joined.face.cols; ++c)
+      if (std::int32_t& f = joined.face(c, r); f == front) pixels.push_back({c, r}), f = top;
+  joined.faces[static_cast<std::size_t>(top)].pixels += joined.faces[static_cast<std::size_t>(front)].pixels;
+  joined.faces[static_cast<std::size_t>(front)].pixels = 0;
+  SupportPicture given(maps, raster_plan);
+  given.give(front, top, joined.faces[static_cast<std::size_t>(top)], pixels);
+  const SupportPicture fresh(maps, joined);
+  const int c0 = pixels.front().c, r0 = pixels.front().r, c1 = pixels.back().c + 1, r1 = pixels.back().r + 1;
+  for (const auto& [orientation, depth] : {std::pair{Orientation::V, 20.0}, std::pair{Orientation::H, 70.0}})
+    for (const SupportPicture::PixelBox box : {SupportPicture::PixelBox{c0, c1, r0, r1}, {c0, c0 + 12, r0 - 40, r1}})
+      EXPECT_EQ(given.added_error(orientation, depth, box), fresh.added_error(orientation, depth, box));
+  EXPECT_NEAR(given.hole_error(top), fresh.hole_error(top), 1e-9 * fresh.hole_error(top));
+  EXPECT_EQ(given.hole_error(front), 0.0);
+  EXPECT_EQ(fresh.hole_error(front), 0.0);
+}
+
 // Passes of rounds that held nothing are undone: the slices go back to those of the last exact
 // verdict. The plan kept must be the exact plan of the slices kept, built afresh: no pass, undone
 // or not, may leave them apart.

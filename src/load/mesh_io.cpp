@@ -149,18 +149,26 @@ constexpr std::uintmax_t kLargestMeshBytes = std::uintmax_t{256} << 20;
 
 std::string read_plain(const std::filesystem::path& file) {
   std::error_code error;
-  if (const std::uintmax_t size = std::filesystem::file_size(file, error); !error && size > kLargestMeshBytes)
+  const std::uintmax_t size = std::filesystem::file_size(file, error);
+  if (!error && size > kLargestMeshBytes)
     fail(file, "larger than 256 MiB; no model for a card needs that many triangles");
   std::ifstream in(file, std::ios::binary);
   if (!in) fail(file, "cannot open file");
-  // At once where the size is known (a pipe or a special file has none: then to its end).
+  // At once where the size is known; a pipe or a special file has none: then to its end, which may
+  // be no more than the limit either.
   std::string bytes;
-  if (const std::uintmax_t size = std::filesystem::file_size(file, error); !error) {
+  if (!error) {
     bytes.resize(static_cast<std::size_t>(size));
     in.read(bytes.data(), static_cast<std::streamsize>(size));
     bytes.resize(static_cast<std::size_t>(in.gcount()));
+  } else {
+    char buffer[1 << 16];
+    while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+      bytes.append(buffer, static_cast<std::size_t>(in.gcount()));
+      if (bytes.size() > kLargestMeshBytes)
+        fail(file, "larger than 256 MiB; no model for a card needs that many triangles");
+    }
   }
-  if (in) bytes.append(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   if (in.bad()) fail(file, "cannot read file");
   return bytes;
 }
@@ -168,13 +176,14 @@ std::string read_plain(const std::filesystem::path& file) {
 // A gzip file's last 4 bytes are its unpacked size, modulo 2^32 (RFC 1952): the room to make for
 // it at once, which took res_dragon_full's unpacking 420 -> 205 ms. Only a hint: a stream of
 // several members, or a corrupt one, says less or more. Deflate packs at most 1032 to 1, so no more
-// than that; 0 where the file is too short.
+// than that; 0 where the file is too short or no gzip (zlib reads other data as it is).
 std::size_t unpacked_size_hint(const std::filesystem::path& file) {
   std::error_code error;
   const std::uintmax_t packed = std::filesystem::file_size(file, error);
   std::ifstream in(file, std::ios::binary);
-  unsigned char size[4] = {};
-  if (error || !in.seekg(-4, std::ios::end) || !in.read(reinterpret_cast<char*>(size), 4)) return 0;
+  unsigned char magic[2] = {}, size[4] = {};
+  if (error || !in.read(reinterpret_cast<char*>(magic), 2) || magic[0] != 0x1f || magic[1] != 0x8b) return 0;
+  if (!in.seekg(-4, std::ios::end) || !in.read(reinterpret_cast<char*>(size), 4)) return 0;
   const std::uint32_t hint = size[0] | size[1] << 8 | size[2] << 16 | static_cast<std::uint32_t>(size[3]) << 24;
   return static_cast<std::size_t>(std::min({std::uintmax_t{hint}, 1032 * packed, kLargestMeshBytes + 1}));
 }

@@ -66,8 +66,9 @@ std::vector<PlanPolyline> chain_segments(LineKind kind,
 // region per set of same-label faces connected through such edges. Its rings are the cycles of
 // halfedges with the region on their left and another label on their right: the outer one
 // counter-clockwise, holes clockwise, at the nearest doubles of their vertices (a vertex repeating
-// the previous one's doubles is dropped). Pieces cut out (crumbs, ExactPlan's verdict) are no
-// region, as the DXF, which draws them as holes, is read: the pop-up is the fold of the plan.
+// the previous one's doubles is dropped). A piece cut out (a crumb, ExactPlan's verdict) is a region
+// of its own, removed, as the DXF draws it (a hole) and its reader finds it: the pop-up is the fold
+// of the plan.
 std::vector<PlanRegion> regions_of(const Arrangement& arr, const std::vector<PlanFace>& faces,
                                    const std::function<bool(Arrangement::Face_const_handle)>& cut_out) {
   using Face = Arrangement::Face_const_handle;
@@ -89,7 +90,8 @@ std::vector<PlanRegion> regions_of(const Arrangement& arr, const std::vector<Pla
   std::vector<PlanRegion> regions;
   for (auto start = arr.faces_begin(); start != arr.faces_end(); ++start) {
     const std::int32_t label = start->data();
-    if (start->is_unbounded() || label < 0 || joined[start] || cut_out(start)) continue;
+    if (start->is_unbounded() || label < 0 || joined[start]) continue;
+    const bool cut = cut_out(start);
     // The connected set of faces with this label, and the halfedges that bound it.
     std::vector<Face> stack = {start};
     std::vector<Halfedge> boundary;
@@ -99,7 +101,7 @@ std::vector<PlanRegion> regions_of(const Arrangement& arr, const std::vector<Pla
       stack.pop_back();
       each_halfedge(f, [&](Halfedge he) {
         const Face other = he->twin()->face();
-        if (other->data() != label || cut_out(other))
+        if (other->data() != label || cut_out(other) != cut)
           boundary.push_back(he);
         else if (!joined[other])
           joined[other] = true, stack.push_back(other);
@@ -108,7 +110,7 @@ std::vector<PlanRegion> regions_of(const Arrangement& arr, const std::vector<Pla
     // Around each boundary vertex, turn through faces of the set to the next boundary halfedge.
     auto next_on_boundary = [&](Halfedge he) {
       Halfedge next = he->next();
-      while (next->twin()->face()->data() == label && !cut_out(next->twin()->face())) next = next->twin()->next();
+      while (next->twin()->face()->data() == label && cut_out(next->twin()->face()) == cut) next = next->twin()->next();
       return next;
     };
     std::vector<std::vector<PlanPoint>> rings;
@@ -141,7 +143,7 @@ std::vector<PlanRegion> regions_of(const Arrangement& arr, const std::vector<Pla
                        .orientation = face.orientation,
                        .depth_mm = face.depth_mm,
                        .placed = true,
-                       .status = face.status,
+                       .status = cut ? FaceStatus::Removed : face.status,
                        .inside = face.inside,
                        .face = label});
   }

@@ -64,8 +64,7 @@ SupportPicture::SupportPicture(const RasterMaps& maps, const RasterPlan& raster_
       if (f < 0 || maps.kind(col, row) != HitKind::Model) continue;
       const double model = maps.h_mm(col, row) + maps.d_mm(col, row);
       const float error = error_(col - c0_, row - r0_);
-      hole_error_[static_cast<std::size_t>(f)] +=
-          std::min(cap_mm_, static_cast<float>(std::abs(std::abs(Y) - model))) + hole_extra_mm_ - error;
+      hole_error_[static_cast<std::size_t>(f)] += hole_at(Y, model) - error;
     }
   }
   for (double& e : hole_error_) e /= grid_.px_per_mm * grid_.px_per_mm;
@@ -97,7 +96,7 @@ SupportPicture::Join SupportPicture::best_join(const RasterPlan& raster_plan, st
       if (model_key_.contains(c - c0_, r - r0_) && !std::isnan(model_key_(c - c0_, r - r0_))) {
         const double key = key_of_plane(plane.orientation, plane.depth_mm, Y);
         sum += added_at(c, r, key);
-        far += std::max(0.0, std::abs(key - model_key_(c - c0_, r - r0_)) - cap_mm_);
+        far += std::max(0.0f, std::abs(static_cast<float>(key) - model_key_(c - c0_, r - r0_)) - cap_mm_);
       }
     }
     const double rank = (sum + kBeyondCapShare * far) * pixel_mm2;
@@ -161,7 +160,7 @@ void SupportPicture::give(std::int32_t f, std::int32_t into, const RasterFace& p
     const double Y = grid_.Y(r);
     float& error = error_(c - c0_, r - r0_);
     error = std::min(cap_mm_, static_cast<float>(std::abs(key_of_plane(plane.orientation, plane.depth_mm, Y) - model)));
-    moved += std::min(cap_mm_, static_cast<float>(std::abs(std::abs(Y) - model))) + hole_extra_mm_ - error;
+    moved += hole_at(Y, model) - error;
   }
   hole_error_[static_cast<std::size_t>(into)] += moved / (grid_.px_per_mm * grid_.px_per_mm);
   hole_error_[static_cast<std::size_t>(f)] = 0;

@@ -52,13 +52,15 @@ class SupportPicture {
   };
   std::vector<Join> nearest_joins(const RasterPlan& raster_plan, std::span<const std::int32_t> faces,
                                   std::span<const std::int32_t> not_into = {}) const;
-  /// The same for one face, of its pixels (in row order) as the plan is now.
+  /// The same for one face, of its pixels as the plan is now.
+  /// \pre `pixels` are all the pixels of one face, in row order.
   Join nearest_join(const RasterPlan& raster_plan, std::span<const PixelAt> pixels,
                     std::span<const std::int32_t> not_into = {}) const;
 
-  /// The picture once face f's pixels (in row order) show face `into`'s plane, as a join makes them
-  /// (the raster plan's face map may already say so): what one built afresh would find, but for the
-  /// order in which the hole error of `into` is summed.
+  /// The picture once face f's pixels show face `into`'s plane, as a join makes them (the raster
+  /// plan's face map may already say so): what one built afresh would find, but for the order in
+  /// which the hole error of `into` is summed.
+  /// \pre `pixels` are all the pixels f had, in row order; `plane` is `into`'s, not a hole.
   void give(std::int32_t f, std::int32_t into, const RasterFace& plane, std::span<const PixelAt> pixels);
 
  private:
@@ -76,6 +78,11 @@ class SupportPicture {
                  std::span<const std::int32_t> neighbours) const;
   // The error a pixel (c, r) of the model, at plan height Y, adds shown at `key` instead of what
   // shows there now, capped.
+  // What a pixel of the model at plan height Y adds to a hole: the back plane or the floor there,
+  // capped, and the extra for showing no model.
+  float hole_at(double Y, double model) const {
+    return std::min(cap_mm_, static_cast<float>(std::abs(std::abs(Y) - model))) + hole_extra_mm_;
+  }
   float added_at(int c, int r, double key) const {
     return std::min(cap_mm_, std::abs(static_cast<float>(key) - model_key_(c - c0_, r - r0_))) -
            error_(c - c0_, r - r0_);
