@@ -454,16 +454,31 @@ TEST(Supports, AConicalRoofOnColumnsStands) {
   EXPECT_LE(r.supports.cut_out_share, 0.1);
 }
 
+// The box before the back plane of the join tests, sliced at W = 3: the back plane, the floor, its
+// front V(40) and its top H(50).
+struct SlicedBox {
+  RasterMaps maps;
+  RasterPlan raster_plan;
+  std::int32_t front = 0, top = 0;
+};
+SlicedBox sliced_box() {
+  SlicedBox box;
+  box.maps = raster(RayScene(test::box({60, 0, 0}, {150, 50, 40})), Sheet{}, RasterOptions{});
+  box.raster_plan = slice(box.maps, segment(box.maps, SegmentOptions{}), SliceOptions{.min_strip_mm = 3});
+  if (box.raster_plan.faces.size() == 4) {
+    box.front = box.raster_plan.faces[2].orientation == Orientation::V ? 2 : 3;
+    box.top = 5 - box.front;
+  }
+  return box;
+}
+
 // A box before the back plane: its front V(40) and its top H(50) are each other's only neighbours
 // but the back plane and the floor, which take nothing (a hole shows them). Given to the top, the
 // front would show the model 20 - 2Y mm off at plan height Y (the top's key 100 - Y against the
 // front's Y + 80), capped at 2 W; a hole shows it |Y| - Y - 80 off, capped, and 2 W more.
 TEST(Supports, AFaceJoinsTheNeighbourWhosePlaneShowsTheModelBestAndCostsWhatItAdds) {
-  const RayScene scene(test::box({60, 0, 0}, {150, 50, 40}));
-  const RasterMaps maps = raster(scene, Sheet{}, RasterOptions{});
-  const RasterPlan raster_plan = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{.min_strip_mm = 3});
+  const auto [maps, raster_plan, front, top] = sliced_box();
   ASSERT_EQ(raster_plan.faces.size(), 4u);
-  const std::int32_t front = raster_plan.faces[2].orientation == Orientation::V ? 2 : 3, top = 5 - front;
   const SupportPicture picture(maps, raster_plan);
   const std::vector<std::int32_t> both = {front, top};
   const std::vector<SupportPicture::Join> joins = picture.nearest_joins(raster_plan, both);
@@ -495,11 +510,8 @@ TEST(Supports, AFaceJoinsTheNeighbourWhosePlaneShowsTheModelBestAndCostsWhatItAd
 // 50 - 2Y mm off, beyond the 2 W cap everywhere: each adds the cap at every pixel, and only how
 // far beyond it tells them apart.
 TEST(Supports, AFaceWhoseNeighboursAreAllWrongJoinsTheLeastWrong) {
-  const RayScene scene(test::box({60, 0, 0}, {150, 50, 40}));
-  const RasterMaps maps = raster(scene, Sheet{}, RasterOptions{});
-  RasterPlan raster_plan = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{.min_strip_mm = 3});
+  auto [maps, raster_plan, front, top] = sliced_box();
   ASSERT_EQ(raster_plan.faces.size(), 4u);
-  const std::int32_t front = raster_plan.faces[2].orientation == Orientation::V ? 2 : 3, top = 5 - front;
   const auto far_left = static_cast<std::int32_t>(raster_plan.faces.size()), near_right = far_left + 1;
   raster_plan.faces.push_back({.orientation = Orientation::H, .depth_mm = 90});
   raster_plan.faces.push_back({.orientation = Orientation::H, .depth_mm = 65});
@@ -532,11 +544,8 @@ TEST(Supports, AFaceWhoseNeighboursAreAllWrongJoinsTheLeastWrong) {
 // plan: the same error at every pixel, so the same added error over any box, and the hole errors
 // but for the order of one sum.
 TEST(Supports, APictureGivenAJoinIsThePictureOfTheJoinedPlan) {
-  const RayScene scene(test::box({60, 0, 0}, {150, 50, 40}));
-  const RasterMaps maps = raster(scene, Sheet{}, RasterOptions{});
-  const RasterPlan raster_plan = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{.min_strip_mm = 3});
+  const auto [maps, raster_plan, front, top] = sliced_box();
   ASSERT_EQ(raster_plan.faces.size(), 4u);
-  const std::int32_t front = raster_plan.faces[2].orientation == Orientation::V ? 2 : 3, top = 5 - front;
   RasterPlan joined = raster_plan;
   std::vector<PixelAt> pixels;
   for (int r = 0; r < joined.face.rows; ++r)
