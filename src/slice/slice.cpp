@@ -248,10 +248,11 @@ void for_touching_pieces(const std::vector<ThinPiece>& thin, int cols, int rows,
 }
 
 // Thin pieces that touch and face one way, each within W / 2 of its neighbour's depth (half the
-// depth between two levels of a slice, so no two levels of one surface chain), are one surface: the bars and panels of
-// a lattice (arch_windmill's sails: each panel its own segment, all under W, 94 pieces over 4.1 mm of depth on one
-// sail). The surface is sliced as a segment is, into the most levels at least W deep; each connected run of pieces
-// within a level is one piece at their mean depth, weighted by area, in the segment of its largest piece.
+// depth between two levels of a slice, so no two levels of one surface chain), are one surface:
+// the bars and panels of a lattice (arch_windmill's sails: each panel its own segment, all under
+// W, 94 pieces over 4.1 mm of depth on one sail). The surface is sliced as a segment is, into the
+// most levels at least W deep; each connected run of pieces within a level is one piece at their
+// mean depth, weighted by area, in the segment of its largest piece.
 std::vector<ThinPiece> join_coplanar_thin_pieces(std::vector<ThinPiece> thin, int cols, int rows, double W) {
   const auto at = [](std::int32_t p) { return static_cast<std::size_t>(p); };
   UnionFind<std::int32_t> surface(thin.size());

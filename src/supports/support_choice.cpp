@@ -645,8 +645,10 @@ class EarTaker {
           continue;
         }
         if (choice_.supports.empty())
-          for (const auto& [f, hold] : next.beyond_limit)
-            choice_.cut_out.push_back({f, hold, limit_[static_cast<std::size_t>(f)]});
+          for (const auto& [f, hold] : next.beyond_limit) {
+            const double W = round_.raster_plan.min_strip_mm;
+            choice_.cut_out.push_back({f, hold, std::max(0.0, picture_.hole_error(f)) / (W * W)});
+          }
         break;
       }
       // The batch in order, each ear but those to be sought again; a cutting ear alone.

@@ -81,8 +81,8 @@ std::vector<Candidate> support_candidates(const SupportRound& round, const std::
 struct SupportChoice {
   std::vector<Candidate> supports;
   // Invalid faces whose every ear costs the picture more than cutting them out or giving them to a
-  // neighbour would: the face, the picture cost of its cheapest ear and the lesser of those two (per
-  // W x W of plan, as Candidate::cost).
+  // neighbour would: the face, the picture cost of its cheapest ear and that of its hole (per W x W
+  // of plan, as Candidate::cost).
   struct CostlyFace {
     std::int32_t face;
     double hold, hole;
