@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Invariants of the whole design: the plan of a model mirrored along the main fold is the mirrored
-// plan (sliced: the support choice breaks ties left to right), and the plan of a model moved along
-// the fold by whole pixels is the moved plan (with supports too when it moves by whole strips).
+// plan, sliced and with supports, and the plan of a model moved along the fold by whole pixels is
+// the moved plan (with supports too when it moves by whole strips).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -79,11 +79,12 @@ TEST(DesignInvariants, AModelMirroredAlongTheFoldGivesTheMirroredPlan) {
   EXPECT_EQ(a.plan.faces.size(), b.plan.faces.size());
   const auto expected = segments(a.plan, -1, W), got = segments(b.plan, 1, 0);
   EXPECT_TRUE(expected == got) << difference(expected, got);
-  // The support choice breaks ties left to right, so a mirrored model gets supports of its own (as
-  // many faces, but not the mirrored ones): both stand.
+  // With supports: one of the two chooses them on the other's mirror image.
   const DesignResult c = design_at(house, kX, true), d = design_at(mirrored, W - kX, true);
   EXPECT_EQ(c.plan.faces.size(), d.plan.faces.size());
   EXPECT_TRUE(c.plan.validity.ok() && d.plan.validity.ok());
+  const auto expected_supported = segments(c.plan, -1, W), got_supported = segments(d.plan, 1, 0);
+  EXPECT_TRUE(expected_supported == got_supported) << difference(expected_supported, got_supported);
 }
 
 TEST(DesignInvariants, AModelMovedAlongTheFoldByWholePixelsGivesTheMovedPlan) {

@@ -100,8 +100,9 @@ struct SupportedPlan {
 };
 
 /// Adds supports until every face of the exact plan is valid (or, with allow_dangling, valid or
-/// dangling), or the bound is reached. Deterministic for a given seed. Calls from several threads
-/// take turns (one exact run at a time per process, as for build_plan and design).
+/// dangling), or the bound is reached. Deterministic for a given seed; the mirror image of a raster
+/// plan (on a pixel lattice symmetric on the sheet) gets the mirror image of its supports. Calls
+/// from several threads take turns (one exact run at a time per process, as for build_plan and design).
 SupportedPlan add_supports(const RasterMaps& maps, RasterPlan raster_plan, const Sheet& sheet,
                            const PlanOptions& plan_options, const SupportOptions& options);
 

@@ -18,6 +18,7 @@
 #include "exact_runs.hpp"
 #include "raster_plan_edits.hpp"
 #include "support_choice.hpp"
+#include "support_mirror.hpp"
 #include "support_picture.hpp"
 
 namespace origamic {
@@ -575,11 +576,9 @@ std::pair<int, double> shortfall(const SupportedPlan& s, bool allow_dangling) {
 // brought the mean share cut out from 7.3-8.3% to 4.7-5.3%, and the worst from 25% to 15%.
 constexpr double kPoorLikenessShare = 0.15;
 
-}  // namespace
-
-SupportedPlan add_supports(const RasterMaps& maps, RasterPlan raster_plan, const Sheet& sheet,
-                           const PlanOptions& plan_options, const SupportOptions& options) {
-  const auto lock = exact_run_lock();
+// The support loop's face orders, one after another, on the raster plan as given.
+SupportedPlan supports_in_face_orders(const RasterMaps& maps, RasterPlan raster_plan, const Sheet& sheet,
+                                      const PlanOptions& plan_options, const SupportOptions& options) {
   // The greedy choice depends on the order the faces choose in, and one order can paint itself into
   // a corner that another avoids: the next orders of the same random sequence get their turn.
   std::mt19937 random(options.seed);
@@ -600,6 +599,24 @@ SupportedPlan add_supports(const RasterMaps& maps, RasterPlan raster_plan, const
     if (stands(*best, options.allow_dangling) && best->report.cut_out_share < kPoorLikenessShare) break;
   }
   return std::move(*best);
+}
+
+}  // namespace
+
+SupportedPlan add_supports(const RasterMaps& maps, RasterPlan raster_plan, const Sheet& sheet,
+                           const PlanOptions& plan_options, const SupportOptions& options) {
+  const auto lock = exact_run_lock();
+  // The loop breaks its ties one way and draws its face orders by id: it runs in the frame
+  // support_mirror.hpp picks, on ids a mirror image would have too, so that a mirrored model gets the
+  // mirrored supports.
+  raster_plan = with_faces_in_scan_order(std::move(raster_plan));
+  if (!choose_mirror_image(raster_plan, maps.grid, sheet))
+    return supports_in_face_orders(maps, std::move(raster_plan), sheet, plan_options, options);
+  const RasterMaps mirrored_maps = mirror_image(maps);
+  return mirror_image(
+      supports_in_face_orders(mirrored_maps, with_faces_in_scan_order(mirror_image(std::move(raster_plan))), sheet,
+                              plan_options, options),
+      sheet);
 }
 
 }  // namespace origamic

@@ -1,0 +1,133 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "support_mirror.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+namespace origamic {
+namespace {
+
+// A grid with its columns in reverse order.
+template <class T>
+Grid<T> columns_reversed(Grid<T> grid) {
+  for (int r = 0; r < grid.rows; ++r) {
+    const auto row = grid.values.begin() + static_cast<std::ptrdiff_t>(grid.index(0, r));
+    std::reverse(row, row + grid.cols);
+  }
+  return grid;
+}
+
+// What a pixel of the raster plan is, whatever the ids: the kind of paper there, its orientation,
+// and whether a face begins there (another face is above it, or none).
+int pixel_class(const RasterPlan& plan, int c, int r) {
+  const std::int32_t f = plan.face(c, r);
+  if (f < 0) return 0;
+  const RasterFace& face = plan.faces[static_cast<std::size_t>(f)];
+  const int kind = f == kBackFace                       ? 1
+                   : f == kFloorFace                    ? 2
+                   : face.hole                          ? 3
+                   : face.orientation == Orientation::V ? 4
+                                                        : 5;
+  const bool begins = r == 0 || plan.face(c, r - 1) != f;
+  return 2 * kind + begins;
+}
+
+PlanPoint mirrored(PlanPoint p, double width_mm) { return {width_mm - p.X, p.Y}; }
+
+}  // namespace
+
+bool choose_mirror_image(const RasterPlan& raster_plan, const PixelGrid& grid, const Sheet& sheet) {
+  const Grid<std::int32_t>& face = raster_plan.face;
+  if (face.cols != grid.cols || static_cast<double>(grid.cols) / grid.px_per_mm != sheet.width_mm) return false;
+  // The model's columns: those with a face of the model in them.
+  int lo = INT_MAX, hi = -1;
+  for (int r = 0; r < face.rows; ++r)
+    for (int c = 0; c < face.cols; ++c)
+      if (face(c, r) > kFloorFace) lo = std::min(lo, c), hi = std::max(hi, c);
+  for (int left = lo, right = hi; left < right; ++left, --right)
+    for (int r = 0; r < face.rows; ++r) {
+      const int a = pixel_class(raster_plan, left, r), b = pixel_class(raster_plan, right, r);
+      if (a != b) return a < b;
+    }
+  return false;
+}
+
+RasterMaps mirror_image(const RasterMaps& maps) {
+  RasterMaps out;
+  out.grid = maps.grid;
+  out.reference = maps.reference;
+  out.kind = columns_reversed(maps.kind);
+  out.d_mm = columns_reversed(maps.d_mm);
+  out.h_mm = columns_reversed(maps.h_mm);
+  out.D = columns_reversed(maps.D);
+  out.F = columns_reversed(maps.F);
+  out.T = columns_reversed(maps.T);
+  out.normal = columns_reversed(maps.normal);
+  for (glm::vec3& n : out.normal.values) n.x = -n.x;
+  out.primitive = columns_reversed(maps.primitive);
+  out.break_below = columns_reversed(maps.break_below);
+  // A break between columns c and c + 1, t of the way from c, is between their mirror images, the
+  // same distance from the other: in the mirror image's column cols - 2 - c, 1 - t of the way.
+  const Grid<float>& right = maps.break_right;
+  out.break_right = Grid<float>(right.cols, right.rows, std::numeric_limits<float>::quiet_NaN());
+  for (int r = 0; r < right.rows; ++r)
+    for (int c = 0; c + 1 < right.cols; ++c) out.break_right(right.cols - 2 - c, r) = 1 - right(c, r);
+  out.model_pixels = maps.model_pixels;
+  return out;
+}
+
+RasterPlan mirror_image(RasterPlan raster_plan) {
+  raster_plan.face = columns_reversed(std::move(raster_plan.face));
+  raster_plan.subsegment = columns_reversed(std::move(raster_plan.subsegment));
+  raster_plan.block_subsegment = columns_reversed(std::move(raster_plan.block_subsegment));
+  return raster_plan;
+}
+
+RasterPlan with_faces_in_scan_order(RasterPlan raster_plan) {
+  const std::size_t n = raster_plan.faces.size();
+  std::vector<std::int32_t> id(n, -1);
+  id[kBackFace] = kBackFace, id[kFloorFace] = kFloorFace;
+  std::int32_t next = kFloorFace + 1;
+  for (const std::int32_t f : raster_plan.face.values)
+    if (f >= 0 && id[static_cast<std::size_t>(f)] < 0) id[static_cast<std::size_t>(f)] = next++;
+  for (std::int32_t& i : id)
+    if (i < 0) i = next++;
+  bool same = true;
+  for (std::size_t f = 0; f < n; ++f) same = same && id[f] == static_cast<std::int32_t>(f);
+  if (same) return raster_plan;
+  std::vector<RasterFace> faces(n);
+  for (std::size_t f = 0; f < n; ++f) faces[static_cast<std::size_t>(id[f])] = raster_plan.faces[f];
+  raster_plan.faces = std::move(faces);
+  for (std::int32_t& f : raster_plan.face.values)
+    if (f >= 0) f = id[static_cast<std::size_t>(f)];
+  return raster_plan;
+}
+
+SupportedPlan mirror_image(SupportedPlan supported, const Sheet& sheet) {
+  const double width = sheet.width_mm;
+  supported.raster_plan = mirror_image(std::move(supported.raster_plan));
+  Plan& plan = supported.plan;
+  for (PlanFace& face : plan.faces) face.inside = mirrored(face.inside, width);
+  for (PlanPolyline& line : plan.lines)
+    for (PlanPoint& p : line.points) p = mirrored(p, width);
+  // Mirrored, a ring turns the other way: its points reversed keep outer boundaries
+  // counter-clockwise and holes clockwise.
+  for (PlanRegion& region : plan.regions) {
+    region.inside = mirrored(region.inside, width);
+    for (std::vector<PlanPoint>& ring : region.rings) {
+      for (PlanPoint& p : ring) p = mirrored(p, width);
+      std::ranges::reverse(ring);
+    }
+  }
+  SupportReport& report = supported.report;
+  for (CutOutFace& face : report.cut_out_faces) face.at = mirrored(face.at, width);
+  for (JoinedFace& face : report.joined_faces) face.at = mirrored(face.at, width);
+  for (NarrowStrip& strip : report.narrow) strip.at = mirrored(strip.at, width);
+  return supported;
+}
+
+}  // namespace origamic

@@ -1,0 +1,144 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The support choice's frame (support_mirror.hpp): which of a plan and its mirror image it chooses
+// on, the maps and plans mirrored, and what it gives back mirrored back.
+#include "support_mirror.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "origamic/raster.hpp"
+#include "origamic/slice.hpp"
+
+namespace origamic {
+namespace {
+
+// A sheet 6 mm wide at 4 px/mm: 24 columns, symmetric on the sheet; 10 rows, 5 above the fold.
+constexpr int kCols = 24, kRows = 10;
+const Sheet kSheet{.width_mm = 6, .height_mm = 2.5};
+
+PixelGrid grid() {
+  PixelGrid g;
+  g.cols = kCols, g.rows = kRows, g.px_per_mm = 4, g.rows_above_fold = 5;
+  return g;
+}
+
+// The back plane above the fold, the floor below, and an L of face 2 (V) with face 3 (H) on its
+// foot, from column `left` on: not its own mirror image.
+RasterPlan an_l(int left) {
+  RasterPlan plan;
+  plan.block_px = 4;
+  plan.face = Grid<std::int32_t>(kCols, kRows, kBackFace);
+  for (int r = 5; r < kRows; ++r)
+    for (int c = 0; c < kCols; ++c) plan.face(c, r) = kFloorFace;
+  plan.faces = {{Orientation::V, 0}, {Orientation::H, 0}, {Orientation::V, 4}, {Orientation::H, 3}};
+  for (int r = 2; r < 8; ++r) plan.face(left, r) = plan.face(left + 1, r) = 2;
+  for (int c = left + 2; c < left + 7; ++c) plan.face(c, 6) = plan.face(c, 7) = 3;
+  return plan;
+}
+
+// The same plan with faces 2 and 3 swapping ids.
+RasterPlan ids_swapped(RasterPlan plan) {
+  std::swap(plan.faces[2], plan.faces[3]);
+  for (std::int32_t& f : plan.face.values)
+    if (f == 2 || f == 3) f = 5 - f;
+  return plan;
+}
+
+TEST(SupportMirror, APlanAndItsMirrorImageChooseOppositeFramesWhateverTheirIds) {
+  const RasterPlan plan = an_l(3);
+  const bool chosen = choose_mirror_image(plan, grid(), kSheet);
+  EXPECT_NE(chosen, choose_mirror_image(mirror_image(plan), grid(), kSheet));
+  EXPECT_NE(chosen, choose_mirror_image(ids_swapped(mirror_image(plan)), grid(), kSheet));
+  EXPECT_EQ(chosen, choose_mirror_image(ids_swapped(plan), grid(), kSheet));
+  // Moved along the fold, the model keeps its frame.
+  EXPECT_EQ(chosen, choose_mirror_image(an_l(9), grid(), kSheet));
+  EXPECT_EQ(chosen, choose_mirror_image(an_l(14), grid(), kSheet));
+}
+
+TEST(SupportMirror, APlanThatIsItsOwnMirrorImageOrALatticeOffTheSheetKeepsItsFrame) {
+  RasterPlan plan = an_l(3);
+  for (int c = 3; c < kCols; ++c)
+    for (int r = 0; r < kRows; ++r) plan.face(c, r) = r < 5 ? kBackFace : kFloorFace;
+  for (int r = 2; r < 8; ++r) plan.face(11, r) = plan.face(12, r) = 2;  // the middle two columns
+  EXPECT_FALSE(choose_mirror_image(plan, grid(), kSheet));
+  // 24 columns at 4 px/mm are 6 mm: on a 6.1 mm sheet the lattice is not symmetric.
+  const RasterPlan l = an_l(3);
+  const bool chosen = choose_mirror_image(l, grid(), kSheet);
+  const Sheet wider{.width_mm = 6.1, .height_mm = 2.5};
+  EXPECT_FALSE(choose_mirror_image(chosen ? l : mirror_image(l), grid(), wider));
+  EXPECT_FALSE(choose_mirror_image(chosen ? mirror_image(l) : l, grid(), wider));
+}
+
+TEST(SupportMirror, MirroredMapsPutEachBreakBetweenTheMirroredPixelCentres) {
+  RasterMaps maps;
+  maps.grid = grid();
+  maps.kind = Grid<HitKind>(kCols, kRows, HitKind::Back);
+  maps.d_mm = Grid<double>(kCols, kRows, 0);
+  maps.h_mm = Grid<double>(kCols, kRows, 0);
+  maps.normal = Grid<glm::vec3>(kCols, kRows, glm::vec3(0, 0, 1));
+  maps.break_right = Grid<float>(kCols, kRows, NAN);
+  maps.break_below = Grid<float>(kCols, kRows, NAN);
+  maps.kind(2, 1) = HitKind::Model;
+  maps.d_mm(2, 1) = 7.5;
+  maps.normal(2, 1) = glm::vec3(0.6f, 0, 0.8f);
+  maps.break_right(2, 1) = 0.25f;  // between columns 2 and 3, a quarter of the way from 2
+  maps.break_below(2, 1) = 0.5f;
+  const RasterMaps m = mirror_image(maps);
+  EXPECT_EQ(m.kind(21, 1), HitKind::Model);
+  EXPECT_EQ(m.d_mm(21, 1), 7.5);
+  EXPECT_EQ(m.normal(21, 1).x, -0.6f);
+  EXPECT_EQ(m.break_right(20, 1), 0.75f);  // between columns 20 and 21, a quarter from 21
+  EXPECT_EQ(m.break_below(21, 1), 0.5f);
+  int breaks = 0;
+  for (const float t : m.break_right.values) breaks += !std::isnan(t);
+  EXPECT_EQ(breaks, 1);
+  const RasterMaps back = mirror_image(m);
+  EXPECT_EQ(back.break_right(2, 1), 0.25f);
+  EXPECT_EQ(back.normal(2, 1).x, 0.6f);
+}
+
+TEST(SupportMirror, FacesAreRenumberedInTheOrderAScanMeetsThem) {
+  const RasterPlan plan = ids_swapped(an_l(3));  // face 3 is the L's upright now, met first
+  const RasterPlan renumbered = with_faces_in_scan_order(plan);
+  EXPECT_EQ(renumbered.face(3, 2), 2);
+  EXPECT_EQ(renumbered.face(6, 6), 3);
+  EXPECT_EQ(renumbered.faces[2].orientation, Orientation::V);
+  EXPECT_EQ(renumbered.faces[3].depth_mm, 3);
+  const RasterPlan again = with_faces_in_scan_order(an_l(3));
+  EXPECT_EQ(again.face.values, an_l(3).face.values);
+}
+
+// Twice the signed area of a ring: positive counter-clockwise.
+double twice_area(const std::vector<PlanPoint>& ring) {
+  double sum = 0;
+  for (std::size_t i = 0; i + 1 < ring.size(); ++i) sum += ring[i].X * ring[i + 1].Y - ring[i + 1].X * ring[i].Y;
+  return sum;
+}
+
+TEST(SupportMirror, APlanMirroredBackHasItsLinesRegionsAndPlacesMirroredAndItsRingsTurnAsBefore) {
+  SupportedPlan supported;
+  supported.raster_plan = an_l(3);
+  supported.plan.lines = {{LineKind::Cut, {{1, 0}, {2, 0.5}}}};
+  PlanRegion region;
+  region.rings = {{{1, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 0}}};
+  region.inside = {1.5, 0.5};
+  supported.plan.regions = {region};
+  supported.plan.faces.resize(4);
+  supported.plan.faces[2].inside = {1.25, 0.75};
+  supported.report.joined_faces.push_back({.at = {0.5, -1}});
+  const SupportedPlan m = mirror_image(supported, kSheet);
+  EXPECT_EQ(m.plan.lines[0].points[1].X, 4);
+  EXPECT_EQ(m.plan.lines[0].points[1].Y, 0.5);
+  EXPECT_EQ(m.plan.regions[0].inside.X, 4.5);
+  EXPECT_GT(twice_area(m.plan.regions[0].rings[0]), 0);
+  EXPECT_EQ(m.plan.faces[2].inside.X, 4.75);
+  EXPECT_EQ(m.report.joined_faces[0].at.X, 5.5);
+  EXPECT_EQ(m.raster_plan.face(20, 2), 2);
+  EXPECT_EQ(mirror_image(m.raster_plan).face.values, supported.raster_plan.face.values);
+}
+
+}  // namespace
+}  // namespace origamic
