@@ -4,17 +4,20 @@
 // the moved plan (with supports too when it moves by whole strips).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
-#include <algorithm>
 #include <filesystem>
 #include <iterator>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "origamic/design.hpp"
 #include "origamic/mesh_io.hpp"
+#include "origamic/plan.hpp"
+#include "origamic/supports.hpp"
 
 namespace origamic {
 namespace {
@@ -85,6 +88,38 @@ TEST(DesignInvariants, AModelMirroredAlongTheFoldGivesTheMirroredPlan) {
   EXPECT_TRUE(c.plan.validity.ok() && d.plan.validity.ok());
   const auto expected_supported = segments(c.plan, -1, W), got_supported = segments(d.plan, 1, 0);
   EXPECT_TRUE(expected_supported == got_supported) << difference(expected_supported, got_supported);
+  // One of the two chose on its mirror image; each plan is still drawn afresh from its raster plan.
+  EXPECT_NE(c.supports.mirror_image, d.supports.mirror_image);
+  for (const DesignResult* r : {&c, &d}) {
+    const Plan drawn = build_plan(r->maps, r->raster_plan, Sheet{}, PlanOptions{});
+    EXPECT_EQ(drawn.cut_mm, r->plan.cut_mm);
+    EXPECT_EQ(drawn.mountain_mm, r->plan.mountain_mm);
+    EXPECT_EQ(drawn.valley_mm, r->plan.valley_mm);
+  }
+}
+
+// The other frame's supports (add_supports_in_other_frame) are another choice, and a mirrored
+// model's are the mirror image of the model's.
+TEST(DesignInvariants, TheOtherFramesSupportsOfAMirroredModelAreTheMirroredOnes) {
+  const TriangleMesh house = load_mesh(kHouse).mesh;
+  TriangleMesh mirrored = house;
+  for (glm::dvec3& p : mirrored.positions) p.x = -p.x;
+  for (auto& t : mirrored.triangles) std::swap(t[1], t[2]);
+  mirrored.corner_normals.clear();
+  const double W = Sheet{}.width_mm;
+  const DesignResult a = design_at(house, kX, false), b = design_at(mirrored, W - kX, false);
+  const DesignOptions options;
+  const SupportedPlan first = add_supports(a.maps, a.raster_plan, options.sheet, options.plan, options.supports);
+  const std::optional<SupportedPlan> other =
+      add_supports_in_other_frame(a.maps, a.raster_plan, options.sheet, options.plan, options.supports);
+  const std::optional<SupportedPlan> other_mirrored =
+      add_supports_in_other_frame(b.maps, b.raster_plan, options.sheet, options.plan, options.supports);
+  ASSERT_TRUE(other && other_mirrored);
+  EXPECT_NE(first.report.mirror_image, other->report.mirror_image);
+  EXPECT_TRUE(other->plan.validity.ok() && other_mirrored->plan.validity.ok());
+  EXPECT_FALSE(segments(first.plan, 1, 0) == segments(other->plan, 1, 0)) << "the same supports either way";
+  const auto expected = segments(other->plan, -1, W), got = segments(other_mirrored->plan, 1, 0);
+  EXPECT_TRUE(expected == got) << difference(expected, got);
 }
 
 TEST(DesignInvariants, AModelMovedAlongTheFoldByWholePixelsGivesTheMovedPlan) {

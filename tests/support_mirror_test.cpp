@@ -47,29 +47,33 @@ RasterPlan ids_swapped(RasterPlan plan) {
   return plan;
 }
 
-TEST(SupportMirror, APlanAndItsMirrorImageChooseOppositeFramesWhateverTheirIds) {
-  const RasterPlan plan = an_l(3);
-  const bool chosen = choose_mirror_image(plan, grid(), kSheet);
-  EXPECT_NE(chosen, choose_mirror_image(mirror_image(plan), grid(), kSheet));
-  EXPECT_NE(chosen, choose_mirror_image(ids_swapped(mirror_image(plan)), grid(), kSheet));
-  EXPECT_EQ(chosen, choose_mirror_image(ids_swapped(plan), grid(), kSheet));
-  // Moved along the fold, the model keeps its frame.
-  EXPECT_EQ(chosen, choose_mirror_image(an_l(9), grid(), kSheet));
-  EXPECT_EQ(chosen, choose_mirror_image(an_l(14), grid(), kSheet));
+// The frame another plan's mirror image would choose first.
+SupportFrame mirrored(SupportFrame frame) {
+  return frame == SupportFrame::Plan ? SupportFrame::MirrorImage : SupportFrame::Plan;
 }
 
-TEST(SupportMirror, APlanThatIsItsOwnMirrorImageOrALatticeOffTheSheetKeepsItsFrame) {
+TEST(SupportMirror, APlanAndItsMirrorImageChooseOppositeFramesWhateverTheirIds) {
+  const RasterPlan plan = an_l(3);
+  const SupportFrame frame = first_support_frame(plan, grid(), kSheet);
+  ASSERT_NE(frame, SupportFrame::Only);
+  EXPECT_EQ(first_support_frame(mirror_image(plan), grid(), kSheet), mirrored(frame));
+  EXPECT_EQ(first_support_frame(ids_swapped(mirror_image(plan)), grid(), kSheet), mirrored(frame));
+  EXPECT_EQ(first_support_frame(ids_swapped(plan), grid(), kSheet), frame);
+  // Moved along the fold, the model keeps its frame.
+  EXPECT_EQ(first_support_frame(an_l(9), grid(), kSheet), frame);
+  EXPECT_EQ(first_support_frame(an_l(14), grid(), kSheet), frame);
+}
+
+TEST(SupportMirror, APlanThatIsItsOwnMirrorImageOrALatticeOffTheSheetHasOneFrame) {
   RasterPlan plan = an_l(3);
   for (int c = 3; c < kCols; ++c)
     for (int r = 0; r < kRows; ++r) plan.face(c, r) = r < 5 ? kBackFace : kFloorFace;
   for (int r = 2; r < 8; ++r) plan.face(11, r) = plan.face(12, r) = 2;  // the middle two columns
-  EXPECT_FALSE(choose_mirror_image(plan, grid(), kSheet));
+  EXPECT_EQ(first_support_frame(plan, grid(), kSheet), SupportFrame::Only);
   // 24 columns at 4 px/mm are 6 mm: on a 6.1 mm sheet the lattice is not symmetric.
-  const RasterPlan l = an_l(3);
-  const bool chosen = choose_mirror_image(l, grid(), kSheet);
   const Sheet wider{.width_mm = 6.1, .height_mm = 2.5};
-  EXPECT_FALSE(choose_mirror_image(chosen ? l : mirror_image(l), grid(), wider));
-  EXPECT_FALSE(choose_mirror_image(chosen ? mirror_image(l) : l, grid(), wider));
+  EXPECT_EQ(first_support_frame(an_l(3), grid(), wider), SupportFrame::Only);
+  EXPECT_EQ(first_support_frame(mirror_image(an_l(3)), grid(), wider), SupportFrame::Only);
 }
 
 TEST(SupportMirror, MirroredMapsPutEachBreakBetweenTheMirroredPixelCentres) {

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -82,6 +83,10 @@ struct SupportReport {
   double cut_out_share = 0;
   int round_bound = 0;  // the loop's bound: one round per W-wide column of the sheet, plus one
   int orders = 0;       // face orders tried (SupportOptions::orders); the rest is of the one kept
+  // Chosen on the raster plan's mirror image and mirrored back (add_supports), and the frames tried:
+  // 2 when the design tried the other frame too (design.hpp).
+  bool mirror_image = false;
+  int frames = 1;
   bool converged = false;
   SupportStop stop = SupportStop::None;  // why supports alone did not make every face stand
   int stop_faces = 0;                    // how many faces were invalid then
@@ -105,6 +110,14 @@ struct SupportedPlan {
 /// from several threads take turns (one exact run at a time per process, as for build_plan and design).
 SupportedPlan add_supports(const RasterMaps& maps, RasterPlan raster_plan, const Sheet& sheet,
                            const PlanOptions& plan_options, const SupportOptions& options);
+
+/// The same, chosen in the other frame: on the mirror image where add_supports chose on the plan,
+/// and on the plan where it chose on the mirror image. Its ties fall the other way, and so may its
+/// choices. Nothing where there is no other frame (a plan that is its own mirror image, or a pixel
+/// lattice not symmetric on the sheet).
+std::optional<SupportedPlan> add_supports_in_other_frame(const RasterMaps& maps, RasterPlan raster_plan,
+                                                         const Sheet& sheet, const PlanOptions& plan_options,
+                                                         const SupportOptions& options);
 
 /// Every face (holes aside) whose pixels span fewer than W (block_px) columns, in face order.
 std::vector<NarrowStrip> narrow_strips(const RasterPlan& raster_plan, const PixelGrid& grid);

@@ -221,6 +221,8 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
         {"narrow_strips", narrow_json(result.supports.narrow)},
         {"round_bound", result.supports.round_bound},
         {"orders", result.supports.orders},
+        {"frames", result.supports.frames},
+        {"mirror_image", result.supports.mirror_image},
         {"converged", result.supports.converged},
         {"stop_reason", stop_reason(result.supports)}}},
       {"time_ms", times},

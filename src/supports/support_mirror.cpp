@@ -40,9 +40,10 @@ PlanPoint mirrored(PlanPoint p, double width_mm) { return {width_mm - p.X, p.Y};
 
 }  // namespace
 
-bool choose_mirror_image(const RasterPlan& raster_plan, const PixelGrid& grid, const Sheet& sheet) {
+SupportFrame first_support_frame(const RasterPlan& raster_plan, const PixelGrid& grid, const Sheet& sheet) {
   const Grid<std::int32_t>& face = raster_plan.face;
-  if (face.cols != grid.cols || static_cast<double>(grid.cols) / grid.px_per_mm != sheet.width_mm) return false;
+  if (face.cols != grid.cols || static_cast<double>(grid.cols) / grid.px_per_mm != sheet.width_mm)
+    return SupportFrame::Only;
   // The model's columns: those with a face of the model in them.
   int lo = INT_MAX, hi = -1;
   for (int r = 0; r < face.rows; ++r)
@@ -51,9 +52,9 @@ bool choose_mirror_image(const RasterPlan& raster_plan, const PixelGrid& grid, c
   for (int left = lo, right = hi; left < right; ++left, --right)
     for (int r = 0; r < face.rows; ++r) {
       const int a = pixel_class(raster_plan, left, r), b = pixel_class(raster_plan, right, r);
-      if (a != b) return a < b;
+      if (a != b) return a < b ? SupportFrame::Plan : SupportFrame::MirrorImage;
     }
-  return false;
+  return SupportFrame::Only;
 }
 
 RasterMaps mirror_image(const RasterMaps& maps) {

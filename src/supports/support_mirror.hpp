@@ -3,7 +3,7 @@
 // way (block columns left to right, a support widened to the left first, its ray right of the
 // column's centre), so a model and its mirror image would get supports of their own. It runs on
 // whichever of the raster plan and its mirror image comes first in an order that mirroring reverses
-// (`choose_mirror_image`), and what it gives back is mirrored back: the mirrored model's raster plan
+// (`first_support_frame`), and what it gives back is mirrored back: the mirrored model's raster plan
 // is the mirror image of the model's, so both choose on the same picture.
 #pragma once
 
@@ -14,15 +14,14 @@
 
 namespace origamic {
 
-/// Whether the supports are to be chosen on the mirror image of the raster plan: reading the model's
-/// columns from both ends inwards, pixel by pixel down them (by kind of paper, orientation and
-/// where a face begins), the first that differ have the lesser on the left. The order does not
-/// depend on face ids, and moving the model along the fold does not change it; mirroring the model
-/// turns it round. (Either way round serves: over the 37 models of ../shared/models the mean p95
-/// error was 2.70 W this way and 2.67 W the other, both within the spread of face orders; this way
-/// the demo house keeps its plan.) False when the pixel lattice is not symmetric on the sheet (no
-/// exact mirror image) or the plan is its own mirror image.
-bool choose_mirror_image(const RasterPlan& raster_plan, const PixelGrid& grid, const Sheet& sheet);
+/// The frame the supports are chosen in first. Reading the model's columns from both ends inwards,
+/// pixel by pixel down them (by kind of paper, orientation and where a face begins), the first that
+/// differ decide: the lesser on the left, the plan itself; on the right, its mirror image. The order
+/// does not depend on face ids, and moving the model along the fold does not change it; mirroring
+/// the model turns it round. `Only` (the plan itself, and no other frame) when the pixel lattice is
+/// not symmetric on the sheet (no exact mirror image) or the plan is its own mirror image.
+enum class SupportFrame { Only, Plan, MirrorImage };
+SupportFrame first_support_frame(const RasterPlan& raster_plan, const PixelGrid& grid, const Sheet& sheet);
 
 /// The maps of the model mirrored along the main fold (X to the sheet's width less X).
 RasterMaps mirror_image(const RasterMaps& maps);
