@@ -63,6 +63,14 @@ std::string difference(const std::multiset<std::array<long long, 5>>& a,
   return text;
 }
 
+// The house mirrored along the main fold (x to -x), its triangles still facing out.
+TriangleMesh mirrored_along_the_fold(TriangleMesh mesh) {
+  for (glm::dvec3& p : mesh.positions) p.x = -p.x;
+  for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+  mesh.corner_normals.clear();
+  return mesh;
+}
+
 DesignResult design_at(const TriangleMesh& model, double x, bool supports) {
   DesignOptions options;
   options.placement.scale = kScale;
@@ -73,20 +81,17 @@ DesignResult design_at(const TriangleMesh& model, double x, bool supports) {
 
 TEST(DesignInvariants, AModelMirroredAlongTheFoldGivesTheMirroredPlan) {
   const TriangleMesh house = load_mesh(kHouse).mesh;
-  TriangleMesh mirrored = house;
-  for (glm::dvec3& p : mirrored.positions) p.x = -p.x;
-  for (auto& t : mirrored.triangles) std::swap(t[1], t[2]);  // still facing out
-  mirrored.corner_normals.clear();
-  const double W = Sheet{}.width_mm;
-  const DesignResult a = design_at(house, kX, false), b = design_at(mirrored, W - kX, false);
+  const TriangleMesh mirrored = mirrored_along_the_fold(house);
+  const double width_mm = Sheet{}.width_mm;
+  const DesignResult a = design_at(house, kX, false), b = design_at(mirrored, width_mm - kX, false);
   EXPECT_EQ(a.plan.faces.size(), b.plan.faces.size());
-  const auto expected = segments(a.plan, -1, W), got = segments(b.plan, 1, 0);
+  const auto expected = segments(a.plan, -1, width_mm), got = segments(b.plan, 1, 0);
   EXPECT_TRUE(expected == got) << difference(expected, got);
   // With supports: one of the two chooses them on the other's mirror image.
-  const DesignResult c = design_at(house, kX, true), d = design_at(mirrored, W - kX, true);
+  const DesignResult c = design_at(house, kX, true), d = design_at(mirrored, width_mm - kX, true);
   EXPECT_EQ(c.plan.faces.size(), d.plan.faces.size());
   EXPECT_TRUE(c.plan.validity.ok() && d.plan.validity.ok());
-  const auto expected_supported = segments(c.plan, -1, W), got_supported = segments(d.plan, 1, 0);
+  const auto expected_supported = segments(c.plan, -1, width_mm), got_supported = segments(d.plan, 1, 0);
   EXPECT_TRUE(expected_supported == got_supported) << difference(expected_supported, got_supported);
   // One of the two chose on its mirror image; each plan is still drawn afresh from its raster plan.
   EXPECT_NE(c.supports.mirror_image, d.supports.mirror_image);
@@ -102,12 +107,9 @@ TEST(DesignInvariants, AModelMirroredAlongTheFoldGivesTheMirroredPlan) {
 // model's are the mirror image of the model's.
 TEST(DesignInvariants, TheOtherFramesSupportsOfAMirroredModelAreTheMirroredOnes) {
   const TriangleMesh house = load_mesh(kHouse).mesh;
-  TriangleMesh mirrored = house;
-  for (glm::dvec3& p : mirrored.positions) p.x = -p.x;
-  for (auto& t : mirrored.triangles) std::swap(t[1], t[2]);
-  mirrored.corner_normals.clear();
-  const double W = Sheet{}.width_mm;
-  const DesignResult a = design_at(house, kX, false), b = design_at(mirrored, W - kX, false);
+  const TriangleMesh mirrored = mirrored_along_the_fold(house);
+  const double width_mm = Sheet{}.width_mm;
+  const DesignResult a = design_at(house, kX, false), b = design_at(mirrored, width_mm - kX, false);
   const DesignOptions options;
   const SupportedPlan first = add_supports(a.maps, a.raster_plan, options.sheet, options.plan, options.supports);
   const std::optional<SupportedPlan> other =
@@ -118,7 +120,7 @@ TEST(DesignInvariants, TheOtherFramesSupportsOfAMirroredModelAreTheMirroredOnes)
   EXPECT_NE(first.report.mirror_image, other->report.mirror_image);
   EXPECT_TRUE(other->plan.validity.ok() && other_mirrored->plan.validity.ok());
   EXPECT_FALSE(segments(first.plan, 1, 0) == segments(other->plan, 1, 0)) << "the same supports either way";
-  const auto expected = segments(other->plan, -1, W), got = segments(other_mirrored->plan, 1, 0);
+  const auto expected = segments(other->plan, -1, width_mm), got = segments(other_mirrored->plan, 1, 0);
   EXPECT_TRUE(expected == got) << difference(expected, got);
 }
 

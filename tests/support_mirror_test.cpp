@@ -64,6 +64,25 @@ TEST(SupportMirror, APlanAndItsMirrorImageChooseOppositeFramesWhateverTheirIds) 
   EXPECT_EQ(first_support_frame(an_l(14), grid(), kSheet), frame);
 }
 
+// Two V faces side by side, at depths 4 and 6 mm, their boundary off the middle: every column
+// reads the same kinds from both ends, but not the same planes, nor the same runs inwards.
+TEST(SupportMirror, FacesThatDifferOnlyInDepthOrWhereTheyMeetStillChooseOppositeFrames) {
+  RasterPlan plan = an_l(3);
+  for (int c = 3; c < kCols; ++c)
+    for (int r = 0; r < kRows; ++r) plan.face(c, r) = r < 5 ? kBackFace : kFloorFace;
+  plan.faces = {{Orientation::V, 0}, {Orientation::H, 0}, {Orientation::V, 4}, {Orientation::V, 6}};
+  for (int r = 2; r < 8; ++r)
+    for (int c = 8; c < 16; ++c) plan.face(c, r) = c < 11 ? 2 : 3;
+  const SupportFrame frame = first_support_frame(plan, grid(), kSheet);
+  ASSERT_NE(frame, SupportFrame::Only);
+  EXPECT_EQ(first_support_frame(mirror_image(plan), grid(), kSheet), mirrored(frame));
+  // The same depths, the boundary off the middle: only where the faces run on tells them apart.
+  plan.faces[3].depth_mm = 4;
+  ASSERT_NE(first_support_frame(plan, grid(), kSheet), SupportFrame::Only);
+  EXPECT_EQ(first_support_frame(mirror_image(plan), grid(), kSheet),
+            mirrored(first_support_frame(plan, grid(), kSheet)));
+}
+
 TEST(SupportMirror, APlanThatIsItsOwnMirrorImageOrALatticeOffTheSheetHasOneFrame) {
   RasterPlan plan = an_l(3);
   for (int c = 3; c < kCols; ++c)
@@ -133,6 +152,10 @@ TEST(SupportMirror, APlanMirroredBackHasItsLinesRegionsAndPlacesMirroredAndItsRi
   supported.plan.faces.resize(4);
   supported.plan.faces[2].inside = {1.25, 0.75};
   supported.report.joined_faces.push_back({.at = {0.5, -1}});
+  CutOutFace cut_out;
+  cut_out.at = {1, -0.5};
+  supported.report.cut_out_faces.push_back(cut_out);
+  supported.report.narrow.push_back({.face = 2, .support = false, .width_mm = 0.5, .at = {0.25, 1}});
   const SupportedPlan m = mirror_image(supported, kSheet);
   EXPECT_EQ(m.plan.lines[0].points[1].X, 4);
   EXPECT_EQ(m.plan.lines[0].points[1].Y, 0.5);
@@ -140,6 +163,8 @@ TEST(SupportMirror, APlanMirroredBackHasItsLinesRegionsAndPlacesMirroredAndItsRi
   EXPECT_GT(twice_area(m.plan.regions[0].rings[0]), 0);
   EXPECT_EQ(m.plan.faces[2].inside.X, 4.75);
   EXPECT_EQ(m.report.joined_faces[0].at.X, 5.5);
+  EXPECT_EQ(m.report.cut_out_faces[0].at.X, 5);
+  EXPECT_EQ(m.report.narrow[0].at.X, 5.75);
   EXPECT_EQ(m.raster_plan.face(20, 2), 2);
   EXPECT_EQ(mirror_image(m.raster_plan).face.values, supported.raster_plan.face.values);
 }

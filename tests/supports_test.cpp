@@ -579,11 +579,7 @@ TEST(Supports, WhereSupportsCostOverAStripWidthTheOtherFramesChoiceIsTriedAndThe
   options.supports.enabled = true;
   const DesignResult designed = design(test::models_dir() / "arch_temple.obj", options);
   const double W = options.slice.min_strip_mm;
-  const auto p95 = [&](const Plan& plan) {
-    std::vector<bool> support;
-    for (const PlanFace& face : plan.faces) support.push_back(face.support);
-    return likeness(sliced.maps, card_view(sliced.maps.grid, plan.regions, support), W).p95_W;
-  };
+  const auto p95 = [&](const Plan& plan) { return likeness(sliced.maps, card_view(sliced.maps.grid, plan), W).p95_W; };
   const SupportedPlan first =
       add_supports(sliced.maps, sliced.raster_plan, options.sheet, options.plan, options.supports);
   const std::optional<SupportedPlan> other =

@@ -44,6 +44,9 @@ CardView card_view(const PixelGrid& grid, const Grid<std::int32_t>& face, const 
 /// and removed regions are holes.
 CardView card_view(const PixelGrid& grid, std::span<const PlanRegion> regions, const std::vector<bool>& support);
 
+/// A designed plan's card: its regions, its supports known from its faces.
+CardView card_view(const PixelGrid& grid, const Plan& plan);
+
 /// The likeness of a card to its model, over the model's pixels.
 struct Likeness {
   double mean_mm = 0, p95_mm = 0;  // |card key - model key|, mean and 95th percentile

@@ -83,9 +83,11 @@ struct SupportReport {
   double cut_out_share = 0;
   int round_bound = 0;  // the loop's bound: one round per W-wide column of the sheet, plus one
   int orders = 0;       // face orders tried (SupportOptions::orders); the rest is of the one kept
-  // Chosen on the raster plan's mirror image and mirrored back (add_supports), and the frames tried:
-  // 2 when the design tried the other frame too (design.hpp).
+  // Chosen on the raster plan's mirror image and mirrored back (add_supports and
+  // add_supports_in_other_frame), and the frames tried: 2 when the design tried the other frame too,
+  // its first choice having cost the likeness over 1 W (design.hpp).
   bool mirror_image = false;
+  bool drawn_in_mirror_image = false;  // and its plan kept as drawn there: drawn here, it did not stand
   int frames = 1;
   bool converged = false;
   SupportStop stop = SupportStop::None;  // why supports alone did not make every face stand
@@ -128,5 +130,8 @@ std::string stop_reason(const SupportReport& report);
 
 /// The verdict: no floating or invalid face, and no dangling one unless they are allowed.
 bool plan_stands(const Validity& validity, bool allow_dangling);
+
+/// Whether a plan stands: its validity as above, and no loose piece of the back plane or the floor.
+bool plan_stands(const Plan& plan, bool allow_dangling);
 
 }  // namespace origamic

@@ -28,38 +28,35 @@ class StageClock {
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
-// The pipeline from the model read to the finished plan, into `result` (its stages timed on `clock`).
-// The finished plan as the 45-degree view sees it.
-CardView card_of(const PixelGrid& grid, const Plan& plan) {
-  std::vector<bool> support;
-  for (const PlanFace& face : plan.faces) support.push_back(face.support);
-  return card_view(grid, plan.regions, support);
-}
-
 // Supports may cost the likeness at most 1 W of p95 over the sliced plan (issue 22's bound). Past
 // it, the other frame's choice (add_supports_in_other_frame), whose ties fall the other way, gets
-// its turn, and the plan that stands and shows the model better is kept. The two frames' plans differ
-// as face orders do not (seeds 1 to 6 gave the same p95 on the hardest models): on the 37 models of
-// ../shared/models this took the mean p95 from 2.67 to 2.58 W, trying both on 12 of them.
+// its turn, and the plan that stands and shows the model better is kept; so does a first plan that
+// does not stand. The two frames' plans differ where face orders do not (seeds 1 to 6 gave the same
+// p95 on the hardest models): on the 37 models of ../shared/models the first frame alone gave a mean
+// p95 of 2.70 W, with the other frame tried where the first cost over 1 W (14 models) 2.58 W.
 constexpr double kSupportsMayAdd_W = 1.0;
 
 SupportedPlan supported_plan(const DesignResult& sliced, const DesignOptions& options) {
-  SupportedPlan first = add_supports(sliced.maps, sliced.raster_plan, options.sheet, options.plan, options.supports);
+  const bool allow_dangling = options.supports.allow_dangling;
   const double W = options.slice.min_strip_mm;
-  const double first_p95 = likeness(sliced.maps, card_of(sliced.maps.grid, first.plan), W).p95_W;
-  if (first_p95 <= sliced.sliced_likeness.p95_W + kSupportsMayAdd_W) return first;
+  const auto p95 = [&](const Plan& plan) { return likeness(sliced.maps, card_view(sliced.maps.grid, plan), W).p95_W; };
+  SupportedPlan first = add_supports(sliced.maps, sliced.raster_plan, options.sheet, options.plan, options.supports);
+  const double first_p95 = p95(first.plan);
+  if (plan_stands(first.plan, allow_dangling) && first_p95 <= sliced.sliced_likeness.p95_W + kSupportsMayAdd_W)
+    return first;
   std::optional<SupportedPlan> other =
       add_supports_in_other_frame(sliced.maps, sliced.raster_plan, options.sheet, options.plan, options.supports);
   if (!other) return first;
-  const double other_p95 = likeness(sliced.maps, card_of(sliced.maps.grid, other->plan), W).p95_W;
-  const auto fails = [&](const SupportedPlan& s) {
-    return !plan_stands(s.plan.validity, options.supports.allow_dangling) || s.plan.loose_card_pieces > 0;
-  };
-  SupportedPlan& kept = std::pair{fails(*other), other_p95} < std::pair{fails(first), first_p95} ? *other : first;
+  const double other_p95 = p95(other->plan);
+  SupportedPlan& kept = std::pair{!plan_stands(other->plan, allow_dangling), other_p95} <
+                                std::pair{!plan_stands(first.plan, allow_dangling), first_p95}
+                            ? *other
+                            : first;
   kept.report.frames = 2;
   return std::move(kept);
 }
 
+// The pipeline from the model read to the finished plan, into `result` (its stages timed on `clock`).
 void design_loaded(LoadedMesh loaded, const std::filesystem::path& model_file, const DesignOptions& options,
                    DesignResult& result, StageClock& clock) {
   const auto starting = [&](std::string_view stage) {
@@ -116,7 +113,7 @@ void design_loaded(LoadedMesh loaded, const std::filesystem::path& model_file, c
     for (PlanProblem& problem : analyze_plan(result.plan.lines, {.min_strip_mm = options.slice.min_strip_mm}).problems)
       if (problem.kind == PlanProblemKind::NarrowStrip) result.narrow_strips.push_back(std::move(problem));
   clock.lap("narrow strips");
-  result.card = card_of(result.maps.grid, result.plan);
+  result.card = card_view(result.maps.grid, result.plan);
   result.likeness = likeness(result.maps, result.card, W);
   clock.lap("likeness");
 }

@@ -85,6 +85,12 @@ CardView card_view(const PixelGrid& grid, std::span<const PlanRegion> regions, c
   return card;
 }
 
+CardView card_view(const PixelGrid& grid, const Plan& plan) {
+  std::vector<bool> support;
+  for (const PlanFace& face : plan.faces) support.push_back(face.support);
+  return card_view(grid, plan.regions, support);
+}
+
 namespace {
 
 Grid<double> error_map(const RasterMaps& maps, const CardView& card) {

@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <climits>
+#include <cmath>
 #include <cstdint>
 #include <limits>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -21,19 +23,20 @@ Grid<T> columns_reversed(Grid<T> grid) {
   return grid;
 }
 
-// What a pixel of the raster plan is, whatever the ids: the kind of paper there, its orientation,
-// and whether a face begins there (another face is above it, or none).
-int pixel_class(const RasterPlan& plan, int c, int r) {
+// What a pixel of the raster plan is, whatever the ids: the kind of paper there, its plane, whether
+// a face begins there (another is above it) and whether it runs on towards the model's middle
+// (`inward` columns over).
+using PixelKind = std::tuple<int, double, bool, bool>;
+PixelKind pixel_kind(const RasterPlan& plan, int c, int r, int inward) {
   const std::int32_t f = plan.face(c, r);
-  if (f < 0) return 0;
+  if (f < 0) return {0, 0.0, false, false};
   const RasterFace& face = plan.faces[static_cast<std::size_t>(f)];
   const int kind = f == kBackFace                       ? 1
                    : f == kFloorFace                    ? 2
                    : face.hole                          ? 3
                    : face.orientation == Orientation::V ? 4
                                                         : 5;
-  const bool begins = r == 0 || plan.face(c, r - 1) != f;
-  return 2 * kind + begins;
+  return {kind, face.depth_mm, r == 0 || plan.face(c, r - 1) != f, plan.face(c + inward, r) == f};
 }
 
 PlanPoint mirrored(PlanPoint p, double width_mm) { return {width_mm - p.X, p.Y}; }
@@ -42,8 +45,8 @@ PlanPoint mirrored(PlanPoint p, double width_mm) { return {width_mm - p.X, p.Y};
 
 SupportFrame first_support_frame(const RasterPlan& raster_plan, const PixelGrid& grid, const Sheet& sheet) {
   const Grid<std::int32_t>& face = raster_plan.face;
-  if (face.cols != grid.cols || static_cast<double>(grid.cols) / grid.px_per_mm != sheet.width_mm)
-    return SupportFrame::Only;
+  // The lattice's mirror image must be the sheet's: PixelGrid::covering rounds its width as here.
+  if (face.cols != grid.cols || std::abs(grid.cols / grid.px_per_mm - sheet.width_mm) > 1e-9) return SupportFrame::Only;
   // The model's columns: those with a face of the model in them.
   int lo = INT_MAX, hi = -1;
   for (int r = 0; r < face.rows; ++r)
@@ -51,40 +54,38 @@ SupportFrame first_support_frame(const RasterPlan& raster_plan, const PixelGrid&
       if (face(c, r) > kFloorFace) lo = std::min(lo, c), hi = std::max(hi, c);
   for (int left = lo, right = hi; left < right; ++left, --right)
     for (int r = 0; r < face.rows; ++r) {
-      const int a = pixel_class(raster_plan, left, r), b = pixel_class(raster_plan, right, r);
+      const PixelKind a = pixel_kind(raster_plan, left, r, 1), b = pixel_kind(raster_plan, right, r, -1);
       if (a != b) return a < b ? SupportFrame::Plan : SupportFrame::MirrorImage;
     }
   return SupportFrame::Only;
 }
 
 RasterMaps mirror_image(const RasterMaps& maps) {
-  RasterMaps out;
-  out.grid = maps.grid;
-  out.reference = maps.reference;
-  out.kind = columns_reversed(maps.kind);
-  out.d_mm = columns_reversed(maps.d_mm);
-  out.h_mm = columns_reversed(maps.h_mm);
-  out.D = columns_reversed(maps.D);
-  out.F = columns_reversed(maps.F);
-  out.T = columns_reversed(maps.T);
-  out.normal = columns_reversed(maps.normal);
+  RasterMaps out = maps;
+  out.kind = columns_reversed(std::move(out.kind));
+  out.d_mm = columns_reversed(std::move(out.d_mm));
+  out.h_mm = columns_reversed(std::move(out.h_mm));
+  out.D = columns_reversed(std::move(out.D));
+  out.F = columns_reversed(std::move(out.F));
+  out.T = columns_reversed(std::move(out.T));
+  out.normal = columns_reversed(std::move(out.normal));
   for (glm::vec3& n : out.normal.values) n.x = -n.x;
-  out.primitive = columns_reversed(maps.primitive);
-  out.break_below = columns_reversed(maps.break_below);
+  out.primitive = columns_reversed(std::move(out.primitive));
+  out.break_below = columns_reversed(std::move(out.break_below));
   // A break between columns c and c + 1, t of the way from c, is between their mirror images, the
   // same distance from the other: in the mirror image's column cols - 2 - c, 1 - t of the way.
   const Grid<float>& right = maps.break_right;
-  out.break_right = Grid<float>(right.cols, right.rows, std::numeric_limits<float>::quiet_NaN());
+  std::ranges::fill(out.break_right.values, std::numeric_limits<float>::quiet_NaN());
   for (int r = 0; r < right.rows; ++r)
     for (int c = 0; c + 1 < right.cols; ++c) out.break_right(right.cols - 2 - c, r) = 1 - right(c, r);
-  out.model_pixels = maps.model_pixels;
   return out;
 }
 
 RasterPlan mirror_image(RasterPlan raster_plan) {
   raster_plan.face = columns_reversed(std::move(raster_plan.face));
   raster_plan.subsegment = columns_reversed(std::move(raster_plan.subsegment));
-  raster_plan.block_subsegment = columns_reversed(std::move(raster_plan.block_subsegment));
+  // block_subsegment samples each W x W block at a centre counted from the left edge, which no
+  // reversal of its columns mirrors exactly; nothing reads it after slicing, and it is left as it is.
   return raster_plan;
 }
 

@@ -83,6 +83,10 @@ bool plan_stands(const Validity& validity, bool allow_dangling) {
   return validity.floating + validity.invalid == 0 && (allow_dangling || validity.dangling == 0);
 }
 
+bool plan_stands(const Plan& plan, bool allow_dangling) {
+  return plan_stands(plan.validity, allow_dangling) && plan.loose_card_pieces == 0;
+}
+
 std::vector<FoldEdge> raster_folds(const PixelGrid& grid, const RasterPlan& raster_plan, double tolerance) {
   const Grid<std::int32_t>& face = raster_plan.face;
   std::array<std::vector<FoldEdge>, kBands> bands;
@@ -560,9 +564,7 @@ SupportedPlan FaceOrderRun::finish() {
   return std::move(result_);
 }
 
-bool stands(const SupportedPlan& s, bool allow_dangling) {
-  return plan_stands(s.plan.validity, allow_dangling) && s.plan.loose_card_pieces == 0;
-}
+bool stands(const SupportedPlan& s, bool allow_dangling) { return plan_stands(s.plan, allow_dangling); }
 
 // How far a plan is from standing: its faces no support holds, then the share of the model cut out.
 std::pair<int, double> shortfall(const SupportedPlan& s, bool allow_dangling) {
@@ -601,36 +603,36 @@ SupportedPlan supports_in_face_orders(const RasterMaps& maps, RasterPlan raster_
   return std::move(*best);
 }
 
-}  // namespace
+// Which of the two frames (first_support_frame) the supports are chosen in.
+enum class FrameTurn { First, Other };
 
-namespace {
-
-// The supports chosen in the first frame (first_support_frame) or the other, mirrored back; none in
-// the other where the plan has only one.
+// The supports chosen in the first frame or the other, mirrored back; none in the other where the
+// plan has only one.
 std::optional<SupportedPlan> supports_in_frame(const RasterMaps& maps, RasterPlan raster_plan, const Sheet& sheet,
                                                const PlanOptions& plan_options, const SupportOptions& options,
-                                               bool first) {
+                                               FrameTurn turn) {
   const auto lock = exact_run_lock();
   // The loop breaks its ties one way and draws its face orders by id: it runs in a frame a mirrored
   // model shares, on ids a mirror image would have too, so that the mirrored model gets the mirrored
   // supports.
   raster_plan = with_faces_in_scan_order(std::move(raster_plan));
-  const SupportFrame frame = first_support_frame(raster_plan, maps.grid, sheet);
-  if (frame == SupportFrame::Only && !first) return std::nullopt;
-  if ((frame == SupportFrame::MirrorImage) != first)
+  const SupportFrame first = first_support_frame(raster_plan, maps.grid, sheet);
+  if (first == SupportFrame::Only && turn == FrameTurn::Other) return std::nullopt;
+  if ((first == SupportFrame::MirrorImage) == (turn == FrameTurn::Other))
     return supports_in_face_orders(maps, std::move(raster_plan), sheet, plan_options, options);
   SupportedPlan mirrored = supports_in_face_orders(
       mirror_image(maps), with_faces_in_scan_order(mirror_image(std::move(raster_plan))), sheet, plan_options, options);
   mirrored.report.mirror_image = true;
   SupportedPlan supported = mirror_image(std::move(mirrored), sheet);
+  supported.report.narrow = narrow_strips(supported.raster_plan, maps.grid);  // placed as a run here places them
   // The plan is drawn in the user's frame from the raster plan kept, as every plan is: drawn from the
   // other side, its chains are simplified and snapped from the other end and may run a hair apart
   // (seedlike/sphere: 0.08 mm more cut in 6.5 m). Should that plan not stand, the mirrored one does.
   Plan drawn = build_plan(maps, supported.raster_plan, sheet, plan_options);
-  const auto plan_stands_whole = [&](const Plan& plan) {
-    return plan_stands(plan.validity, options.allow_dangling) && plan.loose_card_pieces == 0;
-  };
-  if (plan_stands_whole(drawn) || !plan_stands_whole(supported.plan)) supported.plan = std::move(drawn);
+  if (plan_stands(drawn, options.allow_dangling) || !plan_stands(supported.plan, options.allow_dangling))
+    supported.plan = std::move(drawn);
+  else
+    supported.report.drawn_in_mirror_image = true;
   return supported;
 }
 
@@ -638,13 +640,13 @@ std::optional<SupportedPlan> supports_in_frame(const RasterMaps& maps, RasterPla
 
 SupportedPlan add_supports(const RasterMaps& maps, RasterPlan raster_plan, const Sheet& sheet,
                            const PlanOptions& plan_options, const SupportOptions& options) {
-  return std::move(*supports_in_frame(maps, std::move(raster_plan), sheet, plan_options, options, true));
+  return std::move(*supports_in_frame(maps, std::move(raster_plan), sheet, plan_options, options, FrameTurn::First));
 }
 
 std::optional<SupportedPlan> add_supports_in_other_frame(const RasterMaps& maps, RasterPlan raster_plan,
                                                          const Sheet& sheet, const PlanOptions& plan_options,
                                                          const SupportOptions& options) {
-  return supports_in_frame(maps, std::move(raster_plan), sheet, plan_options, options, false);
+  return supports_in_frame(maps, std::move(raster_plan), sheet, plan_options, options, FrameTurn::Other);
 }
 
 }  // namespace origamic
