@@ -578,9 +578,16 @@ std::pair<int, double> shortfall(const SupportedPlan& s, bool allow_dangling) {
 // brought the mean share cut out from 7.3-8.3% to 4.7-5.3%, and the worst from 25% to 15%.
 constexpr double kPoorLikenessShare = 0.15;
 
+// What the support loop is asked for, beside the maps and the raster plan.
+struct SupportRequest {
+  const Sheet& sheet;
+  const PlanOptions& plan_options;
+  const SupportOptions& options;
+};
+
 // The support loop's face orders, one after another, on the raster plan as given.
-SupportedPlan supports_in_face_orders(const RasterMaps& maps, RasterPlan raster_plan, const Sheet& sheet,
-                                      const PlanOptions& plan_options, const SupportOptions& options) {
+SupportedPlan supports_in_face_orders(const RasterMaps& maps, RasterPlan raster_plan, const SupportRequest& request) {
+  const auto& [sheet, plan_options, options] = request;
   // The greedy choice depends on the order the faces choose in, and one order can paint itself into
   // a corner that another avoids: the next orders of the same random sequence get their turn.
   std::mt19937 random(options.seed);
@@ -608,9 +615,9 @@ enum class FrameTurn { First, Other };
 
 // The supports chosen in the first frame or the other, mirrored back; none in the other where the
 // plan has only one.
-std::optional<SupportedPlan> supports_in_frame(const RasterMaps& maps, RasterPlan raster_plan, const Sheet& sheet,
-                                               const PlanOptions& plan_options, const SupportOptions& options,
-                                               FrameTurn turn) {
+std::optional<SupportedPlan> supports_in_frame(const RasterMaps& maps, RasterPlan raster_plan,
+                                               const SupportRequest& request, FrameTurn turn) {
+  const auto& [sheet, plan_options, options] = request;
   const auto lock = exact_run_lock();
   // The loop breaks its ties one way and draws its face orders by id: it runs in a frame a mirrored
   // model shares, on ids a mirror image would have too, so that the mirrored model gets the mirrored
@@ -619,9 +626,9 @@ std::optional<SupportedPlan> supports_in_frame(const RasterMaps& maps, RasterPla
   const SupportFrame first = first_support_frame(raster_plan, maps.grid, sheet);
   if (first == SupportFrame::Only && turn == FrameTurn::Other) return std::nullopt;
   if ((first == SupportFrame::MirrorImage) == (turn == FrameTurn::Other))
-    return supports_in_face_orders(maps, std::move(raster_plan), sheet, plan_options, options);
+    return supports_in_face_orders(maps, std::move(raster_plan), request);
   SupportedPlan mirrored = supports_in_face_orders(
-      mirror_image(maps), with_faces_in_scan_order(mirror_image(std::move(raster_plan))), sheet, plan_options, options);
+      mirror_image(maps), with_faces_in_scan_order(mirror_image(std::move(raster_plan))), request);
   mirrored.report.mirror_image = true;
   SupportedPlan supported = mirror_image(std::move(mirrored), sheet);
   supported.report.narrow = narrow_strips(supported.raster_plan, maps.grid);  // placed as a run here places them
@@ -640,13 +647,13 @@ std::optional<SupportedPlan> supports_in_frame(const RasterMaps& maps, RasterPla
 
 SupportedPlan add_supports(const RasterMaps& maps, RasterPlan raster_plan, const Sheet& sheet,
                            const PlanOptions& plan_options, const SupportOptions& options) {
-  return std::move(*supports_in_frame(maps, std::move(raster_plan), sheet, plan_options, options, FrameTurn::First));
+  return std::move(*supports_in_frame(maps, std::move(raster_plan), {sheet, plan_options, options}, FrameTurn::First));
 }
 
 std::optional<SupportedPlan> add_supports_in_other_frame(const RasterMaps& maps, RasterPlan raster_plan,
                                                          const Sheet& sheet, const PlanOptions& plan_options,
                                                          const SupportOptions& options) {
-  return supports_in_frame(maps, std::move(raster_plan), sheet, plan_options, options, FrameTurn::Other);
+  return supports_in_frame(maps, std::move(raster_plan), {sheet, plan_options, options}, FrameTurn::Other);
 }
 
 }  // namespace origamic
