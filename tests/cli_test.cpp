@@ -434,6 +434,24 @@ TEST(Cli, TheDesignsPopUpIsTheFoldOfItsPlan) {
   EXPECT_EQ(faces_of(dir / "chapel_popup.obj"), faces_of(dir / "folded.obj"));
 }
 
+// The report says which frames the supports were chosen in: the house's cost it under the bounds,
+// one frame; the chapel's first choice costs it 2 W of p95, so both were tried.
+TEST(Cli, TheReportSaysWhichFramesTheSupportsWereChosenIn) {
+  const test::TempDir dir;
+  const CommandRun house = run("design " + quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") +
+                               " --out " + quoted(dir.path));
+  ASSERT_EQ(house.status, 0) << house.output;
+  const auto report = nlohmann::json::parse(std::ifstream(dir / "house.json"))["supports"];
+  EXPECT_EQ(report["frames"], 1);
+  EXPECT_TRUE(report["mirror_image"].is_boolean());
+  EXPECT_EQ(report["drawn_in_mirror_image"], false);
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  const CommandRun chapel =
+      run("design " + quoted(test::models_dir() / "seedlike/chapel.stl") + " --up z --out " + quoted(dir.path));
+  ASSERT_EQ(chapel.status, 0) << chapel.output;
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(dir / "chapel.json"))["supports"]["frames"], 2);
+}
+
 // A run killed while it wrote left NAME.partPID files: the next run into the folder removes those
 // of processes that are gone, and keeps another live run's.
 TEST(Cli, TemporaryFilesOfAKilledRunAreRemovedByTheNext) {

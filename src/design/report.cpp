@@ -223,6 +223,7 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
         {"orders", result.supports.orders},
         {"frames", result.supports.frames},
         {"mirror_image", result.supports.mirror_image},
+        {"drawn_in_mirror_image", result.supports.drawn_in_mirror_image},
         {"converged", result.supports.converged},
         {"stop_reason", stop_reason(result.supports)}}},
       {"time_ms", times},
