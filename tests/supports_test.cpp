@@ -567,28 +567,42 @@ TEST(Supports, APictureGivenAJoinIsThePictureOfTheJoinedPlan) {
   EXPECT_EQ(fresh.hole_error(front), 0.0);
 }
 
+// A model's sliced plan, and the likeness of the supports each frame chooses on it.
+struct FramesChosen {
+  DesignResult sliced;
+  Likeness first;
+  std::optional<Likeness> other;  // none where the plan has one frame
+};
+FramesChosen frames_chosen(const char* model, UpAxis up) {
+  DesignOptions options;
+  options.placement.up = up;
+  options.supports.enabled = false;
+  FramesChosen chosen{design(test::models_dir() / model, options), {}, {}};
+  const DesignResult& s = chosen.sliced;
+  const auto likeness_of = [&](const Plan& plan) {
+    return likeness(s.maps, card_view(s.maps.grid, plan), options.slice.min_strip_mm);
+  };
+  chosen.first = likeness_of(add_supports(s.maps, s.raster_plan, options.sheet, options.plan, options.supports).plan);
+  if (const std::optional<SupportedPlan> other =
+          add_supports_in_other_frame(s.maps, s.raster_plan, options.sheet, options.plan, options.supports))
+    chosen.other = likeness_of(other->plan);
+  return chosen;
+}
+
 // Where the supports chosen first cost the likeness more than 1 W of p95 over the sliced plan, the
 // other frame's choice is tried too, and the design keeps the one that shows the model better. The
 // temple's first choice costs it 1.3 W.
 TEST(Supports, WhereSupportsCostOverAStripWidthTheOtherFramesChoiceIsTriedAndTheBetterKept) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  const FramesChosen frames = frames_chosen("arch_temple.obj", UpAxis::Y);
+  ASSERT_TRUE(frames.other.has_value());
+  ASSERT_GT(frames.first.p95_W, frames.sliced.sliced_likeness.p95_W + 1);
+  EXPECT_NE(frames.first.p95_W, frames.other->p95_W);
   DesignOptions options;
   options.placement.up = UpAxis::Y;
-  options.supports.enabled = false;
-  const DesignResult sliced = design(test::models_dir() / "arch_temple.obj", options);
-  options.supports.enabled = true;
   const DesignResult designed = design(test::models_dir() / "arch_temple.obj", options);
-  const double W = options.slice.min_strip_mm;
-  const auto p95 = [&](const Plan& plan) { return likeness(sliced.maps, card_view(sliced.maps.grid, plan), W).p95_W; };
-  const SupportedPlan first =
-      add_supports(sliced.maps, sliced.raster_plan, options.sheet, options.plan, options.supports);
-  const std::optional<SupportedPlan> other =
-      add_supports_in_other_frame(sliced.maps, sliced.raster_plan, options.sheet, options.plan, options.supports);
-  ASSERT_TRUE(other.has_value());
-  ASSERT_GT(p95(first.plan), sliced.sliced_likeness.p95_W + 1);
-  EXPECT_NE(p95(first.plan), p95(other->plan));
   EXPECT_EQ(designed.supports.frames, 2);
-  EXPECT_EQ(designed.likeness.p95_W, std::min(p95(first.plan), p95(other->plan)));
+  EXPECT_EQ(designed.likeness.p95_W, std::min(frames.first.p95_W, frames.other->p95_W));
   expect_exact_and_standing(designed.plan);
   // The capitol's supports cost it nothing (0.88 W, sliced 0.89 W): one frame.
   EXPECT_EQ(standing_design("seedlike/capitol.stl").supports.frames, 1);
@@ -599,20 +613,14 @@ TEST(Supports, WhereSupportsCostOverAStripWidthTheOtherFramesChoiceIsTriedAndThe
 // 0.53 W). Past a quarter W of mean the other frame's choice gets its turn, and it keeps the keep.
 TEST(Supports, AFeatureLostWholeCostsTheMeanErrorAndTheOtherFramesChoiceGetsItsTurn) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
-  DesignOptions options;
-  options.placement.up = UpAxis::Z;
-  options.supports.enabled = false;
-  const DesignResult sliced = design(test::models_dir() / "arch_castle_keep.obj", options);
-  const double W = options.slice.min_strip_mm;
-  const auto fares = [&](const Plan& plan) { return likeness(sliced.maps, card_view(sliced.maps.grid, plan), W); };
-  const SupportedPlan first =
-      add_supports(sliced.maps, sliced.raster_plan, options.sheet, options.plan, options.supports);
-  ASSERT_LE(fares(first.plan).p95_W, sliced.sliced_likeness.p95_W + 1);
-  ASSERT_GT(fares(first.plan).mean_W, sliced.sliced_likeness.mean_W + 0.25);
+  const FramesChosen frames = frames_chosen("arch_castle_keep.obj", UpAxis::Z);
+  const Likeness& sliced = frames.sliced.sliced_likeness;
+  ASSERT_LE(frames.first.p95_W, sliced.p95_W + 1);
+  ASSERT_GT(frames.first.mean_W, sliced.mean_W + 0.25);
   const DesignResult designed = standing_design("arch_castle_keep.obj");
   EXPECT_EQ(designed.supports.frames, 2);
-  EXPECT_LE(designed.likeness.mean_W, sliced.sliced_likeness.mean_W + 0.25);
-  EXPECT_LT(designed.likeness.p95_W, fares(first.plan).p95_W);
+  EXPECT_LE(designed.likeness.mean_W, sliced.mean_W + 0.25);
+  EXPECT_LT(designed.likeness.p95_W, frames.first.p95_W);
 }
 
 // Passes of rounds that held nothing are undone: the slices go back to those of the last exact
