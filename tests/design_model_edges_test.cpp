@@ -203,5 +203,44 @@ TEST(ModelEdges, TheRoofEdgesOfAGableHouseAreDrawnOnTheirLines) {
   }
 }
 
+// A slice ends where the model's depth crosses its level (seed §4.3): on a leaning, turned wall,
+// d = 50 + 0.2 (x - 60) - 0.15 h, those contours are straight lines slanting across the plan. Each
+// cut inside the wall is drawn on one of them, not on the pixels' staircase along it: the wall's
+// depth at the two ends of every cut segment there is the same to 0.01 mm (a pixel's step of the
+// staircase changes it by 0.03-0.04 mm), and the segment runs from one of the wall's edges to another.
+TEST(ModelEdges, SlicesOfALeaningWallEndOnItsLevelContours) {
+  const auto front = [](double x, double h) { return 50 + 0.2 * (x - 60) - 0.15 * h; };
+  TriangleMesh wall;
+  for (const bool at_front : {false, true})
+    for (const auto& [x, h] : {std::pair{60.0, 0.0}, {150.0, 0.0}, {150.0, 100.0}, {60.0, 100.0}})
+      wall.positions.emplace_back(x, h, at_front ? front(x, h) : 20.0);
+  wall.triangles = {{4, 5, 6}, {4, 6, 7}, {0, 2, 1}, {0, 3, 2}, {0, 1, 5}, {0, 5, 4},
+                    {3, 7, 6}, {3, 6, 2}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
+  const Plan plan = design_in_place(wall);
+  // The wall's depth under a plan point of its front: h - d = Y with d = front(X, h).
+  const auto depth_at = [&](PlanPoint p) {
+    const double h = (p.Y + 50 - 0.2 * 60 + 0.2 * p.X) / 1.15;
+    return h - p.Y;
+  };
+  const auto inside = [&](PlanPoint p) {
+    const double h = p.Y + depth_at(p);
+    return p.X > 70 && p.X < 140 && h > 10 && h < 90;  // clear of the supports at the wall's edges
+  };
+  int contours = 0;
+  for (const PlanPolyline& line : plan.lines) {
+    if (line.kind != LineKind::Cut) continue;
+    for (std::size_t i = 1; i < line.points.size(); ++i) {
+      const PlanPoint a = line.points[i - 1], b = line.points[i];
+      if (!inside({(a.X + b.X) / 2, (a.Y + b.Y) / 2})) continue;
+      ++contours;
+      SCOPED_TRACE("cut from (" + std::to_string(a.X) + ", " + std::to_string(a.Y) + ") to (" + std::to_string(b.X) +
+                   ", " + std::to_string(b.Y) + ")");
+      EXPECT_LE(std::abs(depth_at(a) - depth_at(b)), 0.01);
+      EXPECT_GE(std::hypot(b.X - a.X, b.Y - a.Y), 20) << "a contour is one segment from edge to edge";
+    }
+  }
+  EXPECT_GE(contours, 5) << "the wall's 33 mm of depth is sliced into levels 3 mm apart";
+}
+
 }  // namespace
 }  // namespace origamic

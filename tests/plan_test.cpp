@@ -16,6 +16,7 @@
 #include "helpers.hpp"
 #include "origamic/design.hpp"
 #include "origamic/error.hpp"
+#include "origamic/mm_text.hpp"
 #include "origamic/output.hpp"
 #include "origamic/plan_analysis.hpp"
 #include "origamic/plan_dxf_reader.hpp"
@@ -362,6 +363,25 @@ std::multiset<SegmentKey> keys_of(const Plan& plan, LineKind kind) {
   return keys_of(segments);
 }
 
+// The same, as the SVG writes them (mm_text: 6 decimals, SVG y = top - Y) and the reader turns them
+// back: a coordinate on a level contour, a multiple of 1/4096 mm, can lie halfway between two
+// nanometres, which the text rounds to even where llround rounds away.
+std::multiset<SegmentKey> svg_keys_of(const Plan& plan, LineKind kind) {
+  const double top = plan.sheet.max_Y(), read_top = plan.sheet.half_height_mm();  // the writer's, the reader's
+  const auto as_written = [&](PlanPoint p) {
+    return std::pair{std::stod(mm_text(p.X)), read_top - std::stod(mm_text(top - p.Y))};
+  };
+  nlohmann::json segments = nlohmann::json::array();
+  for (const PlanPolyline& line : plan.lines)
+    if (line.kind == kind)
+      for (std::size_t i = 1; i < line.points.size(); ++i) {
+        const auto [X0, Y0] = as_written(line.points[i - 1]);
+        const auto [X1, Y1] = as_written(line.points[i]);
+        segments.push_back({X0, Y0, X1, Y1});
+      }
+  return keys_of(segments);
+}
+
 // Where a snapped fold meets a slanted cut that still leaves the pixel row the fold moved from, a
 // face reaches past its line: the capitol's H faces under the dome reached 0.02-0.08 mm behind the
 // back plane (validate's outside_card). The part beyond is trimmed off to the back plane: no face
@@ -421,7 +441,10 @@ TEST(Plan, ACrumbCutOutIsARemovedRegionOfTheDesign) {
       }
     EXPECT_EQ(over, 1) << "one region of the design at (" << hole.inside.X << ", " << hole.inside.Y << ")";
   }
-  EXPECT_EQ(holes, r.plan.crumbs_cut_out + r.plan.validity.removed) << "the DXF's holes: crumbs and faces cut out";
+  // The DXF's holes: the faces cut out and the crumbs, but a crumb among holes (plan.hpp) falls out
+  // with the hole beside it, in one piece (the cone's two cut-out pieces of card each have one).
+  EXPECT_GE(holes, r.plan.validity.removed + 1) << "the faces cut out, and the crumb this test is about";
+  EXPECT_LE(holes, r.plan.crumbs_cut_out + r.plan.validity.removed) << "the DXF's holes: crumbs and faces cut out";
   EXPECT_EQ(std::ranges::count(r.plan.regions, FaceStatus::Removed, &PlanRegion::status), holes);
 }
 
@@ -441,7 +464,7 @@ TEST(Plan, R2000DxfWithCraftColoursReadsBackTheSame) {
   for (const LineKind kind : {LineKind::Cut, LineKind::Mountain, LineKind::Valley, LineKind::Outline}) {
     const LayerStyle style = layer_style(kind, ColourPreset::Craft);
     EXPECT_EQ(keys_of(back["dxf"][style.name], plan.sheet.half_height_mm()), keys_of(plan, kind)) << style.name;
-    EXPECT_EQ(keys_of(back["svg"][style.name]), keys_of(plan, kind)) << style.name;
+    EXPECT_EQ(keys_of(back["svg"][style.name]), svg_keys_of(plan, kind)) << style.name;
     EXPECT_EQ(back["dxf_colours"][style.name], nlohmann::json::array({style.aci})) << style.name;
   }
   // The origin is the sheet's lower-left corner, as cutter beds and CAD pages have it: the outline
@@ -497,7 +520,8 @@ TEST(Plan, EverySeedlikeModelGivesAnExactPlanAndItsFilesCarryTheSameSegments) {
       const std::multiset<SegmentKey> expected = keys_of(plan, kind);
       EXPECT_EQ(keys_of(back["dxf"].value(layer, nlohmann::json::array()), plan.sheet.half_height_mm()), expected)
           << layer << " in the DXF";
-      EXPECT_EQ(keys_of(back["svg"].value(layer, nlohmann::json::array())), expected) << layer << " in the SVG";
+      EXPECT_EQ(keys_of(back["svg"].value(layer, nlohmann::json::array())), svg_keys_of(plan, kind))
+          << layer << " in the SVG";
       if (!expected.empty()) {
         EXPECT_EQ(back["dxf_colours"][layer], nlohmann::json::array({layer_style(kind, ColourPreset::Laser).aci}));
       }

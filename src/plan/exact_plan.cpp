@@ -19,6 +19,7 @@
 #include "exact_plan_chains.hpp"
 #include "exact_plan_state.hpp"
 #include "exact_runs.hpp"
+#include "level_contours.hpp"
 #include "origamic/plan.hpp"
 #include "raster_plan_edits.hpp"
 
@@ -306,7 +307,8 @@ void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& ra
   // the fold.
   RasterPlan aligned = aligned_faces(raster_plan, maps.grid, options);
   const std::vector<RasterFace>& faces = aligned.faces;
-  const Lattice lattice(maps, sheet);
+  const BreaksAndLevels lines = breaks_and_levels(maps, aligned.face, faces);
+  const Lattice lattice(maps, sheet, {lines.right, lines.below});
   state.labels = labels_inside_sheet(std::move(aligned.face));  // the face map is not read again
   const std::vector<Chain> chains = trace_chains(state.labels);
   const double simplify_mm = std::min(options.simplify_mm, 1 / maps.grid.px_per_mm);

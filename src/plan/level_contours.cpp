@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "level_contours.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <tuple>
+#include <utility>
+
+namespace origamic {
+namespace {
+
+// Where between two pixel centres, with depths a and b, the depth crosses `level`: in (0, 1), to
+// 1/1024. Worked from the lower depth's side, so that the mirror image (the centres swapped) gets
+// 1 - t exactly.
+float crossing(double a, double b, double level) {
+  const double t = a < b ? (level - a) / (b - a) : 1 - (level - b) / (a - b);
+  return static_cast<float>(std::round(t * 1024) / 1024);
+}
+
+// The depths either side of the boundary between two slices: the highest on the nearer slice's
+// side, the lowest on the farther's.
+struct Sides {
+  double near_highest = -std::numeric_limits<double>::infinity();
+  double far_lowest = std::numeric_limits<double>::infinity();
+};
+
+}  // namespace
+
+BreaksAndLevels breaks_and_levels(const RasterMaps& maps, const Grid<std::int32_t>& face,
+                                  const std::vector<RasterFace>& faces) {
+  BreaksAndLevels out{maps.break_right, maps.break_below};
+  if (out.right.size() == 0) return out;  // maps made by hand: no picture to follow
+  const auto slice_of = [&](int c, int r) -> std::int32_t {
+    const std::int32_t f = face(c, r);
+    if (f < 2 || maps.kind(c, r) != HitKind::Model) return -1;
+    const RasterFace& slice = faces[static_cast<std::size_t>(f)];
+    return slice.support || slice.hole ? -1 : f;
+  };
+  // Whether the pixels beside the pair (c, r), (c2, r2), across the edge between them, are of its two
+  // faces: near a junction the contour stays on the lattice, where the other lines end (drawn off it,
+  // res_armadillo's contour leaving a fold's end crossed into the face beyond).
+  const auto only_these_beside = [&](int c, int r, int c2, int r2, std::int32_t a, std::int32_t b) {
+    const int dc = r2 - r, dr = c2 - c;  // across the pair
+    for (const int side : {-1, 1})
+      for (const auto& [pc, pr] : {std::pair{c + side * dc, r + side * dr}, std::pair{c2 + side * dc, r2 + side * dr}})
+        if (face.contains(pc, pr) && face(pc, pr) != a && face(pc, pr) != b) return false;
+    return true;
+  };
+  // Each pair of neighbouring pixels of two slices in one orientation that no break parts.
+  const auto for_each_pair = [&](auto visit) {
+    for (int r = 0; r < face.rows; ++r)
+      for (int c = 0; c < face.cols; ++c) {
+        const std::int32_t a = slice_of(c, r);
+        if (a < 0) continue;
+        for (const auto& [c2, r2, grid] : {std::tuple{c + 1, r, &out.right}, std::tuple{c, r + 1, &out.below}}) {
+          if (!face.contains(c2, r2) || !std::isnan((*grid)(c, r))) continue;
+          const std::int32_t b = slice_of(c2, r2);
+          if (b < 0 || b == a || !only_these_beside(c, r, c2, r2, a, b)) continue;
+          const RasterFace &fa = faces[static_cast<std::size_t>(a)], &fb = faces[static_cast<std::size_t>(b)];
+          if (fa.orientation != fb.orientation || fa.depth_mm == fb.depth_mm) continue;
+          const Grid<double>& depth = fa.orientation == Orientation::V ? maps.d_mm : maps.h_mm;
+          visit(a, b, fa.depth_mm < fb.depth_mm, depth(c, r), depth(c2, r2), (*grid)(c, r));
+        }
+      }
+  };
+  // The level a slicing cut at lies between the two slices' depths along their boundary; where they
+  // overlap (slices of two segments), the boundary is no level contour and stays on the pixels.
+  std::map<std::pair<std::int32_t, std::int32_t>, Sides> sides;
+  for_each_pair([&](std::int32_t a, std::int32_t b, bool a_nearer, double da, double db, float&) {
+    Sides& s = sides[a_nearer ? std::pair{a, b} : std::pair{b, a}];
+    s.near_highest = std::max(s.near_highest, a_nearer ? da : db);
+    s.far_lowest = std::min(s.far_lowest, a_nearer ? db : da);
+  });
+  for_each_pair([&](std::int32_t a, std::int32_t b, bool a_nearer, double da, double db, float& t) {
+    const Sides& s = sides[a_nearer ? std::pair{a, b} : std::pair{b, a}];
+    if (s.near_highest < s.far_lowest) t = crossing(da, db, (s.near_highest + s.far_lowest) / 2);
+  });
+  return out;
+}
+
+}  // namespace origamic
