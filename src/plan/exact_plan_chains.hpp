@@ -25,10 +25,11 @@ struct Lattice : chains::LatticeScale {
   double half_mm;
   chains::PictureBreaks breaks;
 
-  Lattice(const RasterMaps& maps, const Sheet& sheet) : Lattice(maps, sheet, {maps.break_right, maps.break_below}) {}
-  // With the lines chains are drawn on where they cross pixel edges (level_contours.hpp).
+  // `lines`: where chains cross pixel edges, the picture's breaks and the levels (level_contours.hpp).
   Lattice(const RasterMaps& maps, const Sheet& sheet, chains::PictureBreaks lines)
-      : LatticeScale{maps.grid.rows_above_fold, 1 / maps.grid.px_per_mm}, half_mm(sheet.half_height_mm()), breaks(lines) {
+      : LatticeScale{maps.grid.rows_above_fold, 1 / maps.grid.px_per_mm},
+        half_mm(sheet.half_height_mm()),
+        breaks(lines) {
     const PixelGrid& grid = maps.grid;
     const FT two_ppm = FT(2) * FT(grid.px_per_mm), width(sheet.width_mm), half(sheet.half_height_mm());
     for (int u = 0; u <= 2 * grid.cols; ++u) X_of_u.push_back(CGAL::min(FT(u) / two_ppm, width));

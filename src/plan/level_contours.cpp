@@ -11,12 +11,13 @@
 namespace origamic {
 namespace {
 
-// Where between two pixel centres, with depths a and b, the depth crosses `level`: in (0, 1), to
-// 1/1024. Worked from the lower depth's side, so that the mirror image (the centres swapped) gets
-// 1 - t exactly.
+// Where between two pixel centres, with depths a and b, the depth crosses `level` (strictly between
+// them): rounded to 1/1024 from the lower depth's side, so that the mirror image (the centres
+// swapped) gets 1 - t exactly, and kept off the centres as the picture's breaks are.
 float crossing(double a, double b, double level) {
-  const double t = a < b ? (level - a) / (b - a) : 1 - (level - b) / (a - b);
-  return static_cast<float>(std::round(t * 1024) / 1024);
+  const double from_lower = a < b ? (level - a) / (b - a) : (level - b) / (a - b);
+  const double k = std::clamp(std::round(from_lower * 1024), 1.0, 1023.0);
+  return static_cast<float>((a < b ? k : 1024 - k) / 1024);
 }
 
 // The depths either side of the boundary between two slices: the highest on the nearer slice's
@@ -34,7 +35,7 @@ BreaksAndLevels breaks_and_levels(const RasterMaps& maps, const Grid<std::int32_
   if (out.right.size() == 0) return out;  // maps made by hand: no picture to follow
   const auto slice_of = [&](int c, int r) -> std::int32_t {
     const std::int32_t f = face(c, r);
-    if (f < 2 || maps.kind(c, r) != HitKind::Model) return -1;
+    if (f <= kFloorFace || maps.kind(c, r) != HitKind::Model) return -1;
     const RasterFace& slice = faces[static_cast<std::size_t>(f)];
     return slice.support || slice.hole ? -1 : f;
   };
@@ -65,8 +66,8 @@ BreaksAndLevels breaks_and_levels(const RasterMaps& maps, const Grid<std::int32_
         }
       }
   };
-  // The level a slicing cut at lies between the two slices' depths along their boundary; where they
-  // overlap (slices of two segments), the boundary is no level contour and stays on the pixels.
+  // The level the slicing cut two slices at lies between their depths on either side of their
+  // boundary; where those overlap (slices of two segments), the boundary is no level contour.
   std::map<std::pair<std::int32_t, std::int32_t>, Sides> sides;
   for_each_pair([&](std::int32_t a, std::int32_t b, bool a_nearer, double da, double db, float&) {
     Sides& s = sides[a_nearer ? std::pair{a, b} : std::pair{b, a}];

@@ -12,16 +12,22 @@
 
 namespace origamic {
 
-/// The picture's breaks (RasterMaps::break_right, break_below) and, between neighbouring pixels of
-/// two slices in one orientation that no break parts, where the model's depth (d for V slices, h for
-/// H) crosses the level halfway between the two slices' planes: the fraction of the
-/// way from the first centre to the second, to 1/1024 as the breaks are, found by linear
-/// interpolation of the depths at the two centres; NaN elsewhere. A cut drawn there follows the
-/// contour, not the pixels' staircase.
+/// Where the chains between pixels are drawn: between (col, row) and (col + 1, row) (right) and
+/// (col, row + 1) (below), the fraction of the way from the first centre to the second, to 1/1024
+/// and never 0 or 1; NaN where a chain there stays on the pixel edge.
 struct BreaksAndLevels {
-  Grid<float> right;  // between (col, row) and (col + 1, row)
-  Grid<float> below;  // between (col, row) and (col, row + 1)
+  Grid<float> right;
+  Grid<float> below;
 };
+
+/// The picture's breaks (RasterMaps::break_right, break_below) and, where no break parts two
+/// neighbouring pixels of two slices in one orientation (supports and holes aside), their level
+/// contour: where the model's depth (d between V slices, h between H slices) crosses, linearly
+/// between the two centres, the level the slicing cut them at, taken as halfway between the highest
+/// depth on the nearer slice's side of their boundary and the lowest on the farther's (none where
+/// those overlap: slices of two segments). Within a pixel of a third face the chain stays on the
+/// pixel edge, where the other lines end. A mirrored plan (maps and face map) gets 1 - t exactly.
+/// \pre face has the maps' size and its ids index faces.
 BreaksAndLevels breaks_and_levels(const RasterMaps& maps, const Grid<std::int32_t>& face,
                                   const std::vector<RasterFace>& faces);
 

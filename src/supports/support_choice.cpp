@@ -496,23 +496,30 @@ class CandidateFinder {
   std::vector<int> plane_now_, plane_then_;    // per face of the raster plan and of the exact plan
 };
 
+// Pixels [c0, c1) x [r0, r1): what a support covers.
+struct PixelBox {
+  int c0, c1, r0, r1;
+};
+PixelBox box_of(const Candidate& s) { return {s.c0, s.c1, s.r0, s.r1}; }
+
 // Two supports one above the other in the same columns, less than a strip width apart, leave a strip
 // of paper narrower than W between two parallel folds (seed §4.3.2): the wedge's ramp had treads of
 // 0.3-0.6 mm where a riser up from one slice and one down from the next took rows of the slice between.
 // Over the 37 models narrow places went 5,360 -> 5,194, mean p95 2.56 -> 2.49 W. Keeping supports side
 // by side W apart too (5,119) cost the sphere 0.35 W of p95 and the temple 0.64 W: not done.
-bool too_close(const Candidate& a, const Candidate& b, int block) {
-  const auto gap = [](int a0, int a1, int b0, int b1) { return std::max(a0, b0) - std::min(a1, b1); };
-  const int rows = gap(a.r0, a.r1, b.r0, b.r1), cols = gap(a.c0, a.c1, b.c0, b.c1);
-  return cols < 0 && 0 < rows && rows < block;
+bool too_close(PixelBox a, PixelBox b, int block_px) {
+  const int col_gap = std::max(a.c0, b.c0) - std::min(a.c1, b.c1);
+  const int row_gap = std::max(a.r0, b.r0) - std::min(a.r1, b.r1);
+  return col_gap < 0 && 0 < row_gap && row_gap < block_px;
 }
 
 // The pixels the supports chosen so far cover, and the rows just outside them, of the face they
 // leave and the face they reach, which must stay those faces for the support to fold onto them. Two
-// supports may share an anchor; neither may cover the other's, nor come within W of it.
+// supports may share an anchor; neither may cover the other's, nor lie above or below it less than W
+// away.
 class Claims {
  public:
-  Claims(int cols, int rows, int block) : mark_(cols, rows, kFree), block_(block) {}
+  Claims(int cols, int rows, int block_px) : mark_(cols, rows, kFree), block_px_(block_px) {}
 
   bool fits(const Candidate& s) const { return fits_columns(s, s.c0, s.c1); }
   bool fits_columns(const Candidate& s, int c0, int c1) const {
@@ -522,9 +529,8 @@ class Claims {
       for (const int r : {s.face_row, s.target_row})
         if (mark_.contains(c, r) && mark_(c, r) == kCovered) return false;
     }
-    Candidate columns = s;
-    columns.c0 = c0, columns.c1 = c1;
-    return std::ranges::none_of(claimed_, [&](const Candidate& t) { return too_close(columns, t, block_); });
+    const PixelBox columns{c0, c1, s.r0, s.r1};
+    return std::ranges::none_of(claimed_, [&](PixelBox t) { return too_close(columns, t, block_px_); });
   }
   void claim(const Candidate& s) {
     for (int c = s.c0; c < s.c1; ++c) {
@@ -532,19 +538,20 @@ class Claims {
       for (const int r : {s.face_row, s.target_row})
         if (mark_.contains(c, r)) mark_(c, r) = std::max(mark_(c, r), kAnchor);
     }
-    claimed_.push_back(s);
+    claimed_.push_back(box_of(s));
   }
 
  private:
   static constexpr std::uint8_t kFree = 0, kAnchor = 1, kCovered = 2;
   Grid<std::uint8_t> mark_;
-  int block_;
-  std::vector<Candidate> claimed_;
+  int block_px_;
+  std::vector<PixelBox> claimed_;
 };
 
-// Whether one support covers what the other covers or folds onto, or comes within W of it.
-bool interfere(const Candidate& a, const Candidate& b, int block) {
-  if (too_close(a, b, block)) return true;
+// Whether one support covers what the other covers or folds onto, or lies above or below it less
+// than W away.
+bool interfere(const Candidate& a, const Candidate& b, int block_px) {
+  if (too_close(box_of(a), box_of(b), block_px)) return true;
   if (a.c1 <= b.c0 || b.c1 <= a.c0) return false;
   const auto covers = [](const Candidate& s, int r) { return s.r0 <= r && r < s.r1; };
   return (a.r0 < b.r1 && b.r0 < a.r1) || covers(a, b.face_row) || covers(a, b.target_row) || covers(b, a.face_row) ||
@@ -695,7 +702,7 @@ class EarTaker {
     }
     return edges;
   }
-  int block() const { return round_.raster_plan.block_px; }
+  int block_px() const { return round_.raster_plan.block_px; }
   bool cuts_standing(const Candidate& c) const {
     return std::ranges::any_of(c.cuts, [&](std::int32_t x) { return stands_[static_cast<std::size_t>(x)] != 0; });
   }
@@ -707,7 +714,7 @@ class EarTaker {
     for (std::size_t i = 0; i < ear.supports.size(); ++i) {
       const Candidate& c = candidates_[ear.supports[i]];
       bool bad = !claims_.fits(c);
-      for (std::size_t j = 0; j < i && !bad; ++j) bad = interfere(c, candidates_[ear.supports[j]], block());
+      for (std::size_t j = 0; j < i && !bad; ++j) bad = interfere(c, candidates_[ear.supports[j]], block_px());
       for (const std::int32_t x : c.cuts) bad = bad || std::ranges::find(ear.faces, x) != ear.faces.end();
       if (bad) usable_[ear.supports[i]] = 0, all = false;
     }
@@ -716,6 +723,9 @@ class EarTaker {
   void take(const Ear& ear) {
     std::vector<Candidate>& chosen = choice_.supports;
     const std::size_t first_new = chosen.size();
+    // All of the ear's supports are claimed before any is widened, so that none widens up to
+    // another's columns less than W above or below it (the wedge's treads of 0.3 mm at its side).
+    for (const std::size_t k : ear.supports) claims_.claim(candidates_[k]);
     for (const std::size_t k : ear.supports) {
       Candidate s = candidates_[k];
       widen(round_.raster_plan.face, claims_, picture_, finder_, s);
@@ -726,7 +736,7 @@ class EarTaker {
       stands_[static_cast<std::size_t>(f)] = 1, open_[static_cast<std::size_t>(f)] = 0;
     for (std::size_t k = 0; k < candidates_.size(); ++k)
       for (std::size_t j = first_new; j < chosen.size() && usable_[k]; ++j)
-        usable_[k] = !interfere(candidates_[k], chosen[j], block());
+        usable_[k] = !interfere(candidates_[k], chosen[j], block_px());
   }
 
   const SupportRound& round_;
