@@ -450,6 +450,23 @@ TEST(Plan, ACrumbCutOutIsARemovedRegionOfTheDesign) {
   EXPECT_EQ(std::ranges::count(r.plan.regions, FaceStatus::Removed, &PlanRegion::status), holes);
 }
 
+// What a reader of the plan's files finds is the design's verdict. At W = 2 mm the Menger slice's
+// simplified drawing passed a cut 0.02 mm beside a fold's end, and read back with a fold inside a
+// face and folds joining two V faces; the design draws such a plan again on its pixel contours,
+// which read back as built.
+TEST(Plan, APlanWhoseSimplifiedLinesReadBackOtherwiseIsDrawnOnItsPixels) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  DesignOptions options;
+  options.placement.up = UpAxis::Z;
+  options.slice.min_strip_mm = 2;
+  const DesignResult r = design(test::models_dir() / "csg_menger_slice.stl", options);
+  ASSERT_TRUE(plan_stands(r.plan, false));
+  EXPECT_TRUE(r.redrawn_on_pixels) << "the case this test is about";
+  const PlanAnalysis read = analyze_plan(r.plan.lines, {});
+  EXPECT_TRUE(read.valid()) << analysis_summary_line(read);
+  EXPECT_EQ(read.faces, r.plan.validity.valid + r.plan.validity.indirect + r.plan.validity.removed);
+}
+
 TEST(Plan, R2000DxfWithCraftColoursReadsBackTheSame) {
   const Plan plan = plan_of_oa_mesh(test::box({40.2, 0, 0}, {151.9, 61.7, 37.3}));
   const test::TempDir dir;
