@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <glm/geometric.hpp>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <sstream>
@@ -46,6 +47,18 @@ std::vector<PlanRegion> box_popup_regions(const Sheet& sheet, double x0, double 
   regions[3].rings = {{{x0, h - d}, {x1, h - d}, {x1, h}, {x0, h}}};
   for (PlanRegion& r : regions) r.placed = true;
   return regions;
+}
+
+RasterMaps blank_maps(const PixelGrid& grid, HitKind kind) {
+  RasterMaps maps;
+  maps.grid = grid;
+  maps.kind = Grid<HitKind>(grid.cols, grid.rows, kind);
+  maps.d_mm = Grid<double>(grid.cols, grid.rows, 0);
+  maps.h_mm = Grid<double>(grid.cols, grid.rows, 0);
+  maps.normal = Grid<glm::vec3>(grid.cols, grid.rows, glm::vec3(0, 0, 1));
+  maps.break_right = Grid<float>(grid.cols, grid.rows, std::numeric_limits<float>::quiet_NaN());
+  maps.break_below = Grid<float>(grid.cols, grid.rows, std::numeric_limits<float>::quiet_NaN());
+  return maps;
 }
 
 double twice_signed_area(const std::vector<PlanPoint>& ring) {

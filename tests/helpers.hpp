@@ -44,6 +44,10 @@ struct FloatingBoxPlan {
   std::int32_t front = 2, top = 3;  // the faces' ids
 };
 
+/// Maps made by hand on `grid`: every pixel of `kind`, at depth and height 0, facing the viewer (+d),
+/// with the picture's break grids traced and empty (NaN).
+RasterMaps blank_maps(const PixelGrid& grid, HitKind kind);
+
 /// Twice the signed area of a ring (positive counter-clockwise), by the shoelace formula.
 double twice_signed_area(const std::vector<PlanPoint>& ring);
 

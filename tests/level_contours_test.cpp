@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "helpers.hpp"
 #include "origamic/raster.hpp"
 #include "origamic/slice.hpp"
 #include "support_mirror.hpp"
@@ -25,14 +26,8 @@ struct Sliced {
 };
 Sliced two_slices() {
   Sliced s;
+  s.maps = test::blank_maps({.cols = kCols, .rows = kRows, .px_per_mm = 4, .rows_above_fold = 2}, HitKind::Model);
   RasterMaps& maps = s.maps;
-  maps.grid.cols = kCols, maps.grid.rows = kRows, maps.grid.px_per_mm = 4, maps.grid.rows_above_fold = 2;
-  maps.kind = Grid<HitKind>(kCols, kRows, HitKind::Model);
-  maps.d_mm = Grid<double>(kCols, kRows, 0);
-  maps.h_mm = Grid<double>(kCols, kRows, 50);
-  maps.normal = Grid<glm::vec3>(kCols, kRows, glm::vec3(0, 0, 1));
-  maps.break_right = Grid<float>(kCols, kRows, NAN);
-  maps.break_below = Grid<float>(kCols, kRows, NAN);
   for (int r = 0; r < kRows; ++r)
     for (int c = 0; c < kCols; ++c) maps.d_mm(c, r) = 10 + 1.3 * c + 0.1 * r;
   s.plan.face = Grid<std::int32_t>(kCols, kRows, 2);

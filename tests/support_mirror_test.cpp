@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "helpers.hpp"
 #include "origamic/raster.hpp"
 #include "origamic/slice.hpp"
 
@@ -96,14 +97,7 @@ TEST(SupportMirror, APlanThatIsItsOwnMirrorImageOrALatticeOffTheSheetHasOneFrame
 }
 
 TEST(SupportMirror, MirroredMapsPutEachBreakBetweenTheMirroredPixelCentres) {
-  RasterMaps maps;
-  maps.grid = grid();
-  maps.kind = Grid<HitKind>(kCols, kRows, HitKind::Back);
-  maps.d_mm = Grid<double>(kCols, kRows, 0);
-  maps.h_mm = Grid<double>(kCols, kRows, 0);
-  maps.normal = Grid<glm::vec3>(kCols, kRows, glm::vec3(0, 0, 1));
-  maps.break_right = Grid<float>(kCols, kRows, NAN);
-  maps.break_below = Grid<float>(kCols, kRows, NAN);
+  RasterMaps maps = test::blank_maps(grid(), HitKind::Back);
   maps.kind(2, 1) = HitKind::Model;
   maps.d_mm(2, 1) = 7.5;
   maps.normal(2, 1) = glm::vec3(0.6f, 0, 0.8f);
