@@ -54,10 +54,6 @@ struct DesignResult {
   // Every place the final plan is narrower than W, along X or Y, measured exactly on its lines as
   // `origamic validate --min-strip W` measures them (PlanProblemKind::NarrowStrip).
   std::vector<PlanProblem> narrow_strips;
-  // The plan as simplified read back with errors its exact construction did not make (a simplified
-  // cut passing a hair beside a fold's end): it was drawn again on its pixel contours, which read
-  // back as built.
-  bool redrawn_on_pixels = false;
   SupportReport supports;
   // The likeness of the card to the model (likeness.hpp): of the sliced raster plan, before any
   // support, and of the finished plan, its regions as drawn, after supports and cut-outs.

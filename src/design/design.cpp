@@ -63,14 +63,6 @@ SupportedPlan supported_plan(const DesignResult& sliced, const DesignOptions& op
   return std::move(kept);
 }
 
-// Whether a plan's lines, read as a reader of its files reads them, have errors other than strips
-// narrower than W (which the design reports, not refuses).
-bool reads_back_otherwise(const PlanAnalysis& read) {
-  return std::ranges::any_of(read.problems, [](const PlanProblem& p) {
-    return is_error(p.kind) && p.kind != PlanProblemKind::NarrowStrip;
-  });
-}
-
 // The pipeline from the model read to the finished plan, into `result` (its stages timed on `clock`).
 void design_loaded(LoadedMesh loaded, const std::filesystem::path& model_file, const DesignOptions& options,
                    DesignResult& result, StageClock& clock) {
@@ -124,25 +116,9 @@ void design_loaded(LoadedMesh loaded, const std::filesystem::path& model_file, c
   // plan's folds and cuts leave between them is measured on the plan itself, exactly, both ways.
   starting("strip widths and likeness");
   const auto drawn = [](const PlanPolyline& line) { return line.kind != LineKind::Outline; };
-  if (std::ranges::any_of(result.plan.lines, drawn)) {
-    PlanAnalysis read = analyze_plan(result.plan.lines, {.min_strip_mm = W});
-    // The plan's lines are what a reader of its files sees: where they say other than the exact plan
-    // (a simplified cut passing a hair beside a fold's end, the Menger slice at W = 2 mm), the plan is
-    // drawn again on its pixel contours, kept if they read back as built.
-    if (plan_stands(result.plan, result.allow_dangling) && reads_back_otherwise(read)) {
-      PlanOptions on_pixels = options.plan;
-      on_pixels.simplify_mm = 0;
-      Plan redrawn = build_plan(result.maps, result.raster_plan, options.sheet, on_pixels);
-      PlanAnalysis reread = analyze_plan(redrawn.lines, {.min_strip_mm = W});
-      if (plan_stands(redrawn, result.allow_dangling) && !reads_back_otherwise(reread)) {
-        result.plan = std::move(redrawn);
-        read = std::move(reread);
-        result.redrawn_on_pixels = true;
-      }
-    }
-    for (PlanProblem& problem : read.problems)
+  if (std::ranges::any_of(result.plan.lines, drawn))
+    for (PlanProblem& problem : analyze_plan(result.plan.lines, {.min_strip_mm = options.slice.min_strip_mm}).problems)
       if (problem.kind == PlanProblemKind::NarrowStrip) result.narrow_strips.push_back(std::move(problem));
-  }
   clock.lap("narrow strips");
   result.card = card_view(result.maps.grid, result.plan);
   result.likeness = likeness(result.maps, result.card, W);

@@ -209,7 +209,6 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
       {"plan", plan_json(result.plan, result.allow_dangling)},
       {"narrow_strips", narrow_places_json(result.narrow_strips)},
       {"narrowest_strip_mm", narrowest_json(result.narrow_strips)},
-      {"redrawn_on_pixels", result.redrawn_on_pixels},
       {"supports",
        {{"added", result.supports.supports},
         {"rounds", result.supports.rounds},

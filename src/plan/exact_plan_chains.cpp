@@ -329,8 +329,8 @@ std::vector<bool> crossed_chains(const Arrangement& arrangement, const std::vect
 
 // Each face takes the label that most of its boundary length names. Sides moved by a snapped fold
 // still name the face that was there before: a short minority, outvoted. Returns the faces no label
-// has a majority of.
-int label_faces(Arrangement& arrangement, const std::vector<Sides>& sides) {
+// has a majority of; the chains round such a face are marked in `disputed`.
+int label_faces(Arrangement& arrangement, const std::vector<Sides>& sides, std::vector<bool>& disputed) {
   int conflicts = 0;
   std::vector<std::pair<std::int32_t, double>> votes;  // a face's few labels: a map per face cost more
   for (auto f = arrangement.faces_begin(); f != arrangement.faces_end(); ++f) {
@@ -359,7 +359,19 @@ int label_faces(Arrangement& arrangement, const std::vector<Sides>& sides) {
     for (const auto& [label, weight] : votes)  // ties to the smallest label
       if (weight > best_votes || (weight == best_votes && best != kNoLabel && label < best))
         best = label, best_votes = weight;
-    if (best == kNoLabel || best_votes * 2 <= total) ++conflicts;
+    if (best == kNoLabel || best_votes * 2 <= total) {
+      ++conflicts;
+      const auto mark = [&](Arrangement::Ccb_halfedge_circulator first) {
+        auto he = first;
+        do
+          for (const std::int32_t d : he->curve().data())
+            if (const std::int32_t chain = sides[static_cast<std::size_t>(d)].chain; chain >= 0)
+              disputed[static_cast<std::size_t>(chain)] = true;
+        while (++he != first);
+      };
+      for (auto ccb = f->outer_ccbs_begin(); ccb != f->outer_ccbs_end(); ++ccb) mark(*ccb);
+      for (auto ccb = f->inner_ccbs_begin(); ccb != f->inner_ccbs_end(); ++ccb) mark(*ccb);
+    }
     f->set_data(best);
   }
   return conflicts;
@@ -372,13 +384,17 @@ void build_arrangement(const ArrangementInput& in, const std::vector<Fallback>& 
   built.sides = std::move(curves.sides);
   CGAL::insert(built.arrangement, curves.curves.begin(), curves.curves.end());
   built.crossed = crossed_chains(built.arrangement, built.sides, curves, in.chains, fallback);
-  built.conflicts = label_faces(built.arrangement, built.sides);
+  built.disputed.assign(in.chains.size(), false);
+  built.conflicts = label_faces(built.arrangement, built.sides, built.disputed);
 }
 
 }  // namespace
 
 // Simplification or snapping that makes two boundaries cross would change the plan's topology:
-// the chains involved fall back a step (unsimplified, then their pixel contour) until none does.
+// the chains involved fall back a step (unsimplified, then their pixel contour) until none does. So
+// do the chains round a face no label has a majority of (most often one of no length in doubles,
+// where lines nearly meet): on the Menger slice at W = 2 mm, a simplified cut passing a hair beside a
+// fold's end left one, and the lines read back with a fold inside a face.
 // Returns how far each chain fell back; `unresolved` counts chains that cross on their contour.
 std::vector<Fallback> arrangement_without_crossings(const ArrangementInput& in, Built& built, int& unresolved) {
   std::vector<Fallback> fallback(in.chains.size(), Fallback::None);
@@ -388,9 +404,9 @@ std::vector<Fallback> arrangement_without_crossings(const ArrangementInput& in, 
     bool again = false;
     unresolved = 0;
     for (std::size_t i = 0; i < fallback.size(); ++i) {
-      if (!built.crossed[i]) continue;
+      if (!built.crossed[i] && !built.disputed[i]) continue;
       if (fallback[i] == Fallback::PixelContour) {
-        ++unresolved;
+        unresolved += built.crossed[i];
         continue;
       }
       fallback[i] = fallback[i] == Fallback::None ? Fallback::Unsimplified : Fallback::PixelContour;

@@ -41,6 +41,7 @@ struct Built {
   Arrangement arrangement;
   std::vector<Sides> sides;
   std::vector<bool> crossed;  // per chain: one of its segments runs through a vertex it does not end at
+  std::vector<bool> disputed;  // per chain: it bounds a face no label has a majority of
   int conflicts = 0;
   int folds_snapped = 0;
   double off_model_edges_mm = 0;  // the farthest a cut passes from the model's edge it follows
