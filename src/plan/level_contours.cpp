@@ -2,11 +2,14 @@
 #include "level_contours.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <tuple>
 #include <utility>
+
+#include "bands.hpp"
 
 namespace origamic {
 namespace {
@@ -33,12 +36,17 @@ BreaksAndLevels breaks_and_levels(const RasterMaps& maps, const Grid<std::int32_
                                   const std::vector<RasterFace>& faces) {
   BreaksAndLevels out{maps.break_right, maps.break_below};
   if (out.right.size() == 0) return out;  // maps made by hand: no picture to follow
-  const auto slice_of = [&](int c, int r) -> std::int32_t {
-    const std::int32_t f = face(c, r);
-    if (f <= kFloorFace || maps.kind(c, r) != HitKind::Model) return -1;
-    const RasterFace& slice = faces[static_cast<std::size_t>(f)];
-    return slice.support || slice.hole ? -1 : f;
-  };
+  // Each pixel's slice: a model face of the picture's (no support, no hole), -1 elsewhere.
+  Grid<std::int32_t> slice(face.cols, face.rows, -1);
+  for_bands(face.rows, [&](int, int row_begin, int row_end) {
+    for (int r = row_begin; r < row_end; ++r)
+      for (int c = 0; c < face.cols; ++c) {
+        const std::int32_t f = face(c, r);
+        if (f <= kFloorFace || maps.kind(c, r) != HitKind::Model) continue;
+        const RasterFace& plane = faces[static_cast<std::size_t>(f)];
+        if (!plane.support && !plane.hole) slice(c, r) = f;
+      }
+  });
   // Whether the pixels beside the pair (c, r), (c2, r2), across the edge between them, are of its two
   // faces: near a junction the contour stays on the lattice, where the other lines end (drawn off it,
   // res_armadillo's contour leaving a fold's end crossed into the face beyond).
@@ -49,15 +57,16 @@ BreaksAndLevels breaks_and_levels(const RasterMaps& maps, const Grid<std::int32_
         if (face.contains(pc, pr) && face(pc, pr) != a && face(pc, pr) != b) return false;
     return true;
   };
-  // Each pair of neighbouring pixels of two slices in one orientation that no break parts.
-  const auto for_each_pair = [&](auto visit) {
-    for (int r = 0; r < face.rows; ++r)
+  // Each pair of neighbouring pixels of two slices in one orientation that no break parts, its first
+  // pixel in rows [row_begin, row_end).
+  const auto for_each_pair = [&](int row_begin, int row_end, auto visit) {
+    for (int r = row_begin; r < row_end; ++r)
       for (int c = 0; c < face.cols; ++c) {
-        const std::int32_t a = slice_of(c, r);
+        const std::int32_t a = slice(c, r);
         if (a < 0) continue;
         for (const auto& [c2, r2, grid] : {std::tuple{c + 1, r, &out.right}, std::tuple{c, r + 1, &out.below}}) {
           if (!face.contains(c2, r2) || !std::isnan((*grid)(c, r))) continue;
-          const std::int32_t b = slice_of(c2, r2);
+          const std::int32_t b = slice(c2, r2);
           if (b < 0 || b == a || !only_these_beside(c, r, c2, r2, a, b)) continue;
           const RasterFace &fa = faces[static_cast<std::size_t>(a)], &fb = faces[static_cast<std::size_t>(b)];
           if (fa.orientation != fb.orientation || fa.depth_mm == fb.depth_mm) continue;
@@ -67,16 +76,31 @@ BreaksAndLevels breaks_and_levels(const RasterMaps& maps, const Grid<std::int32_
       }
   };
   // The level the slicing cut two slices at lies between their depths on either side of their
-  // boundary; where those overlap (slices of two segments), the boundary is no level contour.
-  std::map<std::pair<std::int32_t, std::int32_t>, Sides> sides;
-  for_each_pair([&](std::int32_t a, std::int32_t b, bool a_nearer, double da, double db, float&) {
-    Sides& s = sides[a_nearer ? std::pair{a, b} : std::pair{b, a}];
-    s.near_highest = std::max(s.near_highest, a_nearer ? da : db);
-    s.far_lowest = std::min(s.far_lowest, a_nearer ? db : da);
+  // boundary; where those overlap (slices of two segments), the boundary is no level contour. Bands
+  // of rows gather their own extremes, taken together after (the same in any order); each pixel pair
+  // then writes its own crossing.
+  using Pair = std::pair<std::int32_t, std::int32_t>;
+  std::array<std::map<Pair, Sides>, kBands> band_sides;
+  for_bands(face.rows, [&](int band, int row_begin, int row_end) {
+    std::map<Pair, Sides>& sides = band_sides[static_cast<std::size_t>(band)];
+    for_each_pair(row_begin, row_end, [&](std::int32_t a, std::int32_t b, bool a_nearer, double da, double db, float&) {
+      Sides& s = sides[a_nearer ? Pair{a, b} : Pair{b, a}];
+      s.near_highest = std::max(s.near_highest, a_nearer ? da : db);
+      s.far_lowest = std::min(s.far_lowest, a_nearer ? db : da);
+    });
   });
-  for_each_pair([&](std::int32_t a, std::int32_t b, bool a_nearer, double da, double db, float& t) {
-    const Sides& s = sides[a_nearer ? std::pair{a, b} : std::pair{b, a}];
-    if (s.near_highest < s.far_lowest) t = crossing(da, db, (s.near_highest + s.far_lowest) / 2);
+  std::map<Pair, Sides> sides;
+  for (const std::map<Pair, Sides>& band : band_sides)
+    for (const auto& [pair, side] : band) {
+      Sides& s = sides[pair];
+      s.near_highest = std::max(s.near_highest, side.near_highest);
+      s.far_lowest = std::min(s.far_lowest, side.far_lowest);
+    }
+  for_bands(face.rows, [&](int, int row_begin, int row_end) {
+    for_each_pair(row_begin, row_end, [&](std::int32_t a, std::int32_t b, bool a_nearer, double da, double db, float& t) {
+      const Sides& s = sides.at(a_nearer ? Pair{a, b} : Pair{b, a});
+      if (s.near_highest < s.far_lowest) t = crossing(da, db, (s.near_highest + s.far_lowest) / 2);
+    });
   });
   return out;
 }
