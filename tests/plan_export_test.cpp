@@ -488,6 +488,38 @@ TEST_F(HousePlan, PerforationsKeepClearOfEveryCutAndCutTheirShareOfEachFold) {
   }
 }
 
+// Two plan points a rounding apart are one point once the DXF adds half the sheet to Y (and once
+// the SVG writes six decimals): a cut between them is a dot a laser would burn, and a vertex twice
+// over a zero-length segment. Neither file has them; the rest of the line is kept.
+TEST_F(HousePlan, NoFileHasALineOrASegmentOfZeroLength) {
+  Plan plan = house();
+  const double Y = -0.001, next_Y = std::nextafter(Y, 0.0);  // 2e-19 mm apart
+  ASSERT_NE(Y, next_Y);
+  ASSERT_EQ(Y + plan.sheet.half_height_mm(), next_Y + plan.sheet.half_height_mm());
+  const auto cuts = static_cast<std::size_t>(std::ranges::count(plan.lines, LineKind::Cut, &PlanPolyline::kind));
+  plan.lines.push_back({LineKind::Cut, {{50, Y}, {50, next_Y}}});
+  plan.lines.push_back({LineKind::Cut, {{60, Y}, {60, next_Y}, {70, Y}}});
+  const test::TempDir dir;
+  const ExportOptions options = exports(FoldStyle::Score);
+  write_files({{dir / "plan.dxf", plan_dxf(plan, options)}, {dir / "plan.svg", plan_svg(plan, options)}});
+  const nlohmann::json back = read_back(dir / "plan.dxf", dir / "plan.svg");
+  ASSERT_FALSE(back.is_null()) << "the reader rejected the files";
+  EXPECT_EQ(back["dxf_types"]["CUT"]["POLYLINE"], cuts + 1);
+  EXPECT_EQ(back["svg_lines"]["CUT"].size(), cuts + 1);
+  for (const char* file : {"dxf", "svg"})
+    for (const auto& [layer, segments] : back[file].items()) {
+      bool found = false;
+      for (const auto& s : segments) {
+        const std::vector<double> v = s;
+        EXPECT_FALSE(v[0] == v[2] && v[1] == v[3]) << file << " " << layer << " at " << v[0] << ", " << v[1];
+        found |= layer == "CUT" && v[0] == 60 && v[2] == 70;
+      }
+      if (std::string(layer) == "CUT") {
+        EXPECT_TRUE(found) << file << ": the cut from X = 60 to 70";
+      }
+    }
+}
+
 TEST_F(HousePlan, DashedFoldsCarryTheirPatternInTheDxfAndTheSvg) {
   const test::TempDir dir;
   const ExportOptions options = exports(FoldStyle::Dashed);

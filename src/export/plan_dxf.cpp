@@ -170,7 +170,10 @@ void write_blocks(DL_Dxf& dxf, DL_WriterA& dw, const DxfDrawing& drawing) {
 
 void write_entities(DL_Dxf& dxf, DL_WriterA& dw, const DxfDrawing& drawing) {
   dw.sectionEntities();
-  auto write_polyline = [&](const std::vector<PlanPoint>& points, const DL_Attributes& attributes) {
+  const auto in_file = [&](const PlanPoint& p) { return std::pair{p.X, drawing.file_Y(p.Y)}; };
+  auto write_polyline = [&](const std::vector<PlanPoint>& line, const DL_Attributes& attributes) {
+    const std::vector<PlanPoint> points = as_written(line, in_file);
+    if (points.empty()) return;
     const bool closed = is_closed(points);
     const std::size_t count = points.size() - (closed ? 1 : 0);
     dxf.writePolyline(dw, DL_PolylineData(static_cast<int>(count), 0, 0, closed ? 1 : 0), attributes);
@@ -188,10 +191,10 @@ void write_entities(DL_Dxf& dxf, DL_WriterA& dw, const DxfDrawing& drawing) {
         continue;
       }
       for (const std::vector<PlanPoint>& p : dash_pieces(line)) {
-        if (p.size() == 2)
+        if (p.size() == 2 && in_file(p[0]) != in_file(p[1]))
           dxf.writeLine(dw, DL_LineData(p[0].X, drawing.file_Y(p[0].Y), 0.0, p[1].X, drawing.file_Y(p[1].Y), 0.0),
                         attributes);
-        else
+        else if (p.size() != 2)
           write_polyline(p, attributes);
       }
     }

@@ -96,9 +96,11 @@ std::string plan_svg(const Plan& plan, const ExportOptions& options) {
         << "\" fill=\"none\" stroke=\"" << style.rgb << "\" stroke-width=\"0.0254\">\n";
     for (const DrawnLine& line : drawn.lines) {
       if (line.layer != layer) continue;
+      const auto in_file = [&](const PlanPoint& p) { return mm_text(p.X) + ',' + mm_text(top - p.Y); };
+      const std::vector<PlanPoint> points = as_written(line.points, in_file);
+      if (points.empty()) continue;
       svg << "<polyline points=\"";
-      for (std::size_t i = 0; i < line.points.size(); ++i)
-        svg << (i ? " " : "") << mm_text(line.points[i].X) << ',' << mm_text(top - line.points[i].Y);
+      for (std::size_t i = 0; i < points.size(); ++i) svg << (i ? " " : "") << in_file(points[i]);
       svg << '"';
       if (!line.dash_mm.empty()) {
         svg << " stroke-dasharray=\"";
