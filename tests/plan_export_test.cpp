@@ -490,34 +490,52 @@ TEST_F(HousePlan, PerforationsKeepClearOfEveryCutAndCutTheirShareOfEachFold) {
 
 // Two plan points a rounding apart are one point once the DXF adds half the sheet to Y (and once
 // the SVG writes six decimals): a cut between them is a dot a laser would burn, and a vertex twice
-// over a zero-length segment. Neither file has them; the rest of the line is kept.
+// over a zero-length segment. Neither file has them; the rest of the line is kept, and a ring whose
+// ends meet in the file is closed there.
 TEST_F(HousePlan, NoFileHasALineOrASegmentOfZeroLength) {
-  Plan plan = house();
   const double Y = -0.001, next_Y = std::nextafter(Y, 0.0);  // 2e-19 mm apart
   ASSERT_NE(Y, next_Y);
-  ASSERT_EQ(Y + plan.sheet.half_height_mm(), next_Y + plan.sheet.half_height_mm());
-  const auto cuts = static_cast<std::size_t>(std::ranges::count(plan.lines, LineKind::Cut, &PlanPolyline::kind));
+  ASSERT_EQ(Y + house().sheet.half_height_mm(), next_Y + house().sheet.half_height_mm());
+  Plan plan = house();
   plan.lines.push_back({LineKind::Cut, {{50, Y}, {50, next_Y}}});
   plan.lines.push_back({LineKind::Cut, {{60, Y}, {60, next_Y}, {70, Y}}});
+  plan.lines.push_back({LineKind::Cut, {{80, Y}, {90, Y}, {90, Y - 10}, {80, next_Y}}});
   const test::TempDir dir;
   const ExportOptions options = exports(FoldStyle::Score);
-  write_files({{dir / "plan.dxf", plan_dxf(plan, options)}, {dir / "plan.svg", plan_svg(plan, options)}});
+  write_files({{dir / "house.dxf", plan_dxf(house(), options)},
+               {dir / "house.svg", plan_svg(house(), options)},
+               {dir / "plan.dxf", plan_dxf(plan, options)},
+               {dir / "plan.svg", plan_svg(plan, options)}});
+  const nlohmann::json before = read_back(dir / "house.dxf", dir / "house.svg");
   const nlohmann::json back = read_back(dir / "plan.dxf", dir / "plan.svg");
-  ASSERT_FALSE(back.is_null()) << "the reader rejected the files";
-  EXPECT_EQ(back["dxf_types"]["CUT"]["POLYLINE"], cuts + 1);
-  EXPECT_EQ(back["svg_lines"]["CUT"].size(), cuts + 1);
+  ASSERT_FALSE(before.is_null() || back.is_null()) << "the reader rejected the files";
+  const auto entities = [](const nlohmann::json& types) {
+    int n = 0;
+    for (const auto& [type, count] : types.items()) n += count.get<int>();
+    return n;
+  };
+  EXPECT_EQ(entities(back["dxf_types"]["CUT"]), entities(before["dxf_types"]["CUT"]) + 2);
+  EXPECT_EQ(back["svg_lines"]["CUT"].size(), before["svg_lines"]["CUT"].size() + 2);
   for (const char* file : {"dxf", "svg"})
     for (const auto& [layer, segments] : back[file].items()) {
-      bool found = false;
+      int kept = 0;
       for (const auto& s : segments) {
         const std::vector<double> v = s;
         EXPECT_FALSE(v[0] == v[2] && v[1] == v[3]) << file << " " << layer << " at " << v[0] << ", " << v[1];
-        found |= layer == "CUT" && v[0] == 60 && v[2] == 70;
+        kept += layer == "CUT" && v[0] == 60 && v[2] == 70;
       }
-      if (std::string(layer) == "CUT") {
-        EXPECT_TRUE(found) << file << ": the cut from X = 60 to 70";
+      if (layer == "CUT") {
+        EXPECT_EQ(kept, 1) << file << ": the cut from X = 60 to 70";
       }
     }
+  // The ring: one closed polyline of three vertices, as ezdxf reads it.
+  const test::CommandResult rings =
+      test::shell("/usr/bin/python3 -c \"import ezdxf, sys; print(sum(1 for e in ezdxf.readfile(sys.argv[1]).modelspace() "
+                  "if e.dxftype() == 'POLYLINE' and e.dxf.layer == 'CUT' and e.is_closed and len(e.vertices) == 3 "
+                  "and min(v.dxf.location[0] for v in e.vertices) == 80))\" " +
+                  quoted(dir / "plan.dxf"));
+  ASSERT_EQ(rings.status, 0) << rings.output;
+  EXPECT_EQ(rings.output, "1\n");
 }
 
 TEST_F(HousePlan, DashedFoldsCarryTheirPatternInTheDxfAndTheSvg) {

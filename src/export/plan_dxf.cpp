@@ -12,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "origamic/error.hpp"
@@ -22,9 +23,6 @@
 namespace origamic {
 namespace {
 
-bool is_closed(const std::vector<PlanPoint>& points) {
-  return points.size() > 3 && points.front().X == points.back().X && points.front().Y == points.back().Y;
-}
 
 // Perforations and dashes are written as many short separate segments.
 bool drawn_in_pieces(const DrawnLine& line) {
@@ -170,11 +168,10 @@ void write_blocks(DL_Dxf& dxf, DL_WriterA& dw, const DxfDrawing& drawing) {
 
 void write_entities(DL_Dxf& dxf, DL_WriterA& dw, const DxfDrawing& drawing) {
   dw.sectionEntities();
+  // Points as the file holds them: a ring whose ends meet there is closed, its last point left out.
   const auto in_file = [&](const PlanPoint& p) { return std::pair{p.X, drawing.file_Y(p.Y)}; };
-  auto write_polyline = [&](const std::vector<PlanPoint>& line, const DL_Attributes& attributes) {
-    const std::vector<PlanPoint> points = as_written(line, in_file);
-    if (points.empty()) return;
-    const bool closed = is_closed(points);
+  auto write_polyline = [&](const std::vector<PlanPoint>& points, const DL_Attributes& attributes) {
+    const bool closed = points.size() > 3 && in_file(points.front()) == in_file(points.back());
     const std::size_t count = points.size() - (closed ? 1 : 0);
     dxf.writePolyline(dw, DL_PolylineData(static_cast<int>(count), 0, 0, closed ? 1 : 0), attributes);
     for (std::size_t i = 0; i < count; ++i)
@@ -187,14 +184,16 @@ void write_entities(DL_Dxf& dxf, DL_WriterA& dw, const DxfDrawing& drawing) {
     for (const DrawnLine& line : drawing.drawn.lines) {
       if (line.layer != layer) continue;
       if (!drawn_in_pieces(line)) {
-        write_polyline(line.points, attributes);  // one entity per chain
+        if (const std::vector<PlanPoint> points = as_written(line.points, in_file); !points.empty())
+          write_polyline(points, attributes);  // one entity per chain
         continue;
       }
-      for (const std::vector<PlanPoint>& p : dash_pieces(line)) {
-        if (p.size() == 2 && in_file(p[0]) != in_file(p[1]))
+      for (const std::vector<PlanPoint>& piece : dash_pieces(line)) {
+        const std::vector<PlanPoint> p = as_written(piece, in_file);
+        if (p.size() == 2)
           dxf.writeLine(dw, DL_LineData(p[0].X, drawing.file_Y(p[0].Y), 0.0, p[1].X, drawing.file_Y(p[1].Y), 0.0),
                         attributes);
-        else if (p.size() != 2)
+        else if (!p.empty())
           write_polyline(p, attributes);
       }
     }

@@ -30,13 +30,10 @@ struct Sides {
   double far_lowest = std::numeric_limits<double>::infinity();
 };
 
-}  // namespace
-
-BreaksAndLevels breaks_and_levels(const RasterMaps& maps, const Grid<std::int32_t>& face,
-                                  const std::vector<RasterFace>& faces) {
-  BreaksAndLevels out{maps.break_right, maps.break_below};
-  if (out.right.size() == 0) return out;  // maps made by hand: no picture to follow
-  // Each pixel's slice: a model face of the picture's (no support, no hole), -1 elsewhere.
+// Each pixel's slice: its face where that is a face of the model's picture (no support, no hole),
+// -1 elsewhere.
+Grid<std::int32_t> slice_map(const RasterMaps& maps, const Grid<std::int32_t>& face,
+                             const std::vector<RasterFace>& faces) {
   Grid<std::int32_t> slice(face.cols, face.rows, -1);
   for_bands(face.rows, [&](int, int row_begin, int row_end) {
     for (int r = row_begin; r < row_end; ++r)
@@ -47,6 +44,16 @@ BreaksAndLevels breaks_and_levels(const RasterMaps& maps, const Grid<std::int32_
         if (!plane.support && !plane.hole) slice(c, r) = f;
       }
   });
+  return slice;
+}
+
+}  // namespace
+
+BreaksAndLevels breaks_and_levels(const RasterMaps& maps, const Grid<std::int32_t>& face,
+                                  const std::vector<RasterFace>& faces) {
+  BreaksAndLevels out{maps.break_right, maps.break_below};
+  if (out.right.size() == 0) return out;  // maps made by hand: no picture to follow
+  const Grid<std::int32_t> slice = slice_map(maps, face, faces);
   // Whether the pixels beside the pair (c, r), (c2, r2), across the edge between them, are of its two
   // faces: near a junction the contour stays on the lattice, where the other lines end (drawn off it,
   // res_armadillo's contour leaving a fold's end crossed into the face beyond).
