@@ -23,7 +23,6 @@
 namespace origamic {
 namespace {
 
-
 // Perforations and dashes are written as many short separate segments.
 bool drawn_in_pieces(const DrawnLine& line) {
   return !line.dash_mm.empty() || line.layer == Layer::PerfMountain || line.layer == Layer::PerfValley;

@@ -504,10 +504,8 @@ class CandidateFinder {
   std::vector<int> plane_now_, plane_then_;    // per face of the raster plan and of the exact plan
 };
 
-// Pixels [c0, c1) x [r0, r1): what a support covers.
-struct PixelBox {
-  int c0, c1, r0, r1;
-};
+// What a support covers, as the picture measures boxes of pixels.
+using PixelBox = SupportPicture::PixelBox;
 PixelBox box_of(const Candidate& s) { return {s.c0, s.c1, s.r0, s.r1}; }
 
 // Two supports one above the other in the same columns, less than a strip width apart, leave a strip
