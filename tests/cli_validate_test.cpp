@@ -113,7 +113,8 @@ TEST(CliValidate, DesignedPlanValidatesWithTheDesignsCounts) {
   ASSERT_EQ(designed.status, 0) << designed.output;
   std::ifstream in(dir / "house.json");
   const auto design = nlohmann::json::parse(in)["plan"];
-  const test::CommandRun r = test::run_origamic("validate --json " + test::quoted(dir / "house.dxf"), true);
+  const test::CommandRun r =
+      test::run_origamic("validate --json --min-strip 3 " + test::quoted(dir / "house.dxf"), true);
   EXPECT_EQ(r.status, design["verdict"] == "valid" ? 0 : 3);
   const auto report = nlohmann::json::parse(r.output);
   EXPECT_EQ(report["verdict"], design["verdict"]);
@@ -153,6 +154,41 @@ TEST(CliValidate, TheDesignReportsThePlacesValidateFindsNarrowerThanW) {
       << designed.output;
 }
 
+// W is the user's promise to their cutter (issue 23): a plan that stands but has places narrower
+// than W is not valid, as `validate --min-strip W` finds its DXF, unless --allow-narrow accepts them;
+// either way every file is written and the places are listed.
+TEST(CliValidate, APlanNarrowerThanWIsInvalidUnlessAllowed) {
+  const test::TempDir dir;
+  const std::string house = test::quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj");
+  const test::CommandRun strict = test::run_origamic("design " + house + " --strict --out " + test::quoted(dir / "strict"));
+  EXPECT_EQ(strict.status, 3) << strict.output;
+  EXPECT_NE(strict.output.find("plan INVALID: "), std::string::npos) << strict.output;
+  EXPECT_NE(strict.output.find(" places narrower than W (--allow-narrow accepts them)"), std::string::npos)
+      << strict.output;
+  const auto plan = nlohmann::json::parse(std::ifstream(dir / "strict" / "house.json"))["plan"];
+  EXPECT_EQ(plan["verdict"], "invalid");
+  EXPECT_TRUE(plan["stands"].get<bool>());
+  const int narrow = plan["narrow_places"].get<int>();
+  EXPECT_GT(narrow, 0) << "the house's roof steps leave strips under 3 mm";
+  EXPECT_FALSE(plan["narrow_places_allowed"].get<bool>());
+  for (const char* name : {"house.dxf", "house.svg", "house.pdf", "house.png"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "strict" / name)) << name;
+  const std::string dxf = test::quoted(dir / "strict" / "house.dxf");
+  EXPECT_EQ(test::run_origamic("validate --min-strip 3 " + dxf).status, 3);
+  EXPECT_EQ(test::run_origamic("validate " + dxf).status, 0) << "it stands";
+
+  const test::CommandRun allowed =
+      test::run_origamic("design " + house + " --strict --allow-narrow --out " + test::quoted(dir / "allowed"));
+  EXPECT_EQ(allowed.status, 0) << allowed.output;
+  EXPECT_NE(allowed.output.find("plan VALID: "), std::string::npos) << allowed.output;
+  EXPECT_NE(allowed.output.find("; " + std::to_string(narrow) + " places narrower than W; "), std::string::npos)
+      << allowed.output;
+  const auto allowed_plan = nlohmann::json::parse(std::ifstream(dir / "allowed" / "house.json"))["plan"];
+  EXPECT_EQ(allowed_plan["verdict"], "valid");
+  EXPECT_EQ(allowed_plan["narrow_places"], narrow);
+  EXPECT_TRUE(allowed_plan["narrow_places_allowed"].get<bool>());
+}
+
 // Every plan origamic writes validates, whichever way its folds are drawn: the dashes of the printed
 // style and the perforations are read as the folds they stand for, to the same faces and lengths.
 TEST(CliValidate, EveryFoldStyleValidatesAsTheScoredPlanAndFolds) {
@@ -161,7 +197,7 @@ TEST(CliValidate, EveryFoldStyleValidatesAsTheScoredPlanAndFolds) {
   for (const std::string style : {"score", "perforated", "dashed"}) {
     const test::CommandRun designed =
         test::run_origamic("design " + test::quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") +
-                           " --strict --fold-style " + style + " --out " + test::quoted(dir / style));
+                           " --strict --allow-narrow --fold-style " + style + " --out " + test::quoted(dir / style));
     ASSERT_EQ(designed.status, 0) << designed.output;
     const std::string dxf = test::quoted(dir / style / "house.dxf");
     const test::CommandRun r = test::run_origamic("validate --json " + dxf, true);
@@ -190,7 +226,7 @@ TEST(CliValidate, APerforatedPlanWithFoldsShorterThanTheInsetsValidatesAsDesigne
   const test::TempDir dir;
   const test::CommandRun designed = test::run_origamic(
       "design " + test::quoted(test::models_dir() / "seedlike/capitol.stl") +
-      " --up z --strict --fold-style perforated --out " + test::quoted(dir.path));
+      " --up z --strict --allow-narrow --fold-style perforated --out " + test::quoted(dir.path));
   ASSERT_EQ(designed.status, 0) << designed.output;
   const auto report = nlohmann::json::parse(std::ifstream(dir / "capitol.json"));
   const test::CommandRun r = test::run_origamic("validate --json " + test::quoted(dir / "capitol.dxf"), true);

@@ -4,7 +4,8 @@
 // z) at the default options, and measures each finished plan as the user gets it: its DXF written,
 // read back and analysed by `origamic validate`'s reader, its regions seen along the 45-degree view
 // against the model's own depth (likeness.hpp). Prints per model the finished p95 and mean error
-// (in W), the sliced p95, coverage, support and cut-out shares, faces, folds, the verdicts and the
+// (in W), the sliced p95, coverage, support and cut-out shares, faces, folds, whether it stands,
+// its places narrower than W (read back, as `origamic validate --min-strip W` counts them) and the
 // time of the design, then the means; writes OUT_DIR/contact_sheet.png (per model: the model, the
 // pop-up, the plan) and each model's pictures and DXF under OUT_DIR/models/.
 #include <cairo.h>
@@ -78,7 +79,8 @@ struct Row {
   std::string name;
   Likeness finished, sliced, read_back;
   int faces = 0, folds = 0, supports = 0, removed = 0;
-  bool valid = false, read_back_valid = false;
+  bool valid = false, read_back_valid = false;  // the plan stands, as designed and as read back
+  int narrow = 0;                                // places narrower than W, read back
   double design_s = 0;
   // Where the card is more than 2 W off its model: shares of the model's pixels showing a face of
   // the model, a support, the back plane or floor, or a hole (the finished card, as designed).
@@ -234,8 +236,9 @@ Row measure(const Model& model, const DesignOptions& base, const fs::path& out, 
   ExportOptions exports;
   exports.model = row.name;
   write_files({{dxf, plan_dxf(result.plan, exports)}});
-  const PlanAnalysis analysis = analyze_plan(read_plan_dxf(dxf, {}), {});
-  row.read_back_valid = analysis.valid();
+  const PlanAnalysis analysis = analyze_plan(read_plan_dxf(dxf, {}), {.min_strip_mm = options.slice.min_strip_mm});
+  row.narrow = static_cast<int>(std::ranges::count(analysis.problems, PlanProblemKind::NarrowStrip, &PlanProblem::kind));
+  row.read_back_valid = analysis.errors == row.narrow;
   row.read_back = likeness(result.maps, card_view(result.maps.grid, analysis.regions, {}), options.slice.min_strip_mm);
 
   if (where_maps) write_where_map(model, options, result, error, far, out / (stem + "_where.png"));
@@ -285,8 +288,8 @@ int main(int argc, char** argv) {
   fs::create_directories(out / "models");
   std::vector<Row> rows;
   std::vector<Cell> cells;
-  std::printf("%-30s %7s %7s %7s %7s %7s %7s %7s %5s %5s %5s %-9s %6s\n", "model", "p95 W", "mean W", "sliced",
-              "p95 rb", "cover", "suppt", "cutout", "faces", "folds", "rm", "valid", "time s");
+  std::printf("%-30s %7s %7s %7s %7s %7s %7s %7s %5s %5s %5s %-9s %6s %6s\n", "model", "p95 W", "mean W", "sliced",
+              "p95 rb", "cover", "suppt", "cutout", "faces", "folds", "rm", "stands", "narrow", "time s");
   for (const Model& model : models_in(models_dir)) {
     const std::string name = name_of(model.file);
     if (!only.empty() && std::ranges::find(only, name) == only.end()) continue;
@@ -308,16 +311,17 @@ int main(int argc, char** argv) {
     std::snprintf(numbers, sizeof numbers,
                   "p95 %.2f W (sliced %.2f), mean %.2f W, cover %.1f%%, supports %.1f%%, cut %.1f%%, %s",
                   row.finished.p95_W, row.sliced.p95_W, row.finished.mean_W, 100 * row.finished.coverage,
-                  100 * row.finished.support_share, 100 * row.finished.cut_out_share, row.valid ? "valid" : "INVALID");
+                  100 * row.finished.support_share, 100 * row.finished.cut_out_share,
+                  row.valid ? "stands" : "does not stand");
     cell.numbers = numbers;
-    std::printf("%-30s %7.2f %7.2f %7.2f %7.2f %6.1f%% %6.1f%% %6.2f%% %5d %5d %5d %-9s %6.2f\n", name.c_str(),
+    std::printf("%-30s %7.2f %7.2f %7.2f %7.2f %6.1f%% %6.1f%% %6.2f%% %5d %5d %5d %-9s %6d %6.2f\n", name.c_str(),
                 row.finished.p95_W, row.finished.mean_W, row.sliced.p95_W, row.read_back.p95_W,
                 100 * row.finished.coverage, 100 * row.finished.support_share, 100 * row.finished.cut_out_share,
                 row.faces, row.folds, row.removed,
                 row.valid && row.read_back_valid ? "yes"
                 : row.valid                      ? "rb-NO"
                                                  : "NO",
-                row.design_s);
+                row.narrow, row.design_s);
     std::fflush(stdout);
     rows.push_back(row);
     cells.push_back(cell);
@@ -357,8 +361,11 @@ int main(int argc, char** argv) {
       100 * mean([](const Row& r) { return r.finished.coverage; }), 100 * (1 - uncover_max), uncover_at.c_str(),
       100 * mean([](const Row& r) { return r.finished.support_share; }),
       100 * mean([](const Row& r) { return r.finished.cut_out_share; }), 100 * cut_max, cut_at.c_str());
-  std::printf("valid, by the design and read back: %d of %zu; read-back p95 differs by at most %.3f W (%s)\n", valid,
+  std::printf("stand, by the design and read back: %d of %zu; read-back p95 differs by at most %.3f W (%s)\n", valid,
               rows.size(), readback_gap, readback_at.c_str());
+  const int clean = static_cast<int>(std::ranges::count(rows, 0, &Row::narrow));
+  std::printf("no place narrower than W, read back: %d of %zu; places narrower than W: %.0f in all\n", clean,
+              rows.size(), mean([](const Row& r) { return r.narrow; }) * n);
   std::printf("design time: mean %.2f s, total %.1f s\n", mean([](const Row& r) { return r.design_s; }),
               mean([](const Row& r) { return r.design_s; }) * n);
   write_contact_sheet(cells, out / "contact_sheet.png");

@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Designs every model of a models folder at the default options and checks each plan.
 
-MANIFEST.tsv gives each model's up axis. A plan must stand (design --strict exits 0); only a model
+MANIFEST.tsv gives each model's up axis. A plan must stand (design --strict --allow-narrow exits 0;
+its places narrower than W are counted on its line, and judged by tools/bench_likeness); only a model
 named bad_* (a known defective mesh) may instead be reported invalid with the reason (exit 3 and a
 stop reason in the report). Either way the exact construction's own checks hold, and `origamic
 validate` reading the DXF back agrees with the design's verdict and finds no face outside the card.
@@ -44,7 +45,7 @@ def verdict(report, status, validated, name, read_back):
     elif (status == 0) != (validated == 0):
         problems.append(f"design exit {status} but validate exit {validated}")
     head = (f'{counts["faces"]} faces, {supports["added"]} supports, {counts["removed"]} removed '
-            f'({100 * supports["cut_out_share"]:.1f}% of the model)')
+            f'({100 * supports["cut_out_share"]:.1f}% of the model), {plan.get("narrow_places", 0)} narrow places')
     if problems:
         return "FAIL", f"{head}: " + ", ".join(problems)
     if status == 0:
@@ -75,8 +76,8 @@ def check(exe, models):
         for file in files:
             name = file.name
             start = time.monotonic()
-            design = subprocess.run([str(exe), "design", str(file), "--up", axes.get(name, "z"), "--strict", "--out",
-                                     str(out / name)], capture_output=True, text=True)
+            design = subprocess.run([str(exe), "design", str(file), "--up", axes.get(name, "z"), "--strict",
+                                     "--allow-narrow", "--out", str(out / name)], capture_output=True, text=True)
             ms = (time.monotonic() - start) * 1000
             reports, dxfs = sorted((out / name).glob("*.json")), sorted((out / name).glob("*.dxf"))
             validated, read_back, validate_output = 2, None, ""

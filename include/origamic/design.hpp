@@ -30,6 +30,9 @@ struct DesignOptions {
   SliceOptions slice;
   PlanOptions plan;
   SupportOptions supports;
+  // Places narrower than W do not make the plan invalid: they are listed (issue 23: W is the user's
+  // promise to their cutter, and a plan that breaks it is no valid plan unless they say so).
+  bool allow_narrow = false;
   // Told as each stage begins, in words ("slicing"): a terminal shows the run's progress with it.
   std::function<void(std::string_view stage)> on_stage;
 };
@@ -61,8 +64,13 @@ struct DesignResult {
   Likeness likeness;
   CardView card;  // the finished plan as the 45-degree view sees it
   bool allow_dangling = false;  // dangling faces do not make the plan invalid
+  bool allow_narrow = false;    // nor places narrower than W
   std::vector<StageTime> times;
 };
+
+/// The design's verdict: its plan stands (plan_stands) and, unless allow_narrow, has no place
+/// narrower than W (narrow_strips), as `origamic validate --min-strip W` finds its DXF.
+bool design_valid(const DesignResult& result);
 
 /// The options that shaped a design, in one line for the plan files ("card 210x297 mm, W 3 mm, 4
 /// px/mm, up y, margin 10 mm, supports seed 1").

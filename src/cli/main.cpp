@@ -89,6 +89,7 @@ struct DesignArgs {
   bool strict = false;
   bool no_supports = false;
   bool allow_dangling = false;
+  bool allow_narrow = false;
   std::uint32_t seed = origamic::SupportOptions{}.seed;
   int orders = origamic::SupportOptions{}.orders;
   std::string colours = "laser";
@@ -222,10 +223,14 @@ void add_design_options(CLI::App& design, DesignArgs& args) {
   design.add_option("--out", args.out_dir,
                     "write the plan (MODEL.dxf, MODEL.svg, MODEL.png, MODEL.pdf) and the report (MODEL.json) into "
                     "this folder");
-  design.add_flag("--strict", args.strict, "exit with status 3 when the plan is invalid (after writing it)");
+  design.add_flag("--strict", args.strict,
+                  "exit with status 3 when the plan is invalid (after writing it): it does not stand, or it has "
+                  "places narrower than W and no --allow-narrow");
   design.add_flag("--no-supports", args.no_supports, "leave out the supports (seed §4.4): the plan as sliced");
   design.add_flag("--allow-dangling", args.allow_dangling,
                   "keep dangling faces (windows, balconies) instead of supporting them; the report lists them");
+  design.add_flag("--allow-narrow", args.allow_narrow,
+                  "a plan with places narrower than W (--min-strip) is valid all the same; the report lists them");
   design.add_option("--seed", args.seed, "the order in which invalid faces choose their supports")
       ->capture_default_str();
   design
@@ -328,6 +333,7 @@ int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const
   options.slice.min_strip_mm = args.min_strip_mm;
   options.supports.enabled = !args.no_supports;
   options.supports.allow_dangling = args.allow_dangling;
+  options.allow_narrow = args.allow_narrow;
   options.supports.seed = args.seed;
   options.supports.orders = args.orders;
   const origamic::ExportOptions exports = export_options(args, fabrication, options);
@@ -377,7 +383,7 @@ int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const
   origamic::write_files(files);
   progress.clear();
   std::printf("%s\n%s", origamic::summary_line(result).c_str(), written.c_str());
-  return args.strict && !origamic::plan_stands(result.plan.validity, args.allow_dangling) ? 3 : 0;
+  return args.strict && !origamic::design_valid(result) ? 3 : 0;
 }
 
 struct ValidateArgs {

@@ -105,6 +105,7 @@ void design_loaded(LoadedMesh loaded, const std::filesystem::path& model_file, c
   result.sliced_likeness =
       likeness(result.maps, card_view(result.maps.grid, result.raster_plan.face, result.raster_plan.faces), W);
   result.allow_dangling = options.supports.allow_dangling;
+  result.allow_narrow = options.allow_narrow;
   starting(options.supports.enabled ? "supports and the exact plan" : "the exact plan");
   if (!options.supports.enabled) {
     result.plan = build_plan(result.maps, result.raster_plan, options.sheet, options.plan);
@@ -145,7 +146,12 @@ std::string settings_text(const DesignOptions& options) {
   if (!at.scale && !at.offset_mm) text += ", margin " + number_text(at.margin_mm) + " mm";
   text += options.supports.enabled ? ", supports seed " + std::to_string(options.supports.seed) : ", no supports";
   if (options.supports.allow_dangling) text += ", dangling allowed";
+  if (options.allow_narrow) text += ", narrow places allowed";
   return text;
+}
+
+bool design_valid(const DesignResult& result) {
+  return plan_stands(result.plan.validity, result.allow_dangling) && (result.allow_narrow || result.narrow_strips.empty());
 }
 
 DesignResult design(const std::filesystem::path& model_file, const DesignOptions& options) {

@@ -131,7 +131,8 @@ nlohmann::json narrowest_json(const std::vector<PlanProblem>& narrow) {
   return std::ranges::min(narrow, {}, &PlanProblem::value_mm).value_mm;
 }
 
-nlohmann::json plan_json(const Plan& plan, bool allow_dangling) {
+nlohmann::json plan_json(const DesignResult& result) {
+  const Plan& plan = result.plan;
   nlohmann::json faces = nlohmann::json::array();
   for (std::size_t i = 0; i < plan.faces.size(); ++i) {
     const PlanFace& f = plan.faces[i];
@@ -146,7 +147,10 @@ nlohmann::json plan_json(const Plan& plan, bool allow_dangling) {
                      {"at_XY", {f.inside.X, f.inside.Y}}});
   }
   const Validity& v = plan.validity;
-  return {{"verdict", plan_stands(v, allow_dangling) ? "valid" : "invalid"},
+  return {{"verdict", design_valid(result) ? "valid" : "invalid"},
+          {"stands", plan_stands(v, result.allow_dangling)},
+          {"narrow_places", result.narrow_strips.size()},
+          {"narrow_places_allowed", result.allow_narrow},
           {"counts",
            {{"faces", plan.faces.size() - 2},
             {"valid", v.valid},
@@ -206,7 +210,7 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
        {{"comment", "|card h + d - model h + d| over the model's pixels in the 45-degree view; shares of them"},
         {"finished", likeness_json(result.likeness)},
         {"sliced", likeness_json(result.sliced_likeness)}}},
-      {"plan", plan_json(result.plan, result.allow_dangling)},
+      {"plan", plan_json(result)},
       {"narrow_strips", narrow_places_json(result.narrow_strips)},
       {"narrowest_strip_mm", narrowest_json(result.narrow_strips)},
       {"supports",
@@ -241,14 +245,15 @@ std::string summary_line(const DesignResult& result) {
                 "%s: %zu triangles at %.4g mm/unit; %d segments -> %zu faces (W %.3g mm); likeness error p95 %.2f W, "
                 "mean %.2f W (sliced p95 %.2f W), coverage %.1f%%, supports %.1f%%, cut out %.1f%%; %d supports; plan "
                 "%s: %d valid, %d indirect, %d floating, %d dangling, %d invalid, %d removed; %zu places narrower "
-                "than W; %.0f ms",
+                "than W%s; %.0f ms",
                 result.model_file.filename().c_str(), result.triangles, result.placement.scale,
                 result.segmentation.count, result.raster_plan.faces.size() - 2, result.raster_plan.min_strip_mm,
                 result.likeness.p95_W, result.likeness.mean_W, result.sliced_likeness.p95_W,
                 100 * result.likeness.coverage, 100 * result.likeness.support_share,
                 100 * result.likeness.cut_out_share, result.supports.supports,
-                plan_stands(v, result.allow_dangling) ? "VALID" : "INVALID", v.valid, v.indirect, v.floating,
-                v.dangling, v.invalid, v.removed, result.narrow_strips.size(), total_ms);
+                design_valid(result) ? "VALID" : "INVALID", v.valid, v.indirect, v.floating, v.dangling, v.invalid,
+                v.removed, result.narrow_strips.size(),
+                result.narrow_strips.empty() || result.allow_narrow ? "" : " (--allow-narrow accepts them)", total_ms);
   return line;
 }
 
