@@ -109,7 +109,7 @@ TEST(CliValidate, DesignedPlanValidatesWithTheDesignsCounts) {
   const test::TempDir dir;
   const test::CommandRun designed =
       test::run_origamic("design " + test::quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") +
-                         " --no-supports --out " + test::quoted(dir.path));
+                         " --no-supports --min-strip 3 --out " + test::quoted(dir.path));
   ASSERT_EQ(designed.status, 0) << designed.output;
   std::ifstream in(dir / "house.json");
   const auto design = nlohmann::json::parse(in)["plan"];
@@ -157,10 +157,11 @@ TEST(CliValidate, TheDesignReportsThePlacesValidateFindsNarrowerThanW) {
 // W is the user's promise to their cutter (issue 23): a plan that stands but has places narrower
 // than W is not valid, as `validate --min-strip W` finds its DXF, unless --allow-narrow accepts them;
 // either way every file is written and the places are listed.
-TEST(CliValidate, APlanNarrowerThanWIsInvalidUnlessAllowed) {
+TEST(CliValidate, APlanWithPlacesNarrowerThanWIsInvalidUnlessAllowNarrow) {
   const test::TempDir dir;
   const std::string house = test::quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj");
-  const test::CommandRun strict = test::run_origamic("design " + house + " --strict --out " + test::quoted(dir / "strict"));
+  const test::CommandRun strict =
+      test::run_origamic("design " + house + " --min-strip 3 --strict --out " + test::quoted(dir / "strict"));
   EXPECT_EQ(strict.status, 3) << strict.output;
   EXPECT_NE(strict.output.find("plan INVALID: "), std::string::npos) << strict.output;
   EXPECT_NE(strict.output.find(" places narrower than W (--allow-narrow accepts them)"), std::string::npos)
@@ -168,25 +169,26 @@ TEST(CliValidate, APlanNarrowerThanWIsInvalidUnlessAllowed) {
   const auto plan = nlohmann::json::parse(std::ifstream(dir / "strict" / "house.json"))["plan"];
   EXPECT_EQ(plan["verdict"], "invalid");
   EXPECT_TRUE(plan["stands"].get<bool>());
-  const int narrow = plan["narrow_places"].get<int>();
+  const int narrow = plan["narrow_strip_count"].get<int>();
   EXPECT_GT(narrow, 0) << "the house's roof steps leave strips under 3 mm";
-  EXPECT_FALSE(plan["narrow_places_allowed"].get<bool>());
+  EXPECT_FALSE(plan["allow_narrow"].get<bool>());
   for (const char* name : {"house.dxf", "house.svg", "house.pdf", "house.png"})
     EXPECT_TRUE(std::filesystem::exists(dir / "strict" / name)) << name;
   const std::string dxf = test::quoted(dir / "strict" / "house.dxf");
   EXPECT_EQ(test::run_origamic("validate --min-strip 3 " + dxf).status, 3);
   EXPECT_EQ(test::run_origamic("validate " + dxf).status, 0) << "it stands";
 
-  const test::CommandRun allowed =
-      test::run_origamic("design " + house + " --strict --allow-narrow --out " + test::quoted(dir / "allowed"));
+  const test::CommandRun allowed = test::run_origamic(
+      "design " + house + " --min-strip 3 --strict --allow-narrow --out " + test::quoted(dir / "allowed"));
   EXPECT_EQ(allowed.status, 0) << allowed.output;
   EXPECT_NE(allowed.output.find("plan VALID: "), std::string::npos) << allowed.output;
-  EXPECT_NE(allowed.output.find("; " + std::to_string(narrow) + " places narrower than W; "), std::string::npos)
+  EXPECT_NE(allowed.output.find("; " + std::to_string(narrow) + " places narrower than W (allowed); "),
+            std::string::npos)
       << allowed.output;
   const auto allowed_plan = nlohmann::json::parse(std::ifstream(dir / "allowed" / "house.json"))["plan"];
   EXPECT_EQ(allowed_plan["verdict"], "valid");
-  EXPECT_EQ(allowed_plan["narrow_places"], narrow);
-  EXPECT_TRUE(allowed_plan["narrow_places_allowed"].get<bool>());
+  EXPECT_EQ(allowed_plan["narrow_strip_count"], narrow);
+  EXPECT_TRUE(allowed_plan["allow_narrow"].get<bool>());
 }
 
 // Every plan origamic writes validates, whichever way its folds are drawn: the dashes of the printed

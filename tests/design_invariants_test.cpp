@@ -137,5 +137,30 @@ TEST(DesignInvariants, AModelMovedAlongTheFoldByWholePixelsGivesTheMovedPlan) {
   }
 }
 
+// The design's verdict (issue 23): the plan stands, and no place is narrower than W unless the user
+// allows it; allowing narrow places makes no plan that does not stand valid.
+TEST(DesignVerdict, APlanIsValidWhereItStandsAndHasNoPlaceNarrowerThanWUnlessAllowed) {
+  DesignResult result;
+  result.plan.validity.valid = 3;
+  EXPECT_TRUE(design_valid(result));
+  PlanProblem narrow;
+  narrow.kind = PlanProblemKind::NarrowStrip;
+  narrow.value_mm = 0.5;
+  result.narrow_strips.push_back(narrow);
+  EXPECT_FALSE(design_valid(result));
+  result.allow_narrow = true;
+  EXPECT_TRUE(design_valid(result));
+  result.plan.validity.floating = 1;
+  EXPECT_FALSE(design_valid(result));
+  result.plan.validity.floating = 0;
+  result.plan.loose_card_pieces = 1;
+  EXPECT_FALSE(design_valid(result)) << "a loose piece of card: the plan does not stand";
+  result.plan.loose_card_pieces = 0;
+  result.plan.validity.dangling = 1;
+  EXPECT_FALSE(design_valid(result));
+  result.allow_dangling = true;
+  EXPECT_TRUE(design_valid(result));
+}
+
 }  // namespace
 }  // namespace origamic

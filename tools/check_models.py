@@ -45,7 +45,7 @@ def verdict(report, status, validated, name, read_back):
     elif (status == 0) != (validated == 0):
         problems.append(f"design exit {status} but validate exit {validated}")
     head = (f'{counts["faces"]} faces, {supports["added"]} supports, {counts["removed"]} removed '
-            f'({100 * supports["cut_out_share"]:.1f}% of the model), {plan.get("narrow_places", 0)} narrow places')
+            f'({100 * supports["cut_out_share"]:.1f}% of the model), {plan["narrow_strip_count"]} narrow places')
     if problems:
         return "FAIL", f"{head}: " + ", ".join(problems)
     if status == 0:
@@ -103,18 +103,20 @@ def check(exe, models):
 def self_test():
     """The rules on made-up reports: each must hold for the verdict it names."""
     def report(**changes):
-        r = {"plan": {"counts": {"faces": 4, "removed": 0, "floating": 0, "dangling": 0, "invalid": 0},
+        r = {"plan": {"narrow_strip_count": 0,
+                      "counts": {"faces": 4, "removed": 0, "floating": 0, "dangling": 0, "invalid": 0},
                       "exact_checks": {"arrangement_valid": True, "faces_tile_sheet": True, "lost_faces": 0,
                                        "unresolved_crossings": 0}},
              "supports": {"added": 2, "cut_out_share": 0.0, "stop_reason": ""}}
         for path, value in changes.items():
             part, key = path.split("__")
             (r["plan"]["counts"] if part == "counts" else r["plan"]["exact_checks"] if part == "checks"
-             else r["supports"])[key] = value
+             else r["plan"] if part == "plan" else r["supports"])[key] = value
         return r
     clean = {"problems": []}
     cases = [
         (report(), 0, 0, "box.obj", clean, "VALID", "4 faces, 2 supports"),
+        (report(plan__narrow_strip_count=5), 0, 0, "box.obj", clean, "VALID", "5 narrow places"),
         (report(counts__dangling=1), 0, 0, "box.obj", clean, "FAIL", "exit 0 but invalid faces"),
         (report(counts__invalid=1, supports__stop_reason="1 faces invalid"), 3, 3, "bad_x.obj", clean, "INVALID",
          "1 faces invalid"),

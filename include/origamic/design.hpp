@@ -22,7 +22,7 @@
 namespace origamic {
 
 struct DesignOptions {
-  Sheet sheet;                 // the flat card
+  Sheet sheet;  // the flat card
   LoadOptions load;
   PlacementOptions placement;
   RasterOptions raster;
@@ -53,7 +53,7 @@ struct DesignResult {
   RasterMaps maps;
   Segmentation segmentation;
   RasterPlan raster_plan;
-  Plan plan;                   // the final plan: with supports unless they are off
+  Plan plan;  // the final plan: with supports unless they are off
   // Every place the final plan is narrower than W, along X or Y, measured exactly on its lines as
   // `origamic validate --min-strip W` measures them (PlanProblemKind::NarrowStrip).
   std::vector<PlanProblem> narrow_strips;
@@ -62,14 +62,15 @@ struct DesignResult {
   // support, and of the finished plan, its regions as drawn, after supports and cut-outs.
   Likeness sliced_likeness;
   Likeness likeness;
-  CardView card;  // the finished plan as the 45-degree view sees it
+  CardView card;                // the finished plan as the 45-degree view sees it
   bool allow_dangling = false;  // dangling faces do not make the plan invalid
-  bool allow_narrow = false;    // nor places narrower than W
+  bool allow_narrow = false;    // places narrower than W do not make the plan invalid
   std::vector<StageTime> times;
 };
 
-/// The design's verdict: its plan stands (plan_stands) and, unless allow_narrow, has no place
-/// narrower than W (narrow_strips), as `origamic validate --min-strip W` finds its DXF.
+/// The design's verdict: its plan stands (plan_stands: every face held, no loose piece of card) and,
+/// unless allow_narrow, has no place narrower than W (narrow_strips), as `origamic validate
+/// --min-strip W` finds its DXF.
 bool design_valid(const DesignResult& result);
 
 /// The options that shaped a design, in one line for the plan files ("card 210x297 mm, W 3 mm, 4

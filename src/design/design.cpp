@@ -151,7 +151,7 @@ std::string settings_text(const DesignOptions& options) {
 }
 
 bool design_valid(const DesignResult& result) {
-  return plan_stands(result.plan.validity, result.allow_dangling) && (result.allow_narrow || result.narrow_strips.empty());
+  return plan_stands(result.plan, result.allow_dangling) && (result.allow_narrow || result.narrow_strips.empty());
 }
 
 DesignResult design(const std::filesystem::path& model_file, const DesignOptions& options) {

@@ -148,9 +148,9 @@ nlohmann::json plan_json(const DesignResult& result) {
   }
   const Validity& v = plan.validity;
   return {{"verdict", design_valid(result) ? "valid" : "invalid"},
-          {"stands", plan_stands(v, result.allow_dangling)},
-          {"narrow_places", result.narrow_strips.size()},
-          {"narrow_places_allowed", result.allow_narrow},
+          {"stands", plan_stands(plan, result.allow_dangling)},
+          {"narrow_strip_count", result.narrow_strips.size()},
+          {"allow_narrow", result.allow_narrow},
           {"counts",
            {{"faces", plan.faces.size() - 2},
             {"valid", v.valid},
@@ -236,6 +236,18 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
   return report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
+namespace {
+
+// What the summary says of the places narrower than W, beside their number: that they are allowed,
+// or that --allow-narrow would make a plan that stands valid.
+const char* narrow_note(const DesignResult& result) {
+  if (result.narrow_strips.empty()) return "";
+  if (result.allow_narrow) return " (allowed)";
+  return plan_stands(result.plan, result.allow_dangling) ? " (--allow-narrow accepts them)" : "";
+}
+
+}  // namespace
+
 std::string summary_line(const DesignResult& result) {
   double total_ms = 0;
   for (const auto& t : result.times) total_ms += t.ms;
@@ -244,7 +256,7 @@ std::string summary_line(const DesignResult& result) {
   std::snprintf(line, sizeof line,
                 "%s: %zu triangles at %.4g mm/unit; %d segments -> %zu faces (W %.3g mm); likeness error p95 %.2f W, "
                 "mean %.2f W (sliced p95 %.2f W), coverage %.1f%%, supports %.1f%%, cut out %.1f%%; %d supports; plan "
-                "%s: %d valid, %d indirect, %d floating, %d dangling, %d invalid, %d removed; %zu places narrower "
+                "%s: %d valid, %d indirect, %d floating, %d dangling, %d invalid, %d removed; %zu %s narrower "
                 "than W%s; %.0f ms",
                 result.model_file.filename().c_str(), result.triangles, result.placement.scale,
                 result.segmentation.count, result.raster_plan.faces.size() - 2, result.raster_plan.min_strip_mm,
@@ -252,8 +264,8 @@ std::string summary_line(const DesignResult& result) {
                 100 * result.likeness.coverage, 100 * result.likeness.support_share,
                 100 * result.likeness.cut_out_share, result.supports.supports,
                 design_valid(result) ? "VALID" : "INVALID", v.valid, v.indirect, v.floating, v.dangling, v.invalid,
-                v.removed, result.narrow_strips.size(),
-                result.narrow_strips.empty() || result.allow_narrow ? "" : " (--allow-narrow accepts them)", total_ms);
+                v.removed, result.narrow_strips.size(), result.narrow_strips.size() == 1 ? "place" : "places",
+                narrow_note(result), total_ms);
   return line;
 }
 
