@@ -146,6 +146,39 @@ TEST(Plan, AFacesPieceApartFromItIsFloatingAndACrumbIsCutOut) {
   EXPECT_TRUE(analyze_plan(crumb.lines, AnalysisOptions{}).valid()) << "its lines declare it a hole";
 }
 
+TEST(Plan, ASupportIsDrawnOnItsPixelCornersWhereAFaceWrapsRoundIt) {
+  // A support W wide, with a face wrapping round its lower right corner: the chain between the two
+  // is an L. Simplified through its pixel edges' midpoints it would cut the corner, and the support
+  // would be half a pixel narrower than W beside it.
+  const RayScene scene(test::box({40, 0, 0}, {150, 60, 40}));
+  const Sheet sheet;
+  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
+  RasterPlan s = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const int col = maps.grid.cols / 2, row = maps.grid.rows_above_fold / 4, k = s.block_px;  // above the box
+  ASSERT_EQ(s.face(col, row), kBackFace);
+  const auto support = static_cast<std::int32_t>(s.faces.size());
+  s.faces.push_back({Orientation::V, 20, 0, 0, true});
+  const auto wrapping = static_cast<std::int32_t>(s.faces.size());
+  s.faces.push_back({Orientation::V, 30, 0, 0, false});
+  for (int r = row; r < row + 2 * k; ++r)
+    for (int c = col; c < col + k + 8; ++c) s.face(c, r) = c < col + k && r < row + 2 * k - 8 ? support : wrapping;
+  const Plan plan = build_plan(maps, s, sheet, PlanOptions{});
+  expect_exact_construction(plan);
+  const double px = maps.grid.px_per_mm, left = col / px, right = (col + k) / px;
+  const double top = maps.grid.Y(row) + 0.5 / px, bottom = maps.grid.Y(row + 2 * k - 8) + 0.5 / px;
+  int regions = 0;
+  for (const PlanRegion& region : plan.regions) {
+    if (region.face != support) continue;
+    ++regions;
+    ASSERT_EQ(region.rings.size(), 1u);
+    for (const PlanPoint& p : region.rings.front()) {
+      EXPECT_TRUE(p.X == left || p.X == right) << "a vertex off the support's sides at X = " << p.X << ", Y = " << p.Y;
+      EXPECT_TRUE(p.Y == top || p.Y == bottom) << "a vertex off its top and bottom at X = " << p.X << ", Y = " << p.Y;
+    }
+  }
+  EXPECT_EQ(regions, 1);
+}
+
 TEST(Plan, BoxFloatingInMidAirIsFloating) {
   const Plan plan = plan_of_oa_mesh(test::box({60, 40, 20}, {150, 80, 50}));
   expect_exact_construction(plan);

@@ -106,6 +106,12 @@ Chain piece_of(const Chain& chain, CornerSpan span) {
   return {chain.left, chain.right, {chain.corners.begin() + span.from, chain.corners.begin() + span.to + 1}};
 }
 
+// Whether a support lies on either side of the chain.
+bool bounds_support(const Chain& chain, const std::vector<RasterFace>& faces) {
+  const auto support = [&](std::int32_t f) { return f >= 0 && faces[static_cast<std::size_t>(f)].support; };
+  return support(chain.left) || support(chain.right);
+}
+
 void add_cut(const Chain& chain, CornerSpan span, const ChainDrawing& drawing, Curves& curves,
              std::array<std::optional<PieceEnd>, 2> ends = {}) {
   if (span.to <= span.from) return;
@@ -114,8 +120,13 @@ void add_cut(const Chain& chain, CornerSpan span, const ChainDrawing& drawing, C
   if (!ends[0]) ends[0] = drawing.junctions.moved(piece.corners.front());
   if (!ends[1]) ends[1] = drawing.junctions.moved(piece.corners.back());
   const auto near = [](const std::optional<PieceEnd>& end) { return end ? std::optional(end->near) : std::nullopt; };
+  // A support is W wide on the pixel lattice. Simplified through its pixel edges' midpoints, a side
+  // meeting a staircase lost half a pixel at the corner (the sphere's supports 2.875 mm wide at W =
+  // 3). Drawn on their own corners: places narrower than W over the 37 models 5,223 -> 4,669, and
+  // the same likeness on each.
+  const double lattice_mm = bounds_support(chain, drawing.faces) ? 0.0 : drawing.simplify_mm;
   const chains::DrawnChain drawn = simplified(
-      piece, lattice, lattice.breaks, {drawing.simplify_mm, std::min(drawing.simplify_mm, kSimplifyOnBreaks_mm)},
+      piece, lattice, lattice.breaks, {lattice_mm, std::min(drawing.simplify_mm, kSimplifyOnBreaks_mm)},
       {near(ends[0]), near(ends[1])});
   const std::vector<ChainPoint>& points = drawn.points;
   curves.off_model_edges_mm = std::max(curves.off_model_edges_mm, drawn.off_edge_mm);

@@ -411,8 +411,16 @@ JunctionMoves junctions_on_breaks(const std::vector<Chain>& chains, const Lattic
 DrawnChain simplified(const Chain& chain, const LatticeScale& lattice, const PictureBreaks& breaks,
                       DrawTolerance tolerance, const MovedEnds& moved_ends) {
   if (tolerance.lattice_mm <= 0) {
+    // On the pixel contour, each straight run one segment: its turning corners and its ends.
+    const std::vector<LatticePoint>& corners = chain.corners;
     DrawnChain contour;
-    for (const LatticePoint corner : chain.corners) contour.points.push_back({corner});
+    for (std::size_t k = 0; k < corners.size(); ++k) {
+      if (k > 0 && k + 1 < corners.size()) {
+        const LatticePoint &a = corners[k - 1], &b = corners[k], &c = corners[k + 1];
+        if ((b.u - a.u) * (c.v - b.v) == (b.v - a.v) * (c.u - b.u)) continue;
+      }
+      contour.points.push_back({corners[k]});
+    }
     return contour;
   }
   Candidates c{edge_points(chain, lattice, breaks), {}, {}};
