@@ -80,6 +80,24 @@ TEST(ChainPoints, AShortRunOfBreaksStaysOnTheLattice) {
   EXPECT_TRUE(std::ranges::any_of(points, &chains::ChainPoint::on_break));
 }
 
+// On its pixel contour (no simplifying), a chain is its turning corners: an L of two straight runs
+// is three points, the corner kept; a staircase keeps every step.
+TEST(ChainPoints, OnItsPixelContourAChainIsItsTurningCorners) {
+  const StaircaseOnAnEdge s;
+  Chain ell{2, 3, {}};
+  for (int k = 0; k <= 5; ++k) ell.corners.push_back({10, 10 + 2 * k});  // down 5 pixel edges
+  for (int k = 1; k <= 4; ++k) ell.corners.push_back({10 + 2 * k, 20});  // then right 4
+  const chains::DrawnChain drawn = chains::simplified(ell, s.lattice, s.breaks(), {0, 0});
+  ASSERT_EQ(drawn.points.size(), 3u);
+  const std::array<std::array<int, 2>, 3> expected = {{{10, 10}, {10, 20}, {18, 20}}};
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_FALSE(drawn.points[k].on_break);
+    EXPECT_EQ(drawn.points[k].lattice.u, expected[k][0]) << k;
+    EXPECT_EQ(drawn.points[k].lattice.v, expected[k][1]) << k;
+  }
+  EXPECT_EQ(chains::simplified(s.stairs, s.lattice, s.breaks(), {0, 0}).points.size(), s.stairs.corners.size());
+}
+
 // The staircase's last corner, where the lattice row leaves it, moves along the row to where the
 // model's edge crosses it: on the row exactly, at X = c - Y. Pinned, it stays.
 TEST(ChainPoints, AJunctionMovesToWhereTheModelsEdgeMeetsTheLineBesideIt) {
