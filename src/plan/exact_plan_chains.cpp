@@ -122,7 +122,7 @@ void add_cut(const Chain& chain, CornerSpan span, const ChainDrawing& drawing, C
   const auto near = [](const std::optional<PieceEnd>& end) { return end ? std::optional(end->near) : std::nullopt; };
   // A support is W wide on the pixel lattice. Simplified through its pixel edges' midpoints, a side
   // meeting a staircase lost half a pixel at the corner (the sphere's supports 2.875 mm wide at W =
-  // 3). Drawn on their own corners: places narrower than W over the 37 models 5,223 -> 4,669, and
+  // 3). Drawn on their own corners: places narrower than W over the 37 models 5,223 -> 4,646, and
   // the same likeness on each.
   const double lattice_mm = bounds_support(chain, drawing.faces) ? 0.0 : drawing.simplify_mm;
   const chains::DrawnChain drawn = simplified(
