@@ -153,8 +153,9 @@ constexpr int kSplitRetryRounds = 8;
 // 0.05-0.7 % of it, took 6 exact plans). Giving the cheapest away together while they make up no more
 // than this share of the model: seedlike/sphere 1.70 -> 1.31 s, seedlike/torus 1.25 -> 1.07 s,
 // res_dragon_full 3.13 -> 2.51 s, res_armadillo 8.5 -> 3.2 s (medians of 9, 9, 5 and 5 runs,
-// alternating); 33 of the 37 plans the same, the mean p95 2.48 W as before. 2 % changed 5 plans; 100 % (all at once) took arch_german_semidetached
-// from 4.6 to 24 W, where supports came to faces a quarter at a time.
+// alternating); 33 of the 37 plans the same, the mean p95 2.48 W as before. 2 % changed 5 plans;
+// 100 % (all at once) took arch_german_semidetached from 4.6 to 24 W, where supports came to faces a
+// quarter at a time.
 constexpr double kGiveAwayModelShare = 0.01;
 // The orders from this one on (and the last, should there be fewer) may cut faces in two again.
 constexpr int kSplitRetryFromOrder = 3;
@@ -397,8 +398,8 @@ bool FaceOrderRun::cut_out_cheapest(std::vector<std::int32_t> invalid) {
   const auto pixels = [&](std::int32_t f) { return raster_plan_.faces[static_cast<std::size_t>(f)].pixels; };
   std::size_t taken = 0;
   for (std::int64_t taken_pixels = 0; taken < invalid.size(); taken_pixels += pixels(invalid[taken++]))
-    if (taken >= quarter &&
-        static_cast<double>(taken_pixels + pixels(invalid[taken])) > kGiveAwayModelShare * static_cast<double>(model_pixels_))
+    if (const auto with_next = static_cast<double>(taken_pixels + pixels(invalid[taken]));
+        taken >= quarter && with_next > kGiveAwayModelShare * static_cast<double>(model_pixels_))
       break;
   invalid.resize(taken);
   const double W = raster_plan_.min_strip_mm;
