@@ -410,7 +410,7 @@ bool FaceOrderRun::cut_out_cheapest(std::vector<std::int32_t> invalid) {
   const bool gave_away = kept.size() < invalid.size();
   std::erase_if(kept, [&](std::size_t i) { return i >= quarter; });  // only the quarter is cut out
   std::int64_t more = 0;
-  for (const std::size_t i : kept) more += raster_plan_.faces[static_cast<std::size_t>(invalid[i])].pixels;
+  for (const std::size_t i : kept) more += pixels(invalid[i]);
   if (4 * (cut_out_pixels_ + more) > model_pixels_) {
     report().stop_at_quota = true;
     return gave_away;  // the faces given away are progress
