@@ -98,6 +98,24 @@ TEST(ChainPoints, OnItsPixelContourAChainIsItsTurningCorners) {
   EXPECT_EQ(chains::simplified(s.stairs, s.lattice, s.breaks(), {0, 0}).points.size(), s.stairs.corners.size());
 }
 
+// Simplified, an L of two straight lattice runs is drawn on its corner, which the pixel edges'
+// midpoints either side would cut off by half a pixel; a staircase of single steps is drawn through
+// its midpoints, none of its corners a point.
+TEST(ChainPoints, ACornerOfTwoStraightRunsIsDrawnOnIt) {
+  const StaircaseOnAnEdge s;
+  Chain ell{2, 3, {}};
+  for (int k = 0; k <= 5; ++k) ell.corners.push_back({10, 10 + 2 * k});  // down 5 pixel edges
+  for (int k = 1; k <= 4; ++k) ell.corners.push_back({10 + 2 * k, 20});  // then right 4
+  const chains::DrawnChain drawn = chains::simplified(ell, s.lattice, s.breaks(), {0.1, 0.02});
+  ASSERT_EQ(drawn.points.size(), 3u);
+  EXPECT_EQ(drawn.points[1].lattice.u, 10);
+  EXPECT_EQ(drawn.points[1].lattice.v, 20);
+  const Grid<float> no_breaks;
+  const chains::DrawnChain steps = chains::simplified(s.stairs, s.lattice, {no_breaks, no_breaks}, {0.1, 0.02});
+  for (std::size_t k = 1; k + 1 < steps.points.size(); ++k)
+    EXPECT_TRUE(steps.points[k].lattice.u % 2 != 0 || steps.points[k].lattice.v % 2 != 0) << k;
+}
+
 // The staircase's last corner, where the lattice row leaves it, moves along the row to where the
 // model's edge crosses it: on the row exactly, at X = c - Y. Pinned, it stays.
 TEST(ChainPoints, AJunctionMovesToWhereTheModelsEdgeMeetsTheLineBesideIt) {
@@ -121,6 +139,19 @@ TEST(ChainPoints, AJunctionMovesToWhereTheModelsEdgeMeetsTheLineBesideIt) {
   EXPECT_EQ(on_fold.moved[0].on_fold_of, 1);
   EXPECT_NEAR(on_fold.moved[0].X, s.c - 7.1, 1e-9);
   EXPECT_DOUBLE_EQ(on_fold.moved[0].Y, 7.1);
+}
+
+// A lattice row whose pixel edges the picture breaks across on the row itself (a slice ending on a
+// crease of the model) is still that row beside the junction: the staircase's corner moves along
+// it as it does beside a row with no breaks.
+TEST(ChainPoints, ARowOnACreaseStillTakesTheJunctionAlongIt) {
+  StaircaseOnAnEdge s;
+  const LatticePoint start = s.row.corners.front();
+  for (int k = 0; k < 7; ++k) s.below(start.u / 2 + k, start.v / 2 - 1) = 0.5f;  // Y(v - 1) - 0.5 px: on the row
+  const chains::JunctionMoves moves = chains::junctions_on_breaks({s.stairs, s.row}, s.lattice, s.breaks(), {{}, {}});
+  ASSERT_EQ(moves.moved.size(), 1u);
+  EXPECT_EQ(moves.moved[0].v_on_lattice, start.v);
+  EXPECT_NEAR(moves.moved[0].X, s.c - s.lattice.Y(start.v), 1e-9);
 }
 
 // Where the staircase's edge meets a fold's line near its end, within two pixels.

@@ -2,6 +2,7 @@
 #include "chain_points.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <cstddef>
@@ -61,8 +62,8 @@ struct Leg {
   std::int32_t fold_chain = -1;  // the line is this chain's fold line (it snaps onto it there)
 };
 
-// The chain's leg at its front (or back): its first edges' points on the picture's break, if they
-// lie on one line (a model edge), or its first edges along one lattice line.
+// The chain's leg at its front (or back): its first edges along one lattice line, or else their
+// points on the picture's break, if they lie on one line (a model edge).
 std::optional<Leg> leg_of(const Chain& chain, bool front, const LatticeScale& lattice, const PictureBreaks& breaks) {
   constexpr std::size_t kEdges = 3;  // 0.75 mm at 4 px/mm: a curve of radius 70 mm bends 0.001 mm in it
   const std::size_t n = chain.corners.size();
@@ -72,28 +73,26 @@ std::optional<Leg> leg_of(const Chain& chain, bool front, const LatticeScale& la
   std::vector<ChainPoint> points;
   for (std::size_t k = 0; k < edges; ++k) points.push_back(edge_point(corner(k), corner(k + 1), lattice, breaks));
   const LatticePoint j = corner(0);
-  // On the model's edge only as simplified draws it: a run of kMinBreakRun edges from the end.
-  const auto on_edge_run = [&] {
-    if (n - 1 < kMinBreakRun) return false;
-    for (std::size_t k = 0; k < kMinBreakRun; ++k)
-      if (!edge_point(corner(k), corner(k + 1), lattice, breaks).on_break) return false;
-    return true;
-  };
-  if (std::ranges::all_of(points, &ChainPoint::on_break)) {
-    if (!on_edge_run()) return std::nullopt;
-    const ChainPoint &a = points.front(), &b = points.back();
-    const double length = std::hypot(b.X - a.X, b.Y - a.Y);
-    if (!(length > 0)) return std::nullopt;
-    const Leg leg{a.X, a.Y, (b.X - a.X) / length, (b.Y - a.Y) / length, true, j};
-    for (const ChainPoint& p : points)
-      if (std::abs((p.X - leg.X) * leg.dy - (p.Y - leg.Y) * leg.dx) > kLegStraightness_mm) return std::nullopt;
-    return leg;
-  }
-  if (std::ranges::any_of(points, &ChainPoint::on_break)) return std::nullopt;
   const bool along_u = std::ranges::all_of(points, [&](const ChainPoint& p) { return p.lattice.v == j.v; });
   const bool along_v = std::ranges::all_of(points, [&](const ChainPoint& p) { return p.lattice.u == j.u; });
-  if (!along_u && !along_v) return std::nullopt;
-  return Leg{lattice.X(j.u), lattice.Y(j.v), along_u ? 1.0 : 0.0, along_u ? 0.0 : 1.0, false, j};
+  // Breaks on the lattice line itself (a slice ending on a crease of the model) leave it that line.
+  const auto off_line = [&](const ChainPoint& p) {
+    return p.on_break && std::abs(along_u ? p.Y - lattice.Y(j.v) : p.X - lattice.X(j.u)) > kLegStraightness_mm;
+  };
+  if ((along_u || along_v) && std::ranges::none_of(points, off_line))
+    return Leg{lattice.X(j.u), lattice.Y(j.v), along_u ? 1.0 : 0.0, along_u ? 0.0 : 1.0, false, j};
+  if (!std::ranges::all_of(points, &ChainPoint::on_break)) return std::nullopt;
+  // On the model's edge only as simplified draws it: a run of kMinBreakRun edges from the end.
+  if (n - 1 < kMinBreakRun) return std::nullopt;
+  for (std::size_t k = 0; k < kMinBreakRun; ++k)
+    if (!edge_point(corner(k), corner(k + 1), lattice, breaks).on_break) return std::nullopt;
+  const ChainPoint &a = points.front(), &b = points.back();
+  const double length = std::hypot(b.X - a.X, b.Y - a.Y);
+  if (!(length > 0)) return std::nullopt;
+  const Leg leg{a.X, a.Y, (b.X - a.X) / length, (b.Y - a.Y) / length, true, j};
+  for (const ChainPoint& p : points)
+    if (std::abs((p.X - leg.X) * leg.dy - (p.Y - leg.Y) * leg.dx) > kLegStraightness_mm) return std::nullopt;
+  return leg;
 }
 
 bool same(LatticePoint a, LatticePoint b) { return a.u == b.u && a.v == b.v; }
@@ -227,9 +226,38 @@ struct Candidates {
   }
 };
 
+// Where a chain turns between two straight runs of two pixel edges or more off the picture's
+// breaks, it has a corner, not a staircase's step (a digital straight line runs single edges one
+// way): the corner is a point to draw through, where the edges' midpoints either side would cut it
+// by half a pixel (arch_fzk_haus: a wall W wide drawn 2.875 mm wide at its foot). `points` are the
+// chain's ends and its edges' midpoints.
+std::vector<ChainPoint> with_lattice_corners(const Chain& chain, std::vector<ChainPoint> points) {
+  const std::vector<LatticePoint>& corners = chain.corners;
+  const std::size_t edges = corners.size() - 1;
+  const auto direction = [&](std::size_t e) {
+    return std::pair{corners[e + 1].u - corners[e].u, corners[e + 1].v - corners[e].v};
+  };
+  const auto on_lattice = [&](std::size_t e) { return !points[e + 1].on_break; };  // edge e's midpoint
+  // Corner k lies between edges k - 1 and k.
+  const auto turns_between_runs = [&](std::size_t k) {
+    return k >= 2 && k + 2 <= edges && direction(k - 1) != direction(k) && direction(k - 2) == direction(k - 1) &&
+           direction(k) == direction(k + 1) && std::ranges::all_of(std::array{k - 2, k - 1, k, k + 1}, on_lattice);
+  };
+  std::vector<ChainPoint> out;
+  out.reserve(points.size());
+  out.push_back(points[0]);
+  for (std::size_t k = 1; k < corners.size(); ++k) {
+    out.push_back(points[k]);
+    if (turns_between_runs(k)) out.push_back({corners[k]});
+  }
+  out.push_back(points.back());
+  return out;
+}
+
 // The chain's ends and its edges' midpoints, on the picture's breaks along runs of kMinBreakRun
 // edges or more: shorter runs are a slice's end touching a crease here and there, and stay on the
-// lattice, as their neighbours do, rather than notch the boundary by half a pixel.
+// lattice, as their neighbours do, rather than notch the boundary by half a pixel. With them, its
+// corners between straight lattice runs.
 std::vector<ChainPoint> edge_points(const Chain& chain, const LatticeScale& lattice, const PictureBreaks& breaks) {
   std::vector<ChainPoint> points = {{chain.corners.front()}};
   for (std::size_t i = 1; i < chain.corners.size(); ++i)
@@ -242,7 +270,7 @@ std::vector<ChainPoint> edge_points(const Chain& chain, const LatticeScale& latt
       for (std::size_t m = k; m < end; ++m) points[m].on_break = false;
     k = end + 1;
   }
-  return points;
+  return with_lattice_corners(chain, std::move(points));
 }
 
 // Ends whose junctions moved are drawn there, and the points near such an end that lie beyond it
