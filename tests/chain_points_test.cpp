@@ -80,13 +80,19 @@ TEST(ChainPoints, AShortRunOfBreaksStaysOnTheLattice) {
   EXPECT_TRUE(std::ranges::any_of(points, &chains::ChainPoint::on_break));
 }
 
+// An L of two straight lattice runs: down 5 pixel edges from corner (10, 10), then right 4.
+Chain ell_of_two_runs() {
+  Chain ell{2, 3, {}};
+  for (int k = 0; k <= 5; ++k) ell.corners.push_back({10, 10 + 2 * k});
+  for (int k = 1; k <= 4; ++k) ell.corners.push_back({10 + 2 * k, 20});
+  return ell;
+}
+
 // On its pixel contour (no simplifying), a chain is its turning corners: an L of two straight runs
 // is three points, the corner kept; a staircase keeps every step.
 TEST(ChainPoints, OnItsPixelContourAChainIsItsTurningCorners) {
   const StaircaseOnAnEdge s;
-  Chain ell{2, 3, {}};
-  for (int k = 0; k <= 5; ++k) ell.corners.push_back({10, 10 + 2 * k});  // down 5 pixel edges
-  for (int k = 1; k <= 4; ++k) ell.corners.push_back({10 + 2 * k, 20});  // then right 4
+  const Chain ell = ell_of_two_runs();
   const chains::DrawnChain drawn = chains::simplified(ell, s.lattice, s.breaks(), {0, 0});
   ASSERT_EQ(drawn.points.size(), 3u);
   const std::array<std::array<int, 2>, 3> expected = {{{10, 10}, {10, 20}, {18, 20}}};
@@ -103,9 +109,7 @@ TEST(ChainPoints, OnItsPixelContourAChainIsItsTurningCorners) {
 // its midpoints, none of its corners a point.
 TEST(ChainPoints, ACornerOfTwoStraightRunsIsDrawnOnIt) {
   const StaircaseOnAnEdge s;
-  Chain ell{2, 3, {}};
-  for (int k = 0; k <= 5; ++k) ell.corners.push_back({10, 10 + 2 * k});  // down 5 pixel edges
-  for (int k = 1; k <= 4; ++k) ell.corners.push_back({10 + 2 * k, 20});  // then right 4
+  const Chain ell = ell_of_two_runs();
   const chains::DrawnChain drawn = chains::simplified(ell, s.lattice, s.breaks(), {0.1, 0.02});
   ASSERT_EQ(drawn.points.size(), 3u);
   EXPECT_EQ(drawn.points[1].lattice.u, 10);
