@@ -14,9 +14,11 @@
 #include <string>
 #include <vector>
 
+#include "helpers.hpp"
 #include "origamic/design.hpp"
 #include "origamic/mesh_io.hpp"
 #include "origamic/plan.hpp"
+#include "origamic/plan_analysis.hpp"
 #include "origamic/supports.hpp"
 
 namespace origamic {
@@ -139,6 +141,38 @@ TEST(DesignInvariants, AModelMovedAlongTheFoldByWholePixelsGivesTheMovedPlan) {
 
 // The design's verdict (issue 23): the plan stands, and no place is narrower than W unless the user
 // allows it; allowing narrow places makes no plan that does not stand valid.
+// A sphere's slices end in tips where they meet the silhouette and each other: the design parts
+// off those it can, keeping the plan standing and its picture, and reports the rest as its DXF
+// will read back.
+TEST(DesignTips, TipsNarrowerThanWArePartedOffAndThePlanStillStands) {
+  const TriangleMesh ball = test::sphere({0, 0, 0}, 1, 48, 24);
+  DesignOptions options;
+  options.tip_rounds = 0;
+  const DesignResult as_supported = design(LoadedMesh{.mesh = ball, .format = "obj"}, options);
+  options.tip_rounds = DesignOptions{}.tip_rounds;
+  const DesignResult blunted = design(LoadedMesh{.mesh = ball, .format = "obj"}, options);
+  EXPECT_EQ(as_supported.tips_parted, 0);
+  EXPECT_GT(blunted.tips_parted, 0);
+  EXPECT_LT(blunted.narrow_strips.size(), as_supported.narrow_strips.size());
+  EXPECT_TRUE(plan_stands(blunted.plan, false));
+  EXPECT_LE(blunted.likeness.p95_W, as_supported.likeness.p95_W + 0.05);
+  EXPECT_LE(blunted.likeness.mean_W, as_supported.likeness.mean_W + 0.02);
+  // Read back as the files have it (Y from the sheet's lower edge): the same places, no error else.
+  std::vector<PlanPolyline> lines = blunted.plan.lines;
+  const double half = options.sheet.half_height_mm();
+  for (PlanPolyline& line : lines)
+    for (PlanPoint& p : line.points) p.Y = (p.Y + half) - half;
+  const PlanAnalysis read = analyze_plan(lines, {.min_strip_mm = options.slice.min_strip_mm});
+  std::size_t narrow = 0;
+  for (const PlanProblem& problem : read.problems) {
+    EXPECT_TRUE(problem.kind == PlanProblemKind::NarrowStrip || !is_error(problem.kind)) << problem.message;
+    narrow += problem.kind == PlanProblemKind::NarrowStrip;
+  }
+  EXPECT_EQ(narrow, blunted.narrow_strips.size());
+  // Every face of the plan is still one of the design's faces.
+  for (const PlanRegion& region : blunted.plan.regions) EXPECT_GE(region.face, 0);
+}
+
 TEST(DesignVerdict, APlanIsValidWhereItStandsAndHasNoPlaceNarrowerThanWUnlessAllowed) {
   DesignResult result;
   result.plan.validity.valid = 3;

@@ -319,6 +319,91 @@ TEST(PlanAnalysis, StripNarrowerThanWIsReportedWithItsPlace) {
   }
 }
 
+// The box plan whose top face H(h) ends on the right in a tip: its right side is a cut slanted from
+// the mountain fold's end (x1, h - d) up to (x1 - run, h), through a point `in` mm along X from that
+// end, so that the face is narrower than W through a vertex there.
+std::vector<PlanPolyline> box_with_a_tip(const Box& b, double run, double in) {
+  std::vector<PlanPolyline> lines = box_plan(b);
+  const double rise = b.d;  // the top face is d high in the plan
+  for (PlanPolyline& line : lines) {
+    if (line.kind == LineKind::Cut && line.points[0].X == b.x1) line.points[1].Y = b.h - b.d;  // stops at the fold
+    if (line.kind == LineKind::Valley && line.points[0].Y == b.h) line.points[1].X = b.x1 - run;
+  }
+  lines.push_back({LineKind::Cut,
+                   {{b.x1, b.h - b.d}, {b.x1 - in, b.h - b.d + rise * in / run}, {b.x1 - run, b.h}}});
+  return lines;
+}
+
+TEST(TipRepair, ATipNarrowerThanWIsPartedOffWhereTheFaceIsWWide) {
+  const Box b{.d = 10};
+  const double run = 20, in = 2, W = 3, margin = 0.01;
+  const std::vector<PlanPolyline> lines = box_with_a_tip(b, run, in);
+  const PlanAnalysis before = analyze_plan(lines, {.min_strip_mm = W});
+  const auto narrow = problems_of(before, PlanProblemKind::NarrowStrip);
+  ASSERT_EQ(narrow.size(), 1u) << listing(before);
+  EXPECT_NEAR(narrow[0].value_mm, b.d * in / run, 1e-12);
+  EXPECT_EQ(narrow[0].from.X, b.x1 - in);
+  EXPECT_EQ(before.errors, 1) << listing(before);
+
+  const TipRepair repaired = blunt_narrow_tips(lines, {.min_strip_mm = W, .margin_mm = margin, .max_tip_mm = 12});
+  EXPECT_EQ(repaired.tips, 1);
+  const PlanAnalysis after = analyze_plan(repaired.lines, {.min_strip_mm = W});
+  EXPECT_TRUE(after.valid()) << listing(after);
+  EXPECT_TRUE(after.problems.empty()) << listing(after);
+  // The face is W + margin high where the cut parts the tip off: run (W + margin) / d from its end.
+  const double cut_X = b.x1 - run * (W + margin) / b.d;
+  int cuts_there = 0;
+  for (const PlanPolyline& line : repaired.lines)
+    for (std::size_t i = 0; i + 1 < line.points.size(); ++i) {
+      const PlanPoint &p = line.points[i], &q = line.points[i + 1];
+      if (std::abs(p.X - cut_X) > 1e-9 || std::abs(q.X - cut_X) > 1e-9) continue;
+      EXPECT_EQ(line.kind, LineKind::Cut);
+      EXPECT_NEAR(std::min(p.Y, q.Y), b.h - b.d, 1e-12);
+      EXPECT_NEAR(std::max(p.Y, q.Y), b.h - b.d + W + margin, 1e-9);
+      ++cuts_there;
+    }
+  EXPECT_EQ(cuts_there, 1);
+  // The tip joins the front V(d), whose plane lies nearest the top's there, and the mountain fold
+  // between them ends at the cut.
+  const std::int32_t tip = region_at(after, {b.x1 - 1, b.h - b.d + 0.2});
+  ASSERT_GE(tip, 0);
+  EXPECT_EQ(tip, region_at(after, {b.mid(), 0.5 * (b.h - b.d)}));
+  EXPECT_EQ(after.regions[static_cast<std::size_t>(tip)].orientation, Orientation::V);
+  EXPECT_NEAR(after.regions[static_cast<std::size_t>(tip)].depth_mm, b.d, 1e-12);
+  double mountain_end = 0;
+  for (const PlanPolyline& line : repaired.lines)
+    if (line.kind == LineKind::Mountain)
+      for (const PlanPoint& p : line.points) mountain_end = std::max(mountain_end, p.X);
+  EXPECT_NEAR(mountain_end, cut_X, 1e-9);
+  EXPECT_NEAR(after.mountain_mm, cut_X - b.x0, 1e-9);
+}
+
+TEST(TipRepair, AStripNarrowerThanWAllAlongIsNoTipAndStays) {
+  Box b;
+  b.d = 2;  // the top face is 2 mm high from end to end
+  const std::vector<PlanPolyline> lines = box_plan(b);
+  const TipRepair repaired = blunt_narrow_tips(lines, {.min_strip_mm = 3});
+  EXPECT_EQ(repaired.tips, 0);
+  const PlanAnalysis after = analyze_plan(repaired.lines, {.min_strip_mm = 3});
+  EXPECT_EQ(problems_of(after, PlanProblemKind::NarrowStrip).size(), 1u) << listing(after);
+  EXPECT_EQ(after.mountain_mm, b.x1 - b.x0);
+}
+
+TEST(TipRepair, ATipHoldingAllItsFaceFoldsWithANeighbourStays) {
+  // The tip's side is the top face's only fold with the front: parting it off would leave the top
+  // hanging by its valley fold alone.
+  const Box b{.d = 10};
+  const double run = 20, in = 2, W = 3;
+  std::vector<PlanPolyline> lines = box_with_a_tip(b, run, in);
+  for (PlanPolyline& line : lines)
+    if (line.kind == LineKind::Mountain) line.points[0].X = b.x1 - 4;  // the fold only under the tip
+  lines.push_back({LineKind::Cut, {{b.x0, b.h - b.d}, {b.x1 - 4, b.h - b.d}}});
+  const PlanAnalysis before = analyze_plan(lines, {.min_strip_mm = W});
+  ASSERT_TRUE(problems_of(before, PlanProblemKind::NarrowStrip).size() == 1u) << listing(before);
+  const TipRepair repaired = blunt_narrow_tips(lines, {.min_strip_mm = W});
+  EXPECT_EQ(repaired.tips, 0);
+}
+
 // A plan with every fold drawn as perforation cuts: 1 mm cuts, 1 mm gaps, `inset` mm clear of the
 // fold's ends, as `--fold-style perforated` draws them.
 std::vector<PlanPolyline> perforated(const std::vector<PlanPolyline>& plan, double inset = 0.5) {

@@ -33,6 +33,9 @@ struct DesignOptions {
   // Places narrower than W do not make the plan invalid: they are listed (issue 23: W is the user's
   // promise to their cutter, and a plan that breaks it is no valid plan unless they say so).
   bool allow_narrow = false;
+  // Rounds of parting off the tips narrower than W (blunt_narrow_tips), each kept only if the plan
+  // stands, has fewer narrow places and shows the model as well; 0 leaves the plan as supported.
+  int tip_rounds = 4;
   // Told as each stage begins, in words ("slicing"): a terminal shows the run's progress with it.
   std::function<void(std::string_view stage)> on_stage;
 };
@@ -57,6 +60,7 @@ struct DesignResult {
   // Every place the final plan is narrower than W, along X or Y, measured exactly on its lines as
   // `origamic validate --min-strip W` measures them (PlanProblemKind::NarrowStrip).
   std::vector<PlanProblem> narrow_strips;
+  int tips_parted = 0;  // tips narrower than W parted off the supported plan (DesignOptions::tip_rounds)
   SupportReport supports;
   // The likeness of the card to the model (likeness.hpp): of the sliced raster plan, before any
   // support, and of the finished plan, its regions as drawn, after supports and cut-outs.

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -101,6 +102,37 @@ struct PlanAnalysis {
 /// \throws InputError if there is no cut or fold line, a coordinate is not finite, an option is
 /// absurd, or the sheet has no area.
 PlanAnalysis analyze_plan(const std::vector<PlanPolyline>& lines, const AnalysisOptions& options);
+
+/// Issue 23: the tips of faces narrower than W parted off, on the exact arrangement of the lines.
+/// Where a face is narrower than W through one of its vertices (PlanProblemKind::NarrowStrip) and,
+/// across that chord, narrows to its end on one side within `max_tip_mm` and widens to W plus
+/// `margin_mm` on the other, a cut across it there (along the chord's axis) parts the tip off, and
+/// the tip joins the neighbour beside it whose plane lies nearest the face's own there (the
+/// 45-degree key h + d at a point of the tip). A tip stays if its sides hold all of its face's folds
+/// with some neighbour. Lines beside a changed face are drawn again (a fold where a V and an H face
+/// meet on their line Y = h - d, a cut-out cut beside a hole, else a cut); the others come back as
+/// they were, one polyline per stretch between junctions. Round after round, each round kept only
+/// if the plan still has no error but narrow strips, has fewer of those, no two of its points
+/// become one in a file (its Y rounded from the sheet's lower edge), and `keep` (if given) accepts
+/// its lines.
+struct TipRepairOptions {
+  double min_strip_mm = 0;  // W
+  double margin_mm = 0.01;  // the new end is this much wider than W
+  double max_tip_mm = 12;   // tips narrower than W along more of their length stay
+  int rounds = 4;
+};
+struct TipRepair {
+  std::vector<PlanPolyline> lines;  // of the last round kept (the lines given, if none)
+  PlanAnalysis analysis;            // of those lines, with W
+  // Per region of `analysis`: a point inside the region of the lines given that it comes from (the
+  // same face, less a tip or with one more).
+  std::vector<PlanPoint> origin;
+  int tips = 0;                     // tips parted off in the rounds kept
+  int rounds = 0;                   // rounds kept
+};
+using TipRoundCheck = std::function<bool(const std::vector<PlanPolyline>& lines, const PlanAnalysis& analysis)>;
+TipRepair blunt_narrow_tips(const std::vector<PlanPolyline>& lines, const TipRepairOptions& options,
+                            const TipRoundCheck& keep = {});
 
 /// "plan VALID: N faces" or "plan INVALID: N faces; k floating, ..." (errors counted by kind).
 std::string analysis_summary_line(const PlanAnalysis& analysis);

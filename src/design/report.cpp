@@ -213,6 +213,7 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
       {"plan", plan_json(result)},
       {"narrow_strips", narrow_places_json(result.narrow_strips)},
       {"narrowest_strip_mm", narrowest_json(result.narrow_strips)},
+      {"narrow_tips_parted", result.tips_parted},
       {"supports",
        {{"added", result.supports.supports},
         {"rounds", result.supports.rounds},
