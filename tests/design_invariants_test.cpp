@@ -169,8 +169,11 @@ TEST(DesignTips, TipsNarrowerThanWArePartedOffAndThePlanStillStands) {
     narrow += problem.kind == PlanProblemKind::NarrowStrip;
   }
   EXPECT_EQ(narrow, blunted.narrow_strips.size());
-  // Every face of the plan is still one of the design's faces.
+  // Every face of the plan is still one of the design's faces, and their areas tile the sheet.
   for (const PlanRegion& region : blunted.plan.regions) EXPECT_GE(region.face, 0);
+  double area = 0;
+  for (const PlanFace& face : blunted.plan.faces) area += face.area_mm2;
+  EXPECT_NEAR(area, options.sheet.width_mm * options.sheet.height_mm, 1e-6);
 }
 
 TEST(DesignVerdict, APlanIsValidWhereItStandsAndHasNoPlaceNarrowerThanWUnlessAllowed) {

@@ -376,6 +376,17 @@ TEST(TipRepair, ATipNarrowerThanWIsPartedOffWhereTheFaceIsWWide) {
       for (const PlanPoint& p : line.points) mountain_end = std::max(mountain_end, p.X);
   EXPECT_NEAR(mountain_end, cut_X, 1e-9);
   EXPECT_NEAR(after.mountain_mm, cut_X - b.x0, 1e-9);
+  // The sheet's outline is drawn once, as it was: its length is the sheet's perimeter.
+  double outline = 0;
+  for (const PlanPolyline& line : repaired.lines)
+    if (line.kind == LineKind::Outline)
+      for (std::size_t i = 0; i + 1 < line.points.size(); ++i)
+        outline += std::hypot(line.points[i + 1].X - line.points[i].X, line.points[i + 1].Y - line.points[i].Y);
+  EXPECT_NEAR(outline, 2 * (kWidth + 2 * kHalf), 1e-9);
+
+  // A tip narrower than W along more than its reach stays.
+  const TipRepair far = blunt_narrow_tips(lines, {.min_strip_mm = W, .margin_mm = margin, .max_tip_mm = 1.5});
+  EXPECT_EQ(far.tips, 0);
 }
 
 TEST(TipRepair, AStripNarrowerThanWAllAlongIsNoTipAndStays) {
@@ -389,19 +400,34 @@ TEST(TipRepair, AStripNarrowerThanWAllAlongIsNoTipAndStays) {
   EXPECT_EQ(after.mountain_mm, b.x1 - b.x0);
 }
 
-TEST(TipRepair, ATipHoldingAllItsFaceFoldsWithANeighbourStays) {
-  // The tip's side is the top face's only fold with the front: parting it off would leave the top
-  // hanging by its valley fold alone.
-  const Box b{.d = 10};
+TEST(TipRepair, ATipHoldingAllItsFaceFoldsWithANeighbourStaysAndTheOthersGo) {
+  // Two boxes, each top face ending on the right in a tip. On the left box the mountain fold runs
+  // only under the tip (a cut the rest of the way): parting that tip off would leave the top
+  // hanging by its valley fold alone, so it stays; the right box's goes in the same round.
+  const Box left{.d = 10, .h = 61.7, .x0 = 20, .x1 = 90}, right{.d = 10, .h = 61.7, .x0 = 120, .x1 = 190};
   const double run = 20, in = 2, W = 3;
-  std::vector<PlanPolyline> lines = box_with_a_tip(b, run, in);
+  std::vector<PlanPolyline> lines = {{LineKind::Outline, {{0, -kHalf}, {kWidth, -kHalf}, {kWidth, kHalf}, {0, kHalf}, {0, -kHalf}}},
+                                     {LineKind::Valley, {{0, 0}, {left.x0, 0}}},
+                                     {LineKind::Valley, {{left.x1, 0}, {right.x0, 0}}},
+                                     {LineKind::Valley, {{right.x1, 0}, {kWidth, 0}}}};
+  for (const Box& b : {left, right}) {
+    const std::vector<PlanPolyline> box = box_with_a_tip(b, run, in);
+    for (const PlanPolyline& line : box)
+      if (line.kind != LineKind::Outline && !(line.points[0].Y == 0 && line.points[1].Y == 0)) lines.push_back(line);
+  }
   for (PlanPolyline& line : lines)
-    if (line.kind == LineKind::Mountain) line.points[0].X = b.x1 - 4;  // the fold only under the tip
-  lines.push_back({LineKind::Cut, {{b.x0, b.h - b.d}, {b.x1 - 4, b.h - b.d}}});
+    if (line.kind == LineKind::Mountain && line.points[0].X == left.x0) line.points[0].X = left.x1 - 4;
+  lines.push_back({LineKind::Cut, {{left.x0, left.h - left.d}, {left.x1 - 4, left.h - left.d}}});
   const PlanAnalysis before = analyze_plan(lines, {.min_strip_mm = W});
-  ASSERT_TRUE(problems_of(before, PlanProblemKind::NarrowStrip).size() == 1u) << listing(before);
+  ASSERT_EQ(problems_of(before, PlanProblemKind::NarrowStrip).size(), 2u) << listing(before);
+  ASSERT_EQ(before.errors, 2) << listing(before);
   const TipRepair repaired = blunt_narrow_tips(lines, {.min_strip_mm = W});
-  EXPECT_EQ(repaired.tips, 0);
+  EXPECT_EQ(repaired.tips, 1);
+  const PlanAnalysis after = analyze_plan(repaired.lines, {.min_strip_mm = W});
+  const auto narrow = problems_of(after, PlanProblemKind::NarrowStrip);
+  ASSERT_EQ(narrow.size(), 1u) << listing(after);
+  EXPECT_EQ(narrow[0].from.X, left.x1 - in) << "the left tip stays";
+  EXPECT_EQ(after.errors, 1) << listing(after);
 }
 
 // A plan with every fold drawn as perforation cuts: 1 mm cuts, 1 mm gaps, `inset` mm clear of the

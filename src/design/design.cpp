@@ -97,12 +97,23 @@ bool inside(const PlanRegion& region, PlanPoint p) {
 // `before` (the plan's regions as supported) that holds the point its origin gives.
 std::vector<PlanRegion> regions_named(std::vector<PlanRegion> regions, const std::vector<PlanPoint>& origin,
                                       const std::vector<PlanRegion>& before) {
-  for (std::size_t i = 0; i < regions.size(); ++i)
+  for (std::size_t i = 0; i < regions.size(); ++i) {
+    PlanRegion& region = regions[i];
     for (const PlanRegion& old : before)
       if (inside(old, origin[i])) {
-        regions[i].face = old.face;
+        region.face = old.face;
         break;
       }
+    if (region.face >= 0) continue;
+    // The point rounded onto a boundary: the region of its plane with a corner nearest it.
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const PlanRegion& old : before)
+      if (old.orientation == region.orientation && std::abs(old.depth_mm - region.depth_mm) <= kFoldLineTolerance_mm)
+        for (const std::vector<PlanPoint>& ring : old.rings)
+          for (const PlanPoint& p : ring)
+            if (const double d = std::hypot(p.X - origin[i].X, p.Y - origin[i].Y); d < nearest)
+              nearest = d, region.face = old.face;
+  }
   return regions;
 }
 
@@ -124,7 +135,7 @@ void face_areas(Plan& plan) {
 // supported plan does; the places left are those of the plan kept, as its lines read back.
 void blunt_tips(DesignResult& result, const DesignOptions& options) {
   const double W = options.slice.min_strip_mm;
-  const Likeness supported = likeness(result.maps, card_view(result.maps.grid, result.plan), W);
+  const Likeness supported = likeness(result.maps, card_view(result.maps.grid, result.plan.regions, {}), W);
   // The picture is checked on the lines alone (the regions named later): a support shows its plane.
   const auto keep = [&](const std::vector<PlanPolyline>&, const PlanAnalysis& analysis) {
     const Likeness shown = likeness(result.maps, card_view(result.maps.grid, analysis.regions, {}), W);

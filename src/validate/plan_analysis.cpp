@@ -19,7 +19,7 @@
 #include <unordered_map>
 #include <utility>
 
-#include <CGAL/Arr_naive_point_location.h>
+#include <CGAL/Arr_batched_point_location.h>
 #include <CGAL/Arr_observer.h>
 
 #include "exact_kernel.hpp"
@@ -440,6 +440,23 @@ std::vector<Stretch> stretches_at(const std::vector<UvEdge>& edges, const FT& u)
   return out;
 }
 
+// The bounded face of the arrangement each point lies in (none on an edge or a vertex), located all
+// at once by a sweep.
+std::vector<std::optional<Face>> faces_at(const Arrangement& arr, const std::vector<Point>& points) {
+  std::vector<std::pair<Point, CGAL::Arr_point_location_result<Arrangement>::Type>> found;
+  CGAL::locate(arr, points.begin(), points.end(), std::back_inserter(found));
+  const auto before = [](const Point& a, const Point& b) { return CGAL::compare_xy(a, b) == CGAL::SMALLER; };
+  std::map<Point, Face, decltype(before)> face_of(before);
+  for (const auto& [p, where] : found)
+    if (const Face* f = boost::get<Face>(&where); f && !(*f)->is_unbounded()) face_of.emplace(p, *f);
+  std::vector<std::optional<Face>> out;
+  for (const Point& p : points) {
+    const auto it = face_of.find(p);
+    out.push_back(it == face_of.end() ? std::nullopt : std::optional<Face>(it->second));
+  }
+  return out;
+}
+
 // Closer than this a new cut's line and a vertex's are one in a file (its Y rounded from the sheet's
 // lower edge, about 1e-14 mm): far below any cutter, far above the rounding.
 constexpr double kHair_mm = 1e-9;
@@ -505,7 +522,9 @@ std::optional<Tip> tip_of(const std::vector<Ring>& rings, std::size_t region, bo
       }
       lo = next->lo->v_at(u1), hi = next->hi->v_at(u1);
     }
-    return w.end = End::Gone, w;
+    // Past the face's last vertex: it ends there, which must be within reach too.
+    w.end = CGAL::abs(us[static_cast<std::size_t>(step > 0 ? us.size() - 1 : 0)] - chord.at) <= reach ? End::Gone : End::Far;
+    return w;
   };
   const Walk down = walk(-1), up = walk(1);
   const auto widens = [](const Walk& w) { return w.end == End::Wide || w.end == End::Step; };
@@ -539,6 +558,16 @@ std::optional<Tip> tip_of(const std::vector<Ring>& rings, std::size_t region, bo
   return tip;
 }
 
+// How many points of the lines a file's rounding of Y (from the sheet's lower edge, `low`) makes
+// one with another: the design's own plans have a few (res_bunny: 1), which its reader takes as
+// drawn.
+std::size_t points_merged_in_files(const std::vector<PlanPolyline>& lines, double low) {
+  std::set<std::pair<double, double>> exact, filed;
+  for (const PlanPolyline& line : lines)
+    for (const PlanPoint& p : line.points) exact.emplace(p.X, p.Y), filed.emplace(p.X, (p.Y - low) + low);
+  return exact.size() - filed.size();
+}
+
 struct TipCutter {
   Analyzer& a;
   const TipRepairOptions& options;
@@ -551,7 +580,7 @@ struct TipCutter {
     Cut out;
     const FT W(options.min_strip_mm), wide = W + FT(options.margin_mm), reach(options.max_tip_mm);
     std::vector<Tip> tips;
-    std::vector<bool> has_tip(a.faces.size(), false);  // one tip a face a round: its narrowest
+    std::vector<bool> has_tip(a.faces.size(), false);  // one tip a face a round: along Y first
     for (std::size_t r = 0; r < a.faces.size(); ++r) {
       if (a.cut_out[r] || !a.place[r].placed) continue;
       for (const bool along_Y : {true, false}) {
@@ -611,20 +640,22 @@ struct TipCutter {
       ++folds_between[{he->twin()->face()->data(), he->face()->data()}];
     }
     // Each tip's face goes to its neighbour whose plane is nearest the face's own there.
-    CGAL::Arr_naive_point_location<Arrangement> locate(a.arr);
-    std::set<Arrangement::Face_const_handle> changed;
-    std::vector<std::pair<Arrangement::Face_const_handle, std::int32_t>> given;  // tip, its own face
-    for (const Tip& tip : tips) {
-      const Point inside = tip.along_Y ? Point(tip.inside_u, tip.inside_v) : Point(tip.inside_v, tip.inside_u);
-      const auto found = locate.locate(inside);
-      const Arrangement::Face_const_handle* f = boost::get<Arrangement::Face_const_handle>(&found);
-      if (!f || (*f)->is_unbounded() || (*f)->data() != static_cast<std::int32_t>(tip.region) || changed.contains(*f))
-        continue;
+    std::vector<Point> insides;
+    for (const Tip& tip : tips)
+      insides.push_back(tip.along_Y ? Point(tip.inside_u, tip.inside_v) : Point(tip.inside_v, tip.inside_u));
+    const std::vector<std::optional<Face>> tip_faces = faces_at(a.arr, insides);
+    // Which tips may go, decided on the labels as they are before any goes.
+    std::vector<bool> may_go(tips.size(), false);
+    std::set<Arrangement::Face_const_handle> seen;
+    for (std::size_t i = 0; i < tips.size(); ++i) {
+      const std::optional<Face>& f = tip_faces[i];
+      if (!f || (*f)->data() != static_cast<std::int32_t>(tips[i].region) || !seen.insert(*f).second) continue;
       // The cut must have parted a tip off, not left the face whole: a tip is at most its reach
       // long and `wide` across.
       double area = 0;
       for (const Ring& ring : rings_of(*f)) area += ring_area(ring);
-      if (!(area <= options.max_tip_mm * CGAL::to_double(wide)) || !(2 * area <= a.result.area_mm2[tip.region])) continue;
+      if (!(area <= options.max_tip_mm * CGAL::to_double(wide)) || !(2 * area <= a.result.area_mm2[tips[i].region]))
+        continue;
       std::map<std::int32_t, int> tip_folds;
       for (auto ccb = (*f)->outer_ccbs_begin(); ccb != (*f)->outer_ccbs_end(); ++ccb) {
         auto he = *ccb;
@@ -632,10 +663,17 @@ struct TipCutter {
           if (!he->twin()->face()->is_unbounded() && is_fold(he)) ++tip_folds[he->twin()->face()->data()];
         while (++he != *ccb);
       }
-      if (std::ranges::any_of(tip_folds, [&](const auto& g) {
-            return g.second == folds_between[{static_cast<std::int32_t>(tip.region), g.first}];
-          }))
-        continue;
+      may_go[i] = std::ranges::none_of(tip_folds, [&](const auto& g) {
+        return g.second == folds_between[{static_cast<std::int32_t>(tips[i].region), g.first}];
+      });
+    }
+    std::set<Arrangement::Face_const_handle> changed;
+    std::vector<std::pair<Arrangement::Face_const_handle, std::int32_t>> given;  // tip, its own face
+    for (std::size_t i = 0; i < tips.size(); ++i) {
+      if (!may_go[i]) continue;
+      const Tip& tip = tips[i];
+      const Point& inside = insides[i];
+      const std::optional<Face>& f = tip_faces[i];
       const Place& own = a.place[tip.region];
       const double Y = CGAL::to_double(inside.y());
       const double key = key_of_plane(own.orientation, CGAL::to_double(own.depth), Y);
@@ -675,7 +713,11 @@ struct TipCutter {
         if (!joined) a.arr.non_const_handle(t)->set_data(from), again = true;
       }
     }
-    for (const auto& [t, from] : given) out.tips += t->data() != from;
+    for (const auto& [t, from] : given)
+      if (t->data() != from)
+        ++out.tips;
+      else
+        changed.erase(t);  // back as it was: its lines are drawn as they were
     out.lines = lines_of(changed, first_new);
     return out;
   }
@@ -700,8 +742,12 @@ struct TipCutter {
       for (const std::int32_t d : he->curve().data()) fresh = fresh || d >= first_new;
       const PlanPoint p = point(he->source()->point()), q = point(he->target()->point());
       if (!fresh || up->is_unbounded() || down->is_unbounded()) {
+        // Each kind once: the sheet's outline is there twice (the plan's and the one collect adds).
+        std::set<LineKind> kinds;
         for (const std::int32_t d : he->curve().data())
-          if (d < first_new && !same(p, q)) segments.push_back({p, q, a.kind[static_cast<std::size_t>(d)]});
+          if (d < first_new) kinds.insert(a.kind[static_cast<std::size_t>(d)]);
+        if (!same(p, q))
+          for (const LineKind k : kinds) segments.push_back({p, q, k});
         continue;
       }
       if (up->data() == down->data()) continue;
@@ -759,16 +805,6 @@ struct TipCutter {
 
 bool is_error(PlanProblemKind kind) { return kind < PlanProblemKind::CutInsideFace; }
 
-// How many points of the lines a file's rounding of Y (from the sheet's lower edge, `low`) makes
-// one with another: the design's own plans have a few (res_bunny: 1), which its reader takes as
-// drawn.
-std::size_t points_merged_in_files(const std::vector<PlanPolyline>& lines, double low) {
-  std::set<std::pair<double, double>> exact, filed;
-  for (const PlanPolyline& line : lines)
-    for (const PlanPoint& p : line.points) exact.emplace(p.X, p.Y), filed.emplace(p.X, (p.Y - low) + low);
-  return exact.size() - filed.size();
-}
-
 TipRepair blunt_narrow_tips(const std::vector<PlanPolyline>& lines, const TipRepairOptions& options,
                             const TipRoundCheck& keep) {
   const AnalysisOptions analysis{.min_strip_mm = options.min_strip_mm};
@@ -787,7 +823,7 @@ TipRepair blunt_narrow_tips(const std::vector<PlanPolyline>& lines, const TipRep
   for (const PlanRegion& region : current->result.regions) out.origin.push_back(region.inside);
   for (int round = 0; round < options.rounds && narrow(current->result) > 0; ++round) {
     TipCutter::Cut cut = TipCutter{*current, options}.run();
-    const double low = current->result.sheet.min_Y;
+    const double low = current->result.sheet.min_Y + current->result.main_fold_Y;  // the drawing's frame
     if (cut.tips == 0 || points_merged_in_files(cut.lines, low) > points_merged_in_files(out.lines, low)) break;
     auto next = std::make_unique<Analyzer>(analysis);
     next->run(cut.lines);
@@ -795,15 +831,13 @@ TipRepair blunt_narrow_tips(const std::vector<PlanPolyline>& lines, const TipRep
         (keep && !keep(cut.lines, next->result)))
       break;
     // Each new region comes from the region of the cut arrangement its inside point lies in.
-    CGAL::Arr_naive_point_location<Arrangement> locate(current->arr);
+    std::vector<Point> insides;
+    for (const PlanRegion& region : next->result.regions) insides.emplace_back(region.inside.X, region.inside.Y);
+    const std::vector<std::optional<Face>> found = faces_at(current->arr, insides);
     std::vector<PlanPoint> origin;
-    for (const PlanRegion& region : next->result.regions) {
-      const auto found = locate.locate(Point(region.inside.X, region.inside.Y));
-      const Arrangement::Face_const_handle* f = boost::get<Arrangement::Face_const_handle>(&found);
-      origin.push_back(f && !(*f)->is_unbounded() && (*f)->data() >= 0
-                           ? out.origin[static_cast<std::size_t>((*f)->data())]
-                           : region.inside);
-    }
+    for (std::size_t i = 0; i < found.size(); ++i)
+      origin.push_back(found[i] && (*found[i])->data() >= 0 ? out.origin[static_cast<std::size_t>((*found[i])->data())]
+                                                          : next->result.regions[i].inside);
     out.origin = std::move(origin);
     out.lines = std::move(cut.lines);
     out.tips += cut.tips;
