@@ -151,7 +151,6 @@ TEST(DesignTips, TipsNarrowerThanWArePartedOffAndThePlanStillStands) {
   const DesignResult as_supported = design(LoadedMesh{.mesh = ball, .format = "obj"}, options);
   options.tip_rounds = DesignOptions{}.tip_rounds;
   const DesignResult blunted = design(LoadedMesh{.mesh = ball, .format = "obj"}, options);
-  EXPECT_EQ(as_supported.tips_parted, 0);
   EXPECT_GT(blunted.tips_parted, 0);
   EXPECT_LT(blunted.narrow_strips.size(), as_supported.narrow_strips.size());
   EXPECT_TRUE(plan_stands(blunted.plan, false));

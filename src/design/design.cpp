@@ -77,10 +77,8 @@ SupportedPlan supported_plan(const DesignResult& sliced, const DesignOptions& op
 // The places of a plan narrower than W (seed §4.4), measured on its lines exactly, both ways.
 std::vector<PlanProblem> narrow_places(const std::vector<PlanPolyline>& lines, double W) {
   std::vector<PlanProblem> narrow;
-  const auto drawn = [](const PlanPolyline& line) { return line.kind != LineKind::Outline; };
-  if (std::ranges::any_of(lines, drawn))
-    for (PlanProblem& problem : analyze_plan(lines, {.min_strip_mm = W}).problems)
-      if (problem.kind == PlanProblemKind::NarrowStrip) narrow.push_back(std::move(problem));
+  for (PlanProblem& problem : analyze_plan(lines, {.min_strip_mm = W}).problems)
+    if (problem.kind == PlanProblemKind::NarrowStrip) narrow.push_back(std::move(problem));
   return narrow;
 }
 
@@ -119,17 +117,11 @@ std::vector<PlanRegion> regions_named(std::vector<PlanRegion> regions, const std
   return regions;
 }
 
-// Each face's area, from the regions named by it.
-void face_areas(Plan& plan) {
+// Each face's area: the sum of its regions' (`area`, per region, as the analysis measured them).
+void face_areas(Plan& plan, const std::vector<double>& area) {
   for (PlanFace& face : plan.faces) face.area_mm2 = 0;
-  for (const PlanRegion& region : plan.regions) {
-    if (region.face < 0) continue;
-    double twice = 0;
-    for (const std::vector<PlanPoint>& ring : region.rings)
-      for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
-        twice += ring[j].X * ring[i].Y - ring[i].X * ring[j].Y;
-    plan.faces[static_cast<std::size_t>(region.face)].area_mm2 += twice / 2;
-  }
+  for (std::size_t i = 0; i < plan.regions.size(); ++i)
+    if (plan.regions[i].face >= 0) plan.faces[static_cast<std::size_t>(plan.regions[i].face)].area_mm2 += area[i];
 }
 
 // Issue 23: the tips of faces narrower than W parted off on the exact plan (blunt_narrow_tips),
@@ -154,7 +146,7 @@ void blunt_tips(DesignResult& result, const DesignOptions& options) {
   plan.regions = regions_named(std::move(repaired.analysis.regions), repaired.origin, plan.regions);
   plan.cut_mm = repaired.analysis.cut_mm, plan.mountain_mm = repaired.analysis.mountain_mm;
   plan.valley_mm = repaired.analysis.valley_mm;
-  face_areas(plan);
+  face_areas(plan, repaired.analysis.area_mm2);
   result.tips_parted = repaired.tips;
 }
 
@@ -216,10 +208,12 @@ void design_loaded(LoadedMesh loaded, const std::filesystem::path& model_file, c
   // plan's folds and cuts leave between them is measured on the plan itself, exactly, both ways.
   starting("strip widths and likeness");
   const auto drawn = [](const PlanPolyline& line) { return line.kind != LineKind::Outline; };
-  if (options.tip_rounds > 0 && std::ranges::any_of(result.plan.lines, drawn))
-    blunt_tips(result, options);
-  else
-    result.narrow_strips = narrow_places(result.plan.lines, options.slice.min_strip_mm);
+  if (std::ranges::any_of(result.plan.lines, drawn)) {
+    if (options.tip_rounds > 0)
+      blunt_tips(result, options);
+    else
+      result.narrow_strips = narrow_places(result.plan.lines, options.slice.min_strip_mm);
+  }
   clock.lap("narrow strips");
   result.card = card_view(result.maps.grid, result.plan);
   result.likeness = likeness(result.maps, result.card, W);
