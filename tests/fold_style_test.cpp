@@ -106,6 +106,24 @@ TEST(FoldStyle, AFoldShorterThanTwoInsetsKeepsItsMiddleThird) {
   EXPECT_NEAR(spans[0].to, 100.25 + 1.0 / 3, 1e-12);
 }
 
+// A fold from X = 10 to 16 that a cut meets from above at X = 13 and runs along 0.05 mm above from
+// there to its end: a reader parts the fold at X = 13, so its right stretch, blocked whole, keeps
+// its middle third, and the left its perforation in the middle of its run.
+TEST(FoldStyle, AStretchOfAFoldBlockedWholeBetweenTwoOfItsPointsKeepsItsMiddleThird) {
+  const PlanPolyline fold{LineKind::Valley, {{10, 0}, {13, 0}, {16, 0}}};
+  const std::vector<PlanPolyline> cuts = {{LineKind::Cut, {{10, -5}, {10, 0}}},
+                                          {LineKind::Cut, {{13, 0}, {13, 0.05}, {16, 0.05}, {16, 5}}},
+                                          {LineKind::Cut, {{16, 0}, {16, -5}}}};
+  FoldStyleOptions options;
+  options.style = FoldStyle::Perforated;
+  const std::vector<Span> spans = spans_of(draw_fold(fold, cuts, options));
+  ASSERT_EQ(spans.size(), 2u);
+  EXPECT_NEAR(spans[0].from, 11, 1e-12);  // the run 10.5 to 12.5, its 1 mm cut in the middle
+  EXPECT_NEAR(spans[0].to, 12, 1e-12);
+  EXPECT_NEAR(spans[1].from, 14, 1e-12);
+  EXPECT_NEAR(spans[1].to, 15, 1e-12);
+}
+
 TEST(FoldStyle, DashedFoldsStartAndEndWithAWholeDashAndShowTheirKind) {
   FoldStyleOptions options;
   options.style = FoldStyle::Dashed;

@@ -430,6 +430,47 @@ TEST(TipRepair, ATipHoldingAllItsFaceFoldsWithANeighbourStaysAndTheOthersGo) {
   EXPECT_EQ(after.errors, 1) << listing(after);
 }
 
+TEST(TipRepair, ATipGoesOnlyToAFaceWhosePlaneKeepsItOnTheCard) {
+  // The left box stands 2 mm in front of the back plane; its front face ends on the right in a tip
+  // over the floor fold, slanting up 1 mm a mm, 2 mm high where the main fold ends on it. Parted off
+  // where the face is W + margin high, the tip would reach from Y = -2 to 1.01: the floor, whose
+  // plane lies nearest the tip's, would hold it 1.01 mm behind the back plane, and the back plane 2 mm
+  // under the floor, so it stays. The right box's tip goes to its front face in the same round.
+  const Box left{.d = 2, .h = 20, .x0 = 20, .x1 = 90}, right{.d = 10, .h = 61.7, .x0 = 120, .x1 = 190};
+  const double run = 20, W = 3;
+  const double slant_at_0 = left.x1 - 2;  // where the slanted side crosses the main fold
+  std::vector<PlanPolyline> lines = {
+      {LineKind::Outline, {{0, -kHalf}, {kWidth, -kHalf}, {kWidth, kHalf}, {0, kHalf}, {0, -kHalf}}},
+      {LineKind::Valley, {{0, 0}, {left.x0, 0}}},
+      {LineKind::Valley, {{slant_at_0, 0}, {right.x0, 0}}},
+      {LineKind::Valley, {{right.x1, 0}, {kWidth, 0}}},
+      {LineKind::Cut, {{left.x0, -left.d}, {left.x0, left.h}}},
+      {LineKind::Valley, {{left.x0, -left.d}, {left.x1, -left.d}}},
+      {LineKind::Mountain, {{left.x0, left.h - left.d}, {left.x1 - run, left.h - left.d}}},
+      {LineKind::Cut, {{left.x1 - run, left.h - left.d}, {left.x1, left.h - left.d}, {left.x1, left.h}}},
+      {LineKind::Valley, {{left.x0, left.h}, {left.x1, left.h}}},
+      {LineKind::Cut, {{left.x1, -left.d}, {left.x1 - run, left.h - left.d}}}};
+  for (const PlanPolyline& line : box_with_a_tip(right, run, 2))
+    if (line.kind != LineKind::Outline && !(line.points[0].Y == 0 && line.points[1].Y == 0)) lines.push_back(line);
+  const PlanAnalysis before = analyze_plan(lines, {.min_strip_mm = W});
+  // The two tips and the left box's top, 2 mm deep all along.
+  ASSERT_EQ(problems_of(before, PlanProblemKind::NarrowStrip).size(), 3u) << listing(before);
+  ASSERT_EQ(before.errors, 3) << listing(before);
+  const TipRepair repaired = blunt_narrow_tips(lines, {.min_strip_mm = W});
+  EXPECT_EQ(repaired.tips, 1);
+  const PlanAnalysis after = analyze_plan(repaired.lines, {.min_strip_mm = W});
+  EXPECT_TRUE(problems_of(after, PlanProblemKind::OutsideCard).empty()) << listing(after);
+  const auto narrow = problems_of(after, PlanProblemKind::NarrowStrip);
+  ASSERT_EQ(narrow.size(), 2u) << listing(after);
+  EXPECT_EQ(after.errors, 2) << listing(after);
+  EXPECT_TRUE(std::ranges::any_of(narrow, [&](const PlanProblem& p) { return p.from.X == slant_at_0; }))
+      << "the left tip stays";
+  const std::int32_t tip = region_at(after, {left.x1 - 0.5, -1.8});
+  ASSERT_GE(tip, 0);
+  EXPECT_EQ(after.regions[static_cast<std::size_t>(tip)].orientation, Orientation::V);
+  EXPECT_EQ(after.regions[static_cast<std::size_t>(tip)].depth_mm, left.d);
+}
+
 // A plan with every fold drawn as perforation cuts: 1 mm cuts, 1 mm gaps, `inset` mm clear of the
 // fold's ends, as `--fold-style perforated` draws them.
 std::vector<PlanPolyline> perforated(const std::vector<PlanPolyline>& plan, double inset = 0.5) {

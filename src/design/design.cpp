@@ -94,25 +94,33 @@ bool inside(const PlanRegion& region, PlanPoint p) {
 }
 
 // The regions of a repaired plan, each named by the design's face it is part of: the face of
-// `before` (the plan's regions as supported) that holds the point its origin gives.
+// `before` (the plan's regions as supported) that holds the point its origin gives. A region takes
+// its face's plane as the design has it: placed from the lines, as doubles, its depth can be an ulp
+// off (seedlike/capitol: 9 of its regions).
 std::vector<PlanRegion> regions_named(std::vector<PlanRegion> regions, const std::vector<PlanPoint>& origin,
                                       const std::vector<PlanRegion>& before) {
+  const auto same_plane = [](const PlanRegion& a, const PlanRegion& b) {
+    return a.orientation == b.orientation && std::abs(a.depth_mm - b.depth_mm) <= kFoldLineTolerance_mm;
+  };
   for (std::size_t i = 0; i < regions.size(); ++i) {
     PlanRegion& region = regions[i];
     for (const PlanRegion& old : before)
       if (inside(old, origin[i])) {
         region.face = old.face;
+        if (same_plane(region, old)) region.depth_mm = old.depth_mm;
         break;
       }
     if (region.face >= 0) continue;
     // The point rounded onto a boundary: the region of its plane with a corner nearest it.
     double nearest = std::numeric_limits<double>::infinity();
+    double depth = region.depth_mm;
     for (const PlanRegion& old : before)
-      if (old.orientation == region.orientation && std::abs(old.depth_mm - region.depth_mm) <= kFoldLineTolerance_mm)
+      if (same_plane(region, old))
         for (const std::vector<PlanPoint>& ring : old.rings)
           for (const PlanPoint& p : ring)
             if (const double d = std::hypot(p.X - origin[i].X, p.Y - origin[i].Y); d < nearest)
-              nearest = d, region.face = old.face;
+              nearest = d, region.face = old.face, depth = old.depth_mm;
+    region.depth_mm = depth;
   }
   return regions;
 }
