@@ -334,6 +334,12 @@ std::vector<PlanPolyline> box_with_a_tip(const Box& b, double run, double in) {
   return lines;
 }
 
+// A box's lines, but for the sheet's outline and the main fold, added to a plan of several boxes.
+void add_box(std::vector<PlanPolyline>& lines, const std::vector<PlanPolyline>& box) {
+  for (const PlanPolyline& line : box)
+    if (line.kind != LineKind::Outline && !(line.points[0].Y == 0 && line.points[1].Y == 0)) lines.push_back(line);
+}
+
 TEST(TipRepair, ATipNarrowerThanWIsPartedOffWhereTheFaceIsWWide) {
   const Box b{.d = 10};
   const double run = 20, in = 2, W = 3, margin = 0.01;
@@ -410,11 +416,7 @@ TEST(TipRepair, ATipHoldingAllItsFaceFoldsWithANeighbourStaysAndTheOthersGo) {
                                      {LineKind::Valley, {{0, 0}, {left.x0, 0}}},
                                      {LineKind::Valley, {{left.x1, 0}, {right.x0, 0}}},
                                      {LineKind::Valley, {{right.x1, 0}, {kWidth, 0}}}};
-  for (const Box& b : {left, right}) {
-    const std::vector<PlanPolyline> box = box_with_a_tip(b, run, in);
-    for (const PlanPolyline& line : box)
-      if (line.kind != LineKind::Outline && !(line.points[0].Y == 0 && line.points[1].Y == 0)) lines.push_back(line);
-  }
+  for (const Box& b : {left, right}) add_box(lines, box_with_a_tip(b, run, in));
   for (PlanPolyline& line : lines)
     if (line.kind == LineKind::Mountain && line.points[0].X == left.x0) line.points[0].X = left.x1 - 4;
   lines.push_back({LineKind::Cut, {{left.x0, left.h - left.d}, {left.x1 - 4, left.h - left.d}}});
@@ -450,8 +452,7 @@ TEST(TipRepair, ATipGoesOnlyToAFaceWhosePlaneKeepsItOnTheCard) {
       {LineKind::Cut, {{left.x1 - run, left.h - left.d}, {left.x1, left.h - left.d}, {left.x1, left.h}}},
       {LineKind::Valley, {{left.x0, left.h}, {left.x1, left.h}}},
       {LineKind::Cut, {{left.x1, -left.d}, {left.x1 - run, left.h - left.d}}}};
-  for (const PlanPolyline& line : box_with_a_tip(right, run, 2))
-    if (line.kind != LineKind::Outline && !(line.points[0].Y == 0 && line.points[1].Y == 0)) lines.push_back(line);
+  add_box(lines, box_with_a_tip(right, run, 2));
   const PlanAnalysis before = analyze_plan(lines, {.min_strip_mm = W});
   // The two tips and the left box's top, 2 mm deep all along.
   ASSERT_EQ(problems_of(before, PlanProblemKind::NarrowStrip).size(), 3u) << listing(before);
