@@ -460,6 +460,9 @@ std::vector<std::optional<Face>> faces_at(const Arrangement& arr, const std::vec
 // Closer than this a new cut's line and a vertex's are one in a file (its Y rounded from the sheet's
 // lower edge, about 1e-14 mm): far below any cutter, far above the rounding.
 constexpr double kHair_mm = 1e-9;
+// A new cut's line goes no nearer another vertex's line of its face than this, a hundredth of a
+// millimetre (below any cutter's kerf), or onto it.
+constexpr double kSliver_mm = 0.01;
 
 // A tip of a face: where the cut across it goes (at u, from v_lo to v_hi) and a point inside it.
 struct Tip {
@@ -472,7 +475,7 @@ struct Tip {
 // Walks across the chord of a face narrower than W: one way the face must end within `reach`, the
 // other it must widen to `wide`; the tip is cut where it does.
 std::optional<Tip> tip_of(const std::vector<Ring>& rings, std::size_t region, bool along_Y, const Chord& chord,
-                          const FT& wide, const FT& reach) {
+                          const FT& W, const FT& wide, const FT& reach) {
   std::vector<UvEdge> edges;
   std::vector<FT> us;
   for (const Ring& ring : rings)
@@ -540,14 +543,20 @@ std::optional<Tip> tip_of(const std::vector<Ring>& rings, std::size_t region, bo
     if (!inside) return std::nullopt;
     return Tip{region, along_Y, wide_side.u, wide_side.v_lo, wide_side.v_hi, inside->first, inside->second};
   }
-  // The cut at a double, so that its ends on the face's sides are where the lines are drawn; not a
-  // hair from another vertex's line, where the files' rounding could lay it on that vertex.
-  const FT u = nearest_double(wide_side.u);
+  // The cut at a double, so that its ends on the face's sides are where the lines are drawn. Within
+  // kSliver_mm of another vertex's line it would part a sliver that thin off the face (capitol: a
+  // cut 0.00018 mm beside another): it goes on that line, past it or short of it while the face is
+  // W wide there, or nowhere.
+  FT u = nearest_double(wide_side.u);
   const auto near = std::lower_bound(us.begin(), us.end(), u);
   for (const auto it : {near, near == us.begin() ? near : near - 1})
-    if (it != us.end() && *it != u && CGAL::abs(*it - u) < FT(kHair_mm)) return std::nullopt;
+    if (it != us.end() && *it != u && CGAL::abs(*it - u) < FT(kSliver_mm)) {
+      const bool past = (*it - u) * (u - chord.at) > 0;
+      if (!past && !(wide_side.hi->v_at(*it) - wide_side.lo->v_at(*it) >= W)) return std::nullopt;
+      u = *it;
+    }
   if ((u - chord.at) * (wide_side.u - chord.at) <= 0 || (cut_up ? u < wide_side.lo->u0 : u > wide_side.lo->u1) ||
-      u <= CGAL::max(wide_side.lo->u0, wide_side.hi->u0) || u >= CGAL::min(wide_side.lo->u1, wide_side.hi->u1))
+      u < CGAL::max(wide_side.lo->u0, wide_side.hi->u0) || u > CGAL::min(wide_side.lo->u1, wide_side.hi->u1))
     return std::nullopt;
   Tip tip{region, along_Y, u, wide_side.lo->v_at(u), wide_side.hi->v_at(u), 0, 0};
   const auto& inside = tip_side.first_inside ? tip_side.first_inside : wide_side.first_inside;
@@ -588,7 +597,7 @@ struct TipCutter {
         int narrow = 0;
         const std::optional<Chord> chord = narrowest_chord(a.rings[r], along_Y, W, narrow);
         if (!chord) continue;
-        if (std::optional<Tip> tip = tip_of(a.rings[r], r, along_Y, *chord, wide, reach))
+        if (std::optional<Tip> tip = tip_of(a.rings[r], r, along_Y, *chord, W, wide, reach))
           tips.push_back(*tip), has_tip[r] = true;
       }
     }
