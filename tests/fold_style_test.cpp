@@ -122,6 +122,17 @@ TEST(FoldStyle, AStretchOfAFoldBlockedWholeBetweenTwoOfItsPointsKeepsItsMiddleTh
   EXPECT_NEAR(spans[0].to, 12, 1e-12);
   EXPECT_NEAR(spans[1].from, 14, 1e-12);
   EXPECT_NEAR(spans[1].to, 15, 1e-12);
+
+  // With the cut 0.05 mm above the whole fold, both stretches are blocked whole: each keeps its own
+  // middle third, and none spans the point at X = 13.
+  const std::vector<PlanPolyline> above = {{LineKind::Cut, {{10, 5}, {10, 0.05}, {16, 0.05}, {16, 5}}},
+                                           {LineKind::Cut, {{13, 0}, {13, 0.05}}}};
+  const std::vector<Span> both = spans_of(draw_fold(fold, above, options));
+  ASSERT_EQ(both.size(), 2u);
+  EXPECT_NEAR(both[0].from, 11, 1e-12);
+  EXPECT_NEAR(both[0].to, 12, 1e-12);
+  EXPECT_NEAR(both[1].from, 14, 1e-12);
+  EXPECT_NEAR(both[1].to, 15, 1e-12);
 }
 
 TEST(FoldStyle, DashedFoldsStartAndEndWithAWholeDashAndShowTheirKind) {

@@ -52,10 +52,12 @@ struct DrawnPlan {
   FoldStyle style = FoldStyle::Score;
   std::vector<DrawnLine> lines;  // in plan order; writers group them by kLayerOrder
   double fold_mm = 0;            // length of every fold polyline
-  double inset_removed_mm = 0;   // perforated: fold length within the inset of a cut (not perforated)
+  double inset_removed_mm = 0;   // perforated: fold length within the inset of a cut (perforated only
+                                 // where a stretch between two of the fold's points is in it whole)
   double perforated_mm = 0;      // perforated: total length of the perforation cuts
   int perforations = 0;          // perforated: number of perforation cuts
-  int perforated_runs = 0;       // perforated: stretches of fold between insets, each laid out alone
+  int perforated_runs = 0;       // perforated: stretches of fold between insets, each laid out alone,
+                                 // and stretches in the insets whole, each given its middle third
 };
 
 /// The printed pattern of a fold kind in mm, on/off from a dash: valley dashed {2, 1} (period

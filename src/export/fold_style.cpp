@@ -179,10 +179,6 @@ Perforation perforate(const PlanPolyline& fold, const std::vector<double>& s, La
                       std::span<const PlanPolyline> cuts, const FoldStyleOptions& options) {
   const double cut = options.perf_cut_mm, gap = options.perf_gap_mm;
   std::vector<Interval> runs = complement(near_cuts(fold, s, cuts, options.inset_mm), s.back());
-  // A fold shorter than two insets is blocked whole: it keeps one perforation, its middle third, or
-  // it would vanish from the plan and its two faces read as one (0.5 mm folds on the capitol).
-  if (runs.empty() && s.back() > kNegligible_mm)
-    return {.lines = {{layer, piece(fold.points, s, s.back() / 3, 2 * s.back() / 3), {}}}, .runs_mm = 0, .runs = 1};
   Perforation perforation;
   for (const auto& [from, to] : runs) {
     const double L = to - from;
@@ -200,9 +196,10 @@ Perforation perforate(const PlanPolyline& fold, const std::vector<double>& s, La
       perforation.lines.push_back({layer, piece(fold.points, s, a, b), {}});
     }
   }
-  // So must a stretch between two of its points (where other lines meet it) blocked whole: a reader
-  // parts the fold where a cut reaches its line (capitol: a cut 0.056 mm above a valley's stretch
-  // between two such points, and the faces either side read as one).
+  // A stretch of the fold between two of its points (where other lines meet it) that the insets
+  // block whole keeps one perforation, its middle third, or it would vanish from the plan and the
+  // faces either side read as one: a reader parts a fold where a cut reaches its line (0.5 mm folds
+  // between two cuts on the capitol; a valley's stretch with a cut 0.056 mm above it).
   for (std::size_t i = 1; i < s.size(); ++i)
     if (s[i] - s[i - 1] > kNegligible_mm &&
         std::ranges::none_of(runs, [&](const Interval& run) { return run.first < s[i] && run.second > s[i - 1]; })) {
