@@ -701,7 +701,7 @@ struct TipCutter {
       const double key = key_of_plane(own.orientation, CGAL::to_double(own.depth), Y);
       // A neighbour's plane must keep the tip on the card: a V(d) face's points at height Y + d >= 0,
       // an H(h) face's at depth h - Y >= 0. (Given regardless, a tip poked through the back plane
-      // or the floor in 27 of the 37 models' rounds at W = 3 mm, and each such round was refused.)
+      // or the floor in 27 rounds over the 37 models at W = 3 mm, and each such round was refused.)
       FT lowest = (*f)->outer_ccb()->source()->point().y(), highest = lowest;
       for (auto ccb = (*f)->outer_ccbs_begin(); ccb != (*f)->outer_ccbs_end(); ++ccb) {
         auto he = *ccb;
