@@ -173,9 +173,8 @@ TEST(DesignTips, TipsNarrowerThanWArePartedOffAndThePlanStillStands) {
   for (const PlanRegion& region : blunted.plan.regions) {
     ASSERT_GE(region.face, 0);
     const PlanFace& face = blunted.plan.faces[static_cast<std::size_t>(region.face)];
-    if (region.orientation == face.orientation) {
-      EXPECT_EQ(region.depth_mm, face.depth_mm);
-    }
+    EXPECT_EQ(region.orientation, face.orientation);
+    EXPECT_EQ(region.depth_mm, face.depth_mm);
   }
   double area = 0;
   for (const PlanFace& face : blunted.plan.faces) area += face.area_mm2;
