@@ -487,12 +487,13 @@ TEST(Plan, ACrumbCutOutIsARemovedRegionOfTheDesign) {
 // the Menger slice passed 0.02 mm beside a fold's end and left a face of the arrangement no label had
 // a majority of; its lines read back with a fold inside a face and folds joining two V faces. The
 // chains round such a face now fall back as crossing chains do, and the lines read back as built.
+// The Menger slice's supports have since changed; arch_one_wtc at the default options has such a
+// face in its plan kept, and two chains round it unsimplified.
 TEST(Plan, AFaceNoLabelHoldsMakesTheChainsRoundItFallBack) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   DesignOptions options;
   options.placement.up = UpAxis::Z;
-  options.slice.min_strip_mm = 2;
-  const DesignResult r = design(test::models_dir() / "csg_menger_slice.stl", options);
+  const DesignResult r = design(test::models_dir() / "arch_one_wtc.obj", options);
   ASSERT_TRUE(plan_stands(r.plan, false));
   EXPECT_EQ(r.plan.label_conflicts, 0);
   EXPECT_GE(r.plan.raw_chains, 1) << "the case this test is about: chains left unsimplified";

@@ -456,16 +456,34 @@ TEST(Supports, AFaceNoSupportHoldsJoinsTheNeighbourNearestTheModelRatherThanLeav
   EXPECT_GE(r.likeness.coverage, 0.99);
 }
 
-// The sphere's rim crumbs that no support holds (7, each under 1 % of the model) are given away
-// together, as the support loop's last resort: 3 exact plans judge the loop, where giving them a
-// quarter at a time (one or two a step, each step a pass of rounds) took 8. The sphere still stands
-// with no hole.
+// A face is cut out for its cost only where holding it would cost the picture more than its hole.
+// The church's two roof faces at W = 2 mm were each costly beside a join into the other: the first
+// went into the second, which then had no join as cheap as its hole and was cut out, though an ear
+// held it for a sixteenth of its hole (15.7% of the model cut out, p95 30 W). It is held now.
+TEST(Supports, AFaceHeldForLessThanItsHoleIsNotCutOut) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  DesignOptions options;
+  options.placement.up = UpAxis::Y;
+  options.slice.min_strip_mm = 2;
+  const DesignResult r = design(test::models_dir() / "arch_church.obj", options);
+  expect_exact_and_standing(r.plan);
+  for (const CutOutFace& face : r.supports.cut_out_faces)
+    if (face.hold_cost >= 0) EXPECT_GT(face.hold_cost, face.hole_cost) << face.reason << " at " << face.at.X;
+  EXPECT_LT(r.likeness.cut_out_share, 0.01);
+  EXPECT_LT(r.likeness.p95_W, 3);
+}
+
+// The sphere's rim crumbs that no support holds (6, each under 1 % of the model) are given away
+// together, as the support loop's last resort, where giving them a quarter at a time (one or two a
+// step, each step a pass of rounds) took 8 exact plans to judge the loop. Now 4 do: the first
+// verdicts, the crumbs given away in one step, and one face those joins left without its support
+// given away after them. The sphere still stands with no hole.
 TEST(Supports, CrumbsNoSupportHoldsAreGivenAwayTogether) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   const DesignResult r = standing_design("seedlike/sphere.stl");
   EXPECT_EQ(r.supports.cut_out, 0);
   EXPECT_TRUE(r.supports.converged);
-  EXPECT_LE(r.supports.exact_builds, 3);
+  EXPECT_LE(r.supports.exact_builds, 4);
   EXPECT_GE(r.likeness.coverage, 0.99);
 }
 
@@ -523,7 +541,7 @@ SlicedBox sliced_box() {
 // A box before the back plane: its front V(40) and its top H(50) are each other's only neighbours
 // but the back plane and the floor, which take nothing (a hole shows them). Given to the top, the
 // front would show the model 20 - 2Y mm off at plan height Y (the top's key 100 - Y against the
-// front's Y + 80), capped at 2 W; a hole shows it |Y| - Y - 80 off, capped, and 2 W more.
+// front's Y + 80); a hole shows it |Y| - Y - 80 off, and 2 W more: each counted in full.
 TEST(Supports, AFaceJoinsTheNeighbourWhosePlaneShowsTheModelBestAndCostsWhatItAdds) {
   const auto [maps, raster_plan, front, top] = sliced_box();
   ASSERT_EQ(raster_plan.faces.size(), 4u);
@@ -534,14 +552,14 @@ TEST(Supports, AFaceJoinsTheNeighbourWhosePlaneShowsTheModelBestAndCostsWhatItAd
   EXPECT_EQ(joins[0].into, top);
   EXPECT_EQ(joins[1].into, front);
   // The expected sums, pixel by pixel, in mm of error times mm² of plan.
-  const double W = 3, cap = 2 * W, pixel_mm2 = 1 / (maps.grid.px_per_mm * maps.grid.px_per_mm);
+  const double W = 3, pixel_mm2 = 1 / (maps.grid.px_per_mm * maps.grid.px_per_mm);
   double joined = 0, hole = 0;
   for (int r = 0; r < maps.grid.rows; ++r)
     for (int c = 0; c < maps.grid.cols; ++c)
       if (raster_plan.face(c, r) == front) {
         const double Y = maps.grid.Y(r);
-        joined += std::min(cap, std::abs(20 - 2 * Y)) * pixel_mm2;
-        hole += (std::min(cap, std::abs(std::abs(Y) - Y - 80)) + 2 * W) * pixel_mm2;
+        joined += std::abs(20 - 2 * Y) * pixel_mm2;
+        hole += (std::abs(std::abs(Y) - Y - 80) + 2 * W) * pixel_mm2;
       }
   EXPECT_NEAR(joins[0].error, joined, 1e-3 * joined);
   EXPECT_NEAR(picture.hole_error(front), hole, 1e-3 * hole);
@@ -555,8 +573,8 @@ TEST(Supports, AFaceJoinsTheNeighbourWhosePlaneShowsTheModelBestAndCostsWhatItAd
 // Where every neighbour's plane is wrong over all of a face, the face joins the least wrong. The
 // box's top is split at its middle into H(90) on the left, which the front's first pixel meets
 // first, and H(65) on the right. Over the front (key Y + 80, Y from -40 to 10) they are 100 - 2Y and
-// 50 - 2Y mm off, beyond the 2 W cap everywhere: each adds the cap at every pixel, and only how
-// far beyond it tells them apart.
+// 50 - 2Y mm off, over 2 W everywhere. Each counts in full, so the nearer wins though it comes
+// second (counted up to a cap of 2 W, as they once were, both would cost the same).
 TEST(Supports, AFaceWhoseNeighboursAreAllWrongJoinsTheLeastWrong) {
   auto [maps, raster_plan, front, top] = sliced_box();
   ASSERT_EQ(raster_plan.faces.size(), 4u);
@@ -576,14 +594,14 @@ TEST(Supports, AFaceWhoseNeighboursAreAllWrongJoinsTheLeastWrong) {
   const std::vector<std::int32_t> faces = {front};
   const SupportPicture::Join join = picture.nearest_joins(raster_plan, faces).front();
   EXPECT_EQ(join.into, near_right);
-  // What it adds is the cap at every pixel, less what the front shows there now (its own plane).
-  const double cap = 2 * 3.0, pixel_mm2 = 1 / (maps.grid.px_per_mm * maps.grid.px_per_mm);
+  // What it adds is H(65)'s error at every pixel, less what the front shows there now (its own plane).
+  const double pixel_mm2 = 1 / (maps.grid.px_per_mm * maps.grid.px_per_mm);
   double added = 0;
   for (int r = 0; r < maps.grid.rows; ++r)
     for (int c = 0; c < maps.grid.cols; ++c)
       if (raster_plan.face(c, r) == front && maps.kind(c, r) == HitKind::Model) {
         const double model = maps.h_mm(c, r) + maps.d_mm(c, r), Y = maps.grid.Y(r);
-        added += (cap - std::min(cap, std::abs(Y + 80 - model))) * pixel_mm2;
+        added += (std::abs(130 - Y - model) - std::abs(Y + 80 - model)) * pixel_mm2;
       }
   EXPECT_NEAR(join.error, added, 1e-3 * added);
 }
@@ -672,10 +690,15 @@ TEST(Supports, AFeatureLostWholeCostsTheMeanErrorAndTheOtherFramesChoiceGetsItsT
 
 // Passes of rounds that held nothing are undone: the slices go back to those of the last exact
 // verdict. The plan kept must be the exact plan of the slices kept, built afresh: no pass, undone
-// or not, may leave them apart.
+// or not, may leave them apart. (Tips parted off after the supports change the lines, not the
+// slices: the plan here is the plan as supported.)
 TEST(Supports, ThePlanKeptIsTheExactPlanOfTheSlicesKept) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
-  const DesignResult r = standing_design("seedlike/sphere.stl");
+  DesignOptions options;
+  options.placement.up = UpAxis::Z;
+  options.tip_rounds = 0;
+  const DesignResult r = design(test::models_dir() / "seedlike/sphere.stl", options);
+  expect_exact_and_standing(r.plan);
   ASSERT_GT(r.supports.passes_undone, 0) << "a design with undone passes";
   const Plan fresh = build_plan(r.maps, r.raster_plan, DesignOptions{}.sheet, PlanOptions{});
   EXPECT_EQ(fresh.validity.status, r.plan.validity.status);

@@ -106,12 +106,12 @@ std::vector<PlanRegion> regions_named(std::vector<PlanRegion> regions, const std
     PlanRegion& region = regions[i];
     for (const PlanRegion& old : before)
       if (inside(old, origin[i])) {
-        region.face = old.face;
-        if (same_plane(region, old)) region.depth_mm = old.depth_mm;
+        if (same_plane(region, old)) region.face = old.face, region.depth_mm = old.depth_mm;
         break;
       }
     if (region.face >= 0) continue;
-    // The point rounded onto a boundary: the region of its plane with a corner nearest it.
+    // The point rounded onto a boundary, or in a tip its region took from a face of another plane:
+    // the region of its plane with a corner nearest it.
     double nearest = std::numeric_limits<double>::infinity();
     double depth = region.depth_mm;
     for (const PlanRegion& old : before)

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Internal: what a support does to the picture (likeness.hpp). On every model pixel it covers, the
 // card shows the support's plane instead of the face there: the support adds the error of its plane
-// less the error of that face, each counted up to a cap (support_picture.cpp). Off the model it adds
+// less the error of that face, each in full (support_picture.cpp). Off the model it adds
 // nothing: there it covers the back plane, the floor, or paper the 45-degree view does not compare
 // (under an overhang, behind a face).
 #pragma once
@@ -33,8 +33,8 @@ class SupportPicture {
   struct PixelBox {
     int c0, c1, r0, r1;  // pixels [c0, c1) x [r0, r1)
   };
-  /// The error a face of this plane would add over the pixels of the box, in mm of h + d (capped)
-  /// times mm² of plan (negative where it would show the model better than what is there).
+  /// The error a face of this plane would add over the pixels of the box, in mm of h + d times mm²
+  /// of plan (negative where it would show the model better than what is there).
   double added_error(Orientation orientation, double depth_mm, PixelBox box) const;
 
   /// The error cutting face f out of the sheet would add: through the hole the back plane shows
@@ -43,8 +43,8 @@ class SupportPicture {
 
   /// Where face f would best go when no support holds it: the neighbour (not the back plane, the
   /// floor, a hole, a support or a face in `not_into`) whose plane shows the model over f best (the
-  /// least error added up to the cap, and a little for how far beyond it) and stays on the card
-  /// there (on_card), and the error giving f to it would add, as hole_error; none
+  /// least error added) and stays on the card there (on_card), and the error giving f to it would
+  /// add, as hole_error; none
   /// (-1, infinite) where no neighbour's plane can. One entry per face of `faces`.
   struct Join {
     std::int32_t into = -1;
@@ -66,26 +66,24 @@ class SupportPicture {
  private:
   const RasterMaps& maps_;
   const PixelGrid& grid_;
-  float cap_mm_, hole_extra_mm_;
+  float hole_extra_mm_;
   int c0_ = 0, r0_ = 0;             // the model's first column and row: the tables start there
   Grid<float> model_key_;           // h + d of the model, NaN off it
-  Grid<float> error_;               // |key of the face there - model key| up to the cap, 0 off the model
+  Grid<float> error_;               // |key of the face there - model key|, 0 off the model
   std::vector<double> hole_error_;  // per face
   // The faces a join may give to (not the back plane, the floor, a hole, a support or one of
   // `not_into`); the best of `neighbours` over `pixels`.
   std::vector<std::uint8_t> join_targets(const RasterPlan& raster_plan, std::span<const std::int32_t> not_into) const;
   Join best_join(const RasterPlan& raster_plan, std::span<const PixelAt> pixels,
                  std::span<const std::int32_t> neighbours) const;
-  // The error a pixel (c, r) of the model, at plan height Y, adds shown at `key` instead of what
-  // shows there now, capped.
   // What a pixel of the model at plan height Y adds to a hole: the back plane or the floor there,
-  // capped, and the extra for showing no model.
+  // and the extra for showing no model.
   float hole_at(double Y, double model) const {
-    return std::min(cap_mm_, static_cast<float>(std::abs(std::abs(Y) - model))) + hole_extra_mm_;
+    return static_cast<float>(std::abs(std::abs(Y) - model)) + hole_extra_mm_;
   }
+  // The error a pixel (c, r) of the model adds shown at `key` instead of what shows there now.
   float added_at(int c, int r, double key) const {
-    return std::min(cap_mm_, std::abs(static_cast<float>(key) - model_key_(c - c0_, r - r0_))) -
-           error_(c - c0_, r - r0_);
+    return std::abs(static_cast<float>(key) - model_key_(c - c0_, r - r0_)) - error_(c - c0_, r - r0_);
   }
 };
 
