@@ -49,7 +49,7 @@ struct CutOutFace {
   PlanPoint at;  // a pixel centre of it when it was cut out, in plan mm
   double area_mm2 = 0;
   // What holding it and cutting it out cost the picture, as supports' costs are counted (mm of a
-  // W-wide support showing the model 2 W off or more): the cheapest ear found (-1: none) and its hole.
+  // W-wide support showing the model 1 W off): the cheapest ear found (-1: none) and its hole.
   double hold_cost = -1, hole_cost = 0;
   std::string reason;
 };

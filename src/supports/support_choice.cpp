@@ -445,7 +445,7 @@ class CandidateFinder {
 
   // The support from its start to its landing (both rows outside it), with its cost: the error it
   // adds to the picture (SupportPicture, per W x W of plan: a support W wide and L long that shows
-  // the model 2 W off or more costs 2 L), a little for its length; and the faces it cuts in two
+  // the model k W off costs k L), a little for its length; and the faces it cuts in two
   // among those it crosses.
   Candidate candidate(const SupportStart& start, Landing landing, const BlockColumn& column, SplitMemo& memo) const {
     const auto [f, edge, up, h, d] = start;
