@@ -468,7 +468,9 @@ TEST(Supports, AFaceHeldForLessThanItsHoleIsNotCutOut) {
   const DesignResult r = design(test::models_dir() / "arch_church.obj", options);
   expect_exact_and_standing(r.plan);
   for (const CutOutFace& face : r.supports.cut_out_faces)
-    if (face.hold_cost >= 0) EXPECT_GT(face.hold_cost, face.hole_cost) << face.reason << " at " << face.at.X;
+    if (face.hold_cost >= 0) {
+      EXPECT_GT(face.hold_cost, face.hole_cost) << face.reason << " at " << face.at.X;
+    }
   EXPECT_LT(r.likeness.cut_out_share, 0.01);
   EXPECT_LT(r.likeness.p95_W, 3);
 }
@@ -513,11 +515,14 @@ TEST(Supports, ATaperingTowerStandsOnItsFacetsWithNoneCutOut) {
 
 // A pavilion: a drum under a conical roof on columns. Its roof's slices are held (some by supports
 // extended a strip width past their ends, seed §4.4's corner candidates), with under a tenth of its
-// area cut out.
+// area cut out; the front rings no support holds go half to the ring above, half to the one below,
+// and the card is within 4 W of its model (issue 22 asks 5; 6.95 W when its errors were counted
+// up to 2 W, 4.81 W when each ring went whole to one neighbour).
 TEST(Supports, AConicalRoofOnColumnsStands) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   const DesignResult r = standing_design("arch_pavilion_csg.stl");
   EXPECT_LE(r.supports.cut_out_share, 0.1);
+  EXPECT_LE(r.likeness.p95_W, 4);
 }
 
 // The box before the back plane of the join tests, sliced at W = 3: the back plane, the floor, its
@@ -604,6 +609,46 @@ TEST(Supports, AFaceWhoseNeighboursAreAllWrongJoinsTheLeastWrong) {
         added += (std::abs(130 - Y - model) - std::abs(Y + 80 - model)) * pixel_mm2;
       }
   EXPECT_NEAR(join.error, added, 1e-3 * added);
+}
+
+// A face shared among its neighbours goes to each where its plane shows the model best. The box's
+// front (key Y + 80) is cut into H(40) above Y = 0, the face to share from -30 to 0, and H(10)
+// below: over the face they are |2Y| and |60 + 2Y| off, equal at Y = -15. The upper half goes to
+// H(40), the lower to H(10), at half the error either would add taking it whole.
+TEST(Supports, AFaceSharedAmongItsNeighboursGoesToEachWhereItsPlaneShowsTheModelBest) {
+  auto [maps, raster_plan, front, top] = sliced_box();
+  ASSERT_EQ(raster_plan.faces.size(), 4u);
+  const auto above = static_cast<std::int32_t>(raster_plan.faces.size()), below = above + 1;
+  raster_plan.faces.push_back({.orientation = Orientation::H, .depth_mm = 40});
+  raster_plan.faces.push_back({.orientation = Orientation::H, .depth_mm = 10});
+  std::vector<PixelAt> shared;
+  for (int r = 0; r < raster_plan.face.rows; ++r)
+    for (int c = 0; c < raster_plan.face.cols; ++c)
+      if (std::int32_t& f = raster_plan.face(c, r); f == front) {
+        const double Y = maps.grid.Y(r);
+        if (Y > 0 || Y < -30) {
+          f = Y > 0 ? above : below;
+          ++raster_plan.faces[static_cast<std::size_t>(f)].pixels;
+          --raster_plan.faces[static_cast<std::size_t>(front)].pixels;
+        } else {
+          shared.push_back({c, r});
+        }
+      }
+  ASSERT_FALSE(shared.empty());
+  const SupportPicture picture(maps, raster_plan);
+  const std::vector<std::int32_t> not_top = {top};
+  const SupportPicture::Shares shares = picture.shared_join(raster_plan, shared, not_top);
+  ASSERT_EQ(shares.into.size(), shared.size());
+  const double pixel_mm2 = 1 / (maps.grid.px_per_mm * maps.grid.px_per_mm);
+  double added = 0;
+  for (std::size_t k = 0; k < shared.size(); ++k) {
+    const double Y = maps.grid.Y(shared[k].r);
+    EXPECT_EQ(shares.into[k], Y > -15 ? above : below) << "at Y = " << Y;
+    added += std::min(std::abs(2 * Y), std::abs(60 + 2 * Y)) * pixel_mm2;  // the front shows its own plane now
+  }
+  EXPECT_NEAR(shares.error, added, 1e-3 * added);
+  const SupportPicture::Join whole = picture.nearest_join(raster_plan, shared, not_top);
+  EXPECT_LT(shares.error, 0.6 * whole.error);
 }
 
 // A join handed to the picture (SupportPicture::give) leaves it as one built afresh on the joined

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <queue>
+#include <tuple>
 
 #include "four_neighbours.hpp"
 
@@ -87,8 +89,7 @@ SupportPicture::Join SupportPicture::best_join(const RasterPlan& raster_plan, st
     for (const auto& [c, r] : pixels) {
       const double Y = grid_.Y(r);
       stays &= on_card(plane.orientation, plane.depth_mm, Y);
-      if (model_key_.contains(c - c0_, r - r0_) && !std::isnan(model_key_(c - c0_, r - r0_)))
-        sum += added_at(c, r, key_of_plane(plane.orientation, plane.depth_mm, Y));
+      if (compared(c, r)) sum += added_at(c, r, key_of_plane(plane.orientation, plane.depth_mm, Y));
     }
     const double error = sum / (grid_.px_per_mm * grid_.px_per_mm);
     if (stays && error < nearest.error) nearest = {g, error};
@@ -141,6 +142,65 @@ SupportPicture::Join SupportPicture::nearest_join(const RasterPlan& raster_plan,
       if (std::find(neighbours.begin(), neighbours.end(), g) == neighbours.end()) neighbours.push_back(g);
     }
   return best_join(raster_plan, pixels, neighbours);
+}
+
+SupportPicture::Shares SupportPicture::shared_join(const RasterPlan& raster_plan, std::span<const PixelAt> pixels,
+                                                  std::span<const std::int32_t> not_into) const {
+  if (pixels.empty()) return {};
+  const std::vector<std::uint8_t> target = join_targets(raster_plan, not_into);
+  const Grid<std::int32_t>& face = raster_plan.face;
+  const std::int32_t f = face(pixels.front().c, pixels.front().r);
+  int c_lo = pixels.front().c, c_hi = c_lo, r_lo = pixels.front().r, r_hi = pixels.back().r;
+  for (const auto& [c, r] : pixels) c_lo = std::min(c_lo, c), c_hi = std::max(c_hi, c);
+  Grid<std::int32_t> slot(c_hi - c_lo + 1, r_hi - r_lo + 1, -1);
+  for (std::size_t i = 0; i < pixels.size(); ++i)
+    slot(pixels[i].c - c_lo, pixels[i].r - r_lo) = static_cast<std::int32_t>(i);
+  // A pixel's error under neighbour g's plane (none off the model); ties go to the pixel first in
+  // row order, then to the neighbour of the lower id.
+  const auto cost = [&](std::size_t i, std::int32_t g) {
+    const auto& [c, r] = pixels[i];
+    if (!compared(c, r)) return 0.0;
+    const RasterFace& plane = raster_plan.faces[static_cast<std::size_t>(g)];
+    return std::abs(key_of_plane(plane.orientation, plane.depth_mm, grid_.Y(r)) -
+                    static_cast<double>(model_key_(c - c0_, r - r0_)));
+  };
+  using Entry = std::tuple<double, std::size_t, std::int32_t>;  // cost, pixel, neighbour
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+  const auto offer = [&](std::size_t i, std::int32_t g) {
+    const RasterFace& plane = raster_plan.faces[static_cast<std::size_t>(g)];
+    if (on_card(plane.orientation, plane.depth_mm, grid_.Y(pixels[i].r))) queue.emplace(cost(i, g), i, g);
+  };
+  for (std::size_t i = 0; i < pixels.size(); ++i)
+    for (const auto& [dc, dr] : kFourNeighbours) {
+      const int c = pixels[i].c + dc, r = pixels[i].r + dr;
+      if (!face.contains(c, r)) continue;
+      const std::int32_t g = face(c, r);
+      if (g >= 0 && g != f && target[static_cast<std::size_t>(g)]) offer(i, g);
+    }
+  Shares shares;
+  shares.into.assign(pixels.size(), -1);
+  while (!queue.empty()) {
+    const auto [e, i, g] = queue.top();
+    queue.pop();
+    if (shares.into[i] >= 0) continue;
+    shares.into[i] = g;
+    for (const auto& [dc, dr] : kFourNeighbours) {
+      const int c = pixels[i].c + dc - c_lo, r = pixels[i].r + dr - r_lo;
+      if (!slot.contains(c, r) || slot(c, r) < 0) continue;
+      const auto j = static_cast<std::size_t>(slot(c, r));
+      if (shares.into[j] < 0) offer(j, g);
+    }
+  }
+  double sum = 0;
+  for (std::size_t i = 0; i < pixels.size(); ++i) {
+    if (shares.into[i] < 0) return {};
+    const auto& [c, r] = pixels[i];
+    if (!compared(c, r)) continue;
+    const RasterFace& plane = raster_plan.faces[static_cast<std::size_t>(shares.into[i])];
+    sum += added_at(c, r, key_of_plane(plane.orientation, plane.depth_mm, grid_.Y(r)));
+  }
+  shares.error = sum / (grid_.px_per_mm * grid_.px_per_mm);
+  return shares;
 }
 
 void SupportPicture::give(std::int32_t f, std::int32_t into, const RasterFace& plane, std::span<const PixelAt> pixels) {

@@ -57,6 +57,18 @@ class SupportPicture {
   Join nearest_join(const RasterPlan& raster_plan, std::span<const PixelAt> pixels,
                     std::span<const std::int32_t> not_into = {}) const;
 
+  /// Face f shared among its neighbours (those nearest_join may give to): each pixel goes to the
+  /// neighbour whose plane shows it best among those that reach it, grown out from the neighbours
+  /// in order of the error, so every share touches its neighbour. `into` names each pixel's
+  /// neighbour, in the order of `pixels`; empty (and the error infinite) where some pixel stays
+  /// with none.
+  struct Shares {
+    std::vector<std::int32_t> into;
+    double error = std::numeric_limits<double>::infinity();
+  };
+  Shares shared_join(const RasterPlan& raster_plan, std::span<const PixelAt> pixels,
+                     std::span<const std::int32_t> not_into = {}) const;
+
   /// The picture once face f's pixels show face `into`'s plane, as a join makes them (the raster
   /// plan's face map may already say so): what one built afresh would find, but for the order in
   /// which the hole error of `into` is summed.
@@ -76,6 +88,10 @@ class SupportPicture {
   std::vector<std::uint8_t> join_targets(const RasterPlan& raster_plan, std::span<const std::int32_t> not_into) const;
   Join best_join(const RasterPlan& raster_plan, std::span<const PixelAt> pixels,
                  std::span<const std::int32_t> neighbours) const;
+  // Whether pixel (c, r) is the model's, which the picture compares.
+  bool compared(int c, int r) const {
+    return model_key_.contains(c - c0_, r - r0_) && !std::isnan(model_key_(c - c0_, r - r0_));
+  }
   // What a pixel of the model at plan height Y adds to a hole: the back plane or the floor there,
   // and the extra for showing no model.
   float hole_at(double Y, double model) const {
