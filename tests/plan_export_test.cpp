@@ -479,11 +479,15 @@ TEST_F(HousePlan, PerforationsKeepClearOfEveryCutAndCutTheirShareOfEachFold) {
         // Nearer a cut only as the middle third of a stretch of a fold (between two of its points)
         // that the insets block whole: a reader parts the faces there all the same.
         ++thirds;
-        EXPECT_TRUE(std::ranges::any_of(stretches, [&](const Seg& f) {
-          const double third = (f.x2 - f.x1) / 3;
-          return std::abs(s.y1 - f.y1) < 1e-9 && std::abs(std::min(s.x1, s.x2) - (f.x1 + third)) < 1e-9 &&
-                 std::abs(std::max(s.x1, s.x2) - (f.x2 - third)) < 1e-9 && blocked_whole(f, inset);
-        })) << layer << " segment " << nearest << " mm from a cut at Y " << s.y1 << " X " << s.x1 << " - " << s.x2;
+        EXPECT_TRUE(std::ranges::any_of(stretches,
+                                        [&](const Seg& f) {
+                                          const double third = (f.x2 - f.x1) / 3;
+                                          return std::abs(s.y1 - f.y1) < 1e-9 &&
+                                                 std::abs(std::min(s.x1, s.x2) - (f.x1 + third)) < 1e-9 &&
+                                                 std::abs(std::max(s.x1, s.x2) - (f.x2 - third)) < 1e-9 &&
+                                                 blocked_whole(f, inset);
+                                        }))
+            << layer << " segment " << nearest << " mm from a cut at Y " << s.y1 << " X " << s.x1 << " - " << s.x2;
       }
     }
     // The fold length outside the insets, found independently by sampling every 0.01 mm.

@@ -676,6 +676,37 @@ TEST(Supports, APictureGivenAJoinIsThePictureOfTheJoinedPlan) {
   EXPECT_EQ(fresh.hole_error(front), 0.0);
 }
 
+// So is a picture given shares, one give per neighbour: the box's front, its upper part (Y > -15)
+// to its top H(50) and the rest to the floor.
+TEST(Supports, APictureGivenSharesIsThePictureOfTheSharedPlan) {
+  const auto [maps, raster_plan, front, top] = sliced_box();
+  ASSERT_EQ(raster_plan.faces.size(), 4u);
+  RasterPlan shared = raster_plan;
+  std::vector<PixelAt> upper, lower;
+  for (int r = 0; r < shared.face.rows; ++r)
+    for (int c = 0; c < shared.face.cols; ++c)
+      if (std::int32_t& f = shared.face(c, r); f == front) {
+        const bool up = maps.grid.Y(r) > -15;
+        (up ? upper : lower).push_back({c, r});
+        f = up ? top : kFloorFace;
+        ++shared.faces[static_cast<std::size_t>(f)].pixels;
+      }
+  ASSERT_FALSE(upper.empty());
+  ASSERT_FALSE(lower.empty());
+  shared.faces[static_cast<std::size_t>(front)].pixels = 0;
+  SupportPicture given(maps, raster_plan);
+  given.give(front, top, shared.faces[static_cast<std::size_t>(top)], upper);
+  given.give(front, kFloorFace, shared.faces[static_cast<std::size_t>(kFloorFace)], lower);
+  const SupportPicture fresh(maps, shared);
+  const int c0 = upper.front().c, r0 = upper.front().r, c1 = lower.back().c + 1, r1 = lower.back().r + 1;
+  for (const auto& [orientation, depth] : {std::pair{Orientation::V, 20.0}, std::pair{Orientation::H, 70.0}})
+    for (const SupportPicture::PixelBox box : {SupportPicture::PixelBox{c0, c1, r0, r1}, {c0, c0 + 12, r0 - 40, r1}})
+      EXPECT_EQ(given.added_error(orientation, depth, box), fresh.added_error(orientation, depth, box));
+  for (const std::int32_t f : {top, std::int32_t{kFloorFace}})
+    EXPECT_NEAR(given.hole_error(f), fresh.hole_error(f), 1e-9 * std::abs(fresh.hole_error(f)));
+  EXPECT_EQ(given.hole_error(front), 0.0);
+}
+
 // A model's sliced plan, and the likeness of the supports each frame chooses on it.
 struct FramesChosen {
   DesignResult sliced;

@@ -24,8 +24,8 @@ struct SupportOptions {
   std::uint32_t seed = 1;       // the orders tried break ties between equally costly ears (--seed)
   bool allow_dangling = false;  // leave dangling faces (windows, balconies) as they are
   // c(s) = picture + length + corner + split (seed §4.4, with the error a support adds to the
-  // picture): cutting a face not yet held in two costs this much more (in mm of a W-wide support
-  // 2 W off the model), cutting a standing one ten times as much.
+  // picture): cutting a face not yet held in two costs this much more (as much as 100 mm of a
+  // W-wide support 1 W off the model), cutting a standing one ten times as much.
   double split_cost_mm = 100;
   // When supports run out, cut the faces they could not hold out of the sheet (holes, reported as
   // "removed") so that what is left stands; off, such faces stay in the plan, reported invalid.
@@ -54,13 +54,14 @@ struct CutOutFace {
   std::string reason;
 };
 
-/// A face no support held (or none for less), given to the neighbour whose plane shows the model
-/// over it best, which showed it better than a hole would.
+/// A face no support held (or none for less), shared among its neighbours, each pixel to the one
+/// whose plane shows the model there best, or given whole to one; either showed it better than a
+/// hole would.
 struct JoinedFace {
   PlanPoint at;  // a pixel centre of it, in plan mm
   double area_mm2 = 0;
-  // What joining it and cutting it out added to the picture, in CutOutFace's units (negative where
-  // the neighbour's plane shows the model better than the face did).
+  // What giving it away and cutting it out added to the picture, in CutOutFace's units (negative
+  // where the neighbours' planes show the model better than the face did).
   double joined_cost = 0, hole_cost = 0;
 };
 

@@ -94,9 +94,10 @@ bool inside(const PlanRegion& region, PlanPoint p) {
 }
 
 // The regions of a repaired plan, each named by the design's face it is part of: the face of
-// `before` (the plan's regions as supported) that holds the point its origin gives. A region takes
-// its face's plane as the design has it: placed from the lines, as doubles, its depth can be an ulp
-// off (seedlike/capitol: 9 of its regions).
+// `before` (the plan's regions as supported) that holds the point its origin gives and has its
+// plane, else the region of its plane with a corner nearest that point (of two faces in one
+// plane, it may be either). A region takes its face's plane as the design has it: placed from the
+// lines, as doubles, its depth can be an ulp off (seedlike/capitol: 9 of its regions).
 std::vector<PlanRegion> regions_named(std::vector<PlanRegion> regions, const std::vector<PlanPoint>& origin,
                                       const std::vector<PlanRegion>& before) {
   const auto same_plane = [](const PlanRegion& a, const PlanRegion& b) {

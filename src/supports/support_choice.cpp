@@ -646,7 +646,10 @@ class EarTaker {
     for (std::size_t f = 0; f < faces.size() && f < verdicts.validity.status.size(); ++f)
       stands_[f] = verdicts.validity.status[f] == FaceStatus::Valid && !faces[f].hole;
     // A face is held only while that costs the picture no more than cutting it out or, where it
-    // may be cut out, giving it to its nearest neighbour (supports.cpp, FaceOrderRun::give_away).
+    // may be cut out, giving it whole to its nearest neighbour (supports.cpp,
+    // FaceOrderRun::give_away, which shares it among its neighbours where that costs less).
+    // Bounded by the shares' error instead, the mean p95 over the 37 models went 2.19 -> 2.28 W
+    // (res_knot 5.1 -> 8.2 W): more faces went to neighbours where a support would have held them.
     const double W = round.raster_plan.min_strip_mm;
     const std::vector<SupportPicture::Join> joins = options.cut_out_unsupported
                                                         ? picture_.nearest_joins(round.raster_plan, invalid)

@@ -145,18 +145,21 @@ SupportPicture::Join SupportPicture::nearest_join(const RasterPlan& raster_plan,
 }
 
 SupportPicture::Shares SupportPicture::shared_join(const RasterPlan& raster_plan, std::span<const PixelAt> pixels,
-                                                  std::span<const std::int32_t> not_into) const {
+                                                   std::span<const std::int32_t> not_into) const {
   if (pixels.empty()) return {};
   const std::vector<std::uint8_t> target = join_targets(raster_plan, not_into);
   const Grid<std::int32_t>& face = raster_plan.face;
   const std::int32_t f = face(pixels.front().c, pixels.front().r);
-  int c_lo = pixels.front().c, c_hi = c_lo, r_lo = pixels.front().r, r_hi = pixels.back().r;
-  for (const auto& [c, r] : pixels) c_lo = std::min(c_lo, c), c_hi = std::max(c_hi, c);
+  int c_lo = pixels.front().c, c_hi = c_lo, r_lo = pixels.front().r, r_hi = r_lo;
+  for (const auto& [c, r] : pixels)
+    c_lo = std::min(c_lo, c), c_hi = std::max(c_hi, c), r_lo = std::min(r_lo, r), r_hi = std::max(r_hi, r);
   Grid<std::int32_t> slot(c_hi - c_lo + 1, r_hi - r_lo + 1, -1);
   for (std::size_t i = 0; i < pixels.size(); ++i)
     slot(pixels[i].c - c_lo, pixels[i].r - r_lo) = static_cast<std::int32_t>(i);
-  // A pixel's error under neighbour g's plane (none off the model); ties go to the pixel first in
-  // row order, then to the neighbour of the lower id.
+  // A pixel's error under neighbour g's plane. Off the model (paper the 45-degree view does not
+  // see) it is none: such a pixel goes to the share that reaches it first. Ties go to the pixel
+  // first in row order, then to the neighbour of the lower id, so the shares do not depend on
+  // the order the queue was filled in.
   const auto cost = [&](std::size_t i, std::int32_t g) {
     const auto& [c, r] = pixels[i];
     if (!compared(c, r)) return 0.0;

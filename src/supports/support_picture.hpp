@@ -44,8 +44,8 @@ class SupportPicture {
   /// Where face f would best go when no support holds it: the neighbour (not the back plane, the
   /// floor, a hole, a support or a face in `not_into`) whose plane shows the model over f best (the
   /// least error added) and stays on the card there (on_card), and the error giving f to it would
-  /// add, as hole_error; none
-  /// (-1, infinite) where no neighbour's plane can. One entry per face of `faces`.
+  /// add, as hole_error; none (-1, infinite) where no neighbour's plane can. One entry per face of
+  /// `faces`.
   struct Join {
     std::int32_t into = -1;
     double error = std::numeric_limits<double>::infinity();
@@ -57,11 +57,13 @@ class SupportPicture {
   Join nearest_join(const RasterPlan& raster_plan, std::span<const PixelAt> pixels,
                     std::span<const std::int32_t> not_into = {}) const;
 
-  /// Face f shared among its neighbours (those nearest_join may give to): each pixel goes to the
-  /// neighbour whose plane shows it best among those that reach it, grown out from the neighbours
-  /// in order of the error, so every share touches its neighbour. `into` names each pixel's
+  /// Face f shared among its neighbours (those nearest_join may give to), grown out from their
+  /// edges a pixel at a time, the pixel shown best first: each goes to the neighbour whose share
+  /// reaches it first, so every share touches its neighbour, and where two shares meet the line
+  /// between them is where their planes show the model equally well. `into` names each pixel's
   /// neighbour, in the order of `pixels`; empty (and the error infinite) where some pixel stays
-  /// with none.
+  /// with none. The error is what the shares add, as hole_error.
+  /// \pre `pixels` are all the pixels of one face, in row order.
   struct Shares {
     std::vector<std::int32_t> into;
     double error = std::numeric_limits<double>::infinity();
@@ -69,10 +71,10 @@ class SupportPicture {
   Shares shared_join(const RasterPlan& raster_plan, std::span<const PixelAt> pixels,
                      std::span<const std::int32_t> not_into = {}) const;
 
-  /// The picture once face f's pixels show face `into`'s plane, as a join makes them (the raster
-  /// plan's face map may already say so): what one built afresh would find, but for the order in
-  /// which the hole error of `into` is summed.
-  /// \pre `pixels` are all the pixels f had, in row order; `plane` is `into`'s, not a hole.
+  /// The picture once some of face f's pixels show face `into`'s plane, as a share makes them (the
+  /// raster plan's face map may already say so): what one built afresh would find, but for the
+  /// order in which the hole error of `into` is summed. f's hole error is spent.
+  /// \pre `pixels` are the pixels of f given to `into`; `plane` is `into`'s, not a hole.
   void give(std::int32_t f, std::int32_t into, const RasterFace& plane, std::span<const PixelAt> pixels);
 
  private:

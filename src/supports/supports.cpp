@@ -236,8 +236,8 @@ class FaceOrderRun {
   // back plane or the floor aside: card, not model).
   void cut_out(const std::vector<std::int32_t>& faces, const std::vector<std::pair<double, double>>& costs,
                const std::string& reason);
-  // Gives each face (but pieces of card) to its nearest neighbour where that shows the model better
-  // than its hole would; returns the indices of those it did not give away.
+  // Gives each face (but pieces of card) to its neighbours where that shows the model better than
+  // its hole would; returns the indices of those it did not give away.
   // `picture`, where given, is the plan's as it is.
   std::vector<std::size_t> give_away(const std::vector<std::int32_t>& faces,
                                      std::optional<SupportPicture> picture = std::nullopt);
@@ -249,14 +249,16 @@ class FaceOrderRun {
   }
   // A face held for less than its hole was costly only beside the join it could have had: one
   // into a face that then went itself (arch_church at W = 2: two roof faces each joining the
-  // other, 15.7% of the model cut out). It is not cut out; the next round sees it anew.
+  // other, 15.7% of the model cut out). It is not cut out; the next round sees it anew. A piece of
+  // card, which no one takes, is.
   void cut_out_costly(const std::vector<SupportChoice::CostlyFace>& costly) {
     std::vector<std::int32_t> faces;
     for (const SupportChoice::CostlyFace& c : costly) faces.push_back(c.face);
     std::vector<std::int32_t> kept;
     std::vector<std::pair<double, double>> costs;
     for (const std::size_t i : give_away(faces))
-      if (costly[i].hold > costly[i].hole) kept.push_back(faces[i]), costs.emplace_back(costly[i].hold, costly[i].hole);
+      if (card_piece(faces[i]) || costly[i].hold > costly[i].hole)
+        kept.push_back(faces[i]), costs.emplace_back(costly[i].hold, costly[i].hole);
     cut_out(kept, costs, "holding it would cost the picture more than its hole");
   }
   SupportedPlan finish();
@@ -430,12 +432,16 @@ bool FaceOrderRun::cut_out_cheapest(std::vector<std::int32_t> invalid) {
 // one whose plane shows the model there best (SupportPicture::shared_join), when that shows it
 // better than a hole, which shows the back plane or the floor and no model at all: the
 // neighbours' paper reaches over it, and the plan has one face fewer to hold. Where a pixel is out
-// of every share's reach, the face goes whole to the neighbour whose plane shows it best
-// (SupportPicture::nearest_join). Given whole, it took the share cut out on the 37 models from
-// 1.7% to 0.1% and the mean p95 error from 5.8 to 3.5 W; shared, 2.27 -> 2.19 W at W = 3 mm
-// (arch_pavilion_csg 4.81 -> 3.29 W: its roof's front rings each half to the ring above, half to
-// the one below, not all to one; res_knot 5.98 -> 5.09), 2.68 -> 2.63 W at W = 2 mm and 2.16 ->
-// 2.10 W at 5 mm. A face it keeps is no neighbour for those after it: it is to be cut out.
+// of every share's reach, or the shares cost the hole or more, the face goes whole to the
+// neighbour whose plane shows it best (SupportPicture::nearest_join). Given whole, it took the
+// share cut out on the 37 models from 1.7% to 0.1% and the mean p95 error from 5.8 to 3.5 W;
+// shared, 2.27 -> 2.19 W at W = 3 mm (arch_pavilion_csg 4.81 -> 3.29 W: its roof's front rings
+// each half to the ring above, half to the one below, not all to one; res_knot 5.98 -> 5.09),
+// 2.68 -> 2.63 W at W = 2 mm and 2.16 -> 2.10 W at 5 mm. The shares grow greedily and can cost
+// more than one neighbour taking the face whole; taking the cheaper of the two gave 2.15 W, but
+// 50 more places narrower than W and res_dragon_full's first frame over the 1 W bound (its other
+// frame tried too: 3.1 -> 5.2 s, over its 3 s target). A face it keeps is no neighbour for those
+// after it.
 std::vector<std::size_t> FaceOrderRun::give_away(const std::vector<std::int32_t>& faces,
                                                  std::optional<SupportPicture> picture) {
   std::vector<std::size_t> kept;
@@ -460,7 +466,9 @@ std::vector<std::size_t> FaceOrderRun::give_away(const std::vector<std::int32_t>
           for (std::size_t k = 0; k < pixels[i].size(); ++k)
             if (shares.into[k] == faces[j]) into.push_back(pixels[i][k]);
           std::ranges::inplace_merge(into, into.begin() + static_cast<std::ptrdiff_t>(before),
-                                     [](PixelAt a, PixelAt b) { return std::pair{a.r, a.c} < std::pair{b.r, b.c}; });
+                                     [](PixelAt a, PixelAt b) {
+                                       return std::pair{a.r, a.c} < std::pair{b.r, b.c};
+                                     });
         }
         continue;
       }
