@@ -249,16 +249,21 @@ class FaceOrderRun {
   }
   // A face held for less than its hole was costly only beside the join it could have had: one
   // into a face that then went itself (arch_church at W = 2: two roof faces each joining the
-  // other, 15.7% of the model cut out). It is not cut out; the next round sees it anew. A piece of
-  // card, which no one takes, is.
+  // other, 15.7% of the model cut out). It is not cut out; the next round sees it anew. Nor is a
+  // face that took pixels of another one given away here: its costs were found without them. A
+  // piece of card, which no one takes, is.
   void cut_out_costly(const std::vector<SupportChoice::CostlyFace>& costly) {
     std::vector<std::int32_t> faces;
-    for (const SupportChoice::CostlyFace& c : costly) faces.push_back(c.face);
+    std::vector<std::int64_t> pixels_before;
+    for (const SupportChoice::CostlyFace& c : costly)
+      faces.push_back(c.face), pixels_before.push_back(raster_plan_.faces[static_cast<std::size_t>(c.face)].pixels);
     std::vector<std::int32_t> kept;
     std::vector<std::pair<double, double>> costs;
-    for (const std::size_t i : give_away(faces))
-      if (card_piece(faces[i]) || costly[i].hold > costly[i].hole)
+    for (const std::size_t i : give_away(faces)) {
+      const bool grew = raster_plan_.faces[static_cast<std::size_t>(faces[i])].pixels > pixels_before[i];
+      if (card_piece(faces[i]) || (!grew && costly[i].hold > costly[i].hole))
         kept.push_back(faces[i]), costs.emplace_back(costly[i].hold, costly[i].hole);
+    }
     cut_out(kept, costs, "holding it would cost the picture more than its hole");
   }
   SupportedPlan finish();
