@@ -23,6 +23,21 @@ namespace {
 // A pixel in a hole costs 2 W more: it shows no model at all (coverage).
 constexpr double kHoleExtra_W = 2;
 
+// Calls visit(i, g) for each face g beside pixel i of a face (all its pixels given) that a join
+// may give to (`target`).
+template <typename Visit>
+void for_each_target_beside(const Grid<std::int32_t>& face, std::span<const PixelAt> pixels,
+                            const std::vector<std::uint8_t>& target, Visit&& visit) {
+  const std::int32_t f = face(pixels.front().c, pixels.front().r);
+  for (std::size_t i = 0; i < pixels.size(); ++i)
+    for (const auto& [dc, dr] : kFourNeighbours) {
+      const int c = pixels[i].c + dc, r = pixels[i].r + dr;
+      if (!face.contains(c, r)) continue;
+      const std::int32_t g = face(c, r);
+      if (g >= 0 && g != f && target[static_cast<std::size_t>(g)]) visit(i, g);
+    }
+}
+
 }  // namespace
 
 SupportPicture::SupportPicture(const RasterMaps& maps, const RasterPlan& raster_plan)
@@ -130,26 +145,17 @@ std::vector<SupportPicture::Join> SupportPicture::nearest_joins(const RasterPlan
 SupportPicture::Join SupportPicture::nearest_join(const RasterPlan& raster_plan, std::span<const PixelAt> pixels,
                                                   std::span<const std::int32_t> not_into) const {
   if (pixels.empty()) return {};
-  const std::vector<std::uint8_t> target = join_targets(raster_plan, not_into);
-  const Grid<std::int32_t>& face = raster_plan.face;
-  const std::int32_t f = face(pixels.front().c, pixels.front().r);
   std::vector<std::int32_t> neighbours;
-  for (const auto& [c, r] : pixels)
-    for (const auto& [dc, dr] : kFourNeighbours) {
-      if (!face.contains(c + dc, r + dr)) continue;
-      const std::int32_t g = face(c + dc, r + dr);
-      if (g < 0 || g == f || !target[static_cast<std::size_t>(g)]) continue;
-      if (std::find(neighbours.begin(), neighbours.end(), g) == neighbours.end()) neighbours.push_back(g);
-    }
+  for_each_target_beside(raster_plan.face, pixels, join_targets(raster_plan, not_into),
+                         [&](std::size_t, std::int32_t g) {
+                           if (std::ranges::find(neighbours, g) == neighbours.end()) neighbours.push_back(g);
+                         });
   return best_join(raster_plan, pixels, neighbours);
 }
 
 SupportPicture::Shares SupportPicture::shared_join(const RasterPlan& raster_plan, std::span<const PixelAt> pixels,
                                                    std::span<const std::int32_t> not_into) const {
   if (pixels.empty()) return {};
-  const std::vector<std::uint8_t> target = join_targets(raster_plan, not_into);
-  const Grid<std::int32_t>& face = raster_plan.face;
-  const std::int32_t f = face(pixels.front().c, pixels.front().r);
   int c_lo = pixels.front().c, c_hi = c_lo, r_lo = pixels.front().r, r_hi = r_lo;
   for (const auto& [c, r] : pixels)
     c_lo = std::min(c_lo, c), c_hi = std::max(c_hi, c), r_lo = std::min(r_lo, r), r_hi = std::max(r_hi, r);
@@ -173,13 +179,7 @@ SupportPicture::Shares SupportPicture::shared_join(const RasterPlan& raster_plan
     const RasterFace& plane = raster_plan.faces[static_cast<std::size_t>(g)];
     if (on_card(plane.orientation, plane.depth_mm, grid_.Y(pixels[i].r))) queue.emplace(cost(i, g), i, g);
   };
-  for (std::size_t i = 0; i < pixels.size(); ++i)
-    for (const auto& [dc, dr] : kFourNeighbours) {
-      const int c = pixels[i].c + dc, r = pixels[i].r + dr;
-      if (!face.contains(c, r)) continue;
-      const std::int32_t g = face(c, r);
-      if (g >= 0 && g != f && target[static_cast<std::size_t>(g)]) offer(i, g);
-    }
+  for_each_target_beside(raster_plan.face, pixels, join_targets(raster_plan, not_into), offer);
   Shares shares;
   shares.into.assign(pixels.size(), -1);
   while (!queue.empty()) {

@@ -453,6 +453,8 @@ std::vector<std::size_t> FaceOrderRun::give_away(const std::vector<std::int32_t>
   std::vector<std::int32_t> kept_faces;
   // The picture as the plan is now, each face given to it: it changes the faces around the next.
   std::vector<std::vector<PixelAt>> pixels = pixels_of(faces);
+  std::vector<std::size_t> place(raster_plan_.faces.size(), faces.size());  // each face's in `faces`
+  for (std::size_t i = 0; i < faces.size(); ++i) place[static_cast<std::size_t>(faces[i])] = i;
   for (std::size_t i = 0; i < faces.size(); ++i) {
     const std::int32_t f = faces[i];
     if (!card_piece(f)) {
@@ -465,16 +467,18 @@ std::vector<std::size_t> FaceOrderRun::give_away(const std::vector<std::int32_t>
       if (shares.error < picture->hole_error(f)) {
         share(f, shares, pixels[i], *picture);
         // A face still to come that took some of f takes those pixels with it, in row order.
-        for (std::size_t j = i + 1; j < faces.size(); ++j) {
-          std::vector<PixelAt>& into = pixels[j];
-          const std::size_t before = into.size();
-          for (std::size_t k = 0; k < pixels[i].size(); ++k)
-            if (shares.into[k] == faces[j]) into.push_back(pixels[i][k]);
-          std::ranges::inplace_merge(into, into.begin() + static_cast<std::ptrdiff_t>(before),
+        std::vector<std::pair<std::size_t, std::size_t>> took;  // such a face, its pixels before
+        for (std::size_t k = 0; k < pixels[i].size(); ++k)
+          if (const std::size_t j = place[static_cast<std::size_t>(shares.into[k])]; j > i && j < faces.size()) {
+            if (std::ranges::find(took, j, &std::pair<std::size_t, std::size_t>::first) == took.end())
+              took.emplace_back(j, pixels[j].size());
+            pixels[j].push_back(pixels[i][k]);
+          }
+        for (const auto& [j, before] : took)
+          std::ranges::inplace_merge(pixels[j], pixels[j].begin() + static_cast<std::ptrdiff_t>(before),
                                      [](PixelAt a, PixelAt b) {
                                        return std::pair{a.r, a.c} < std::pair{b.r, b.c};
                                      });
-        }
         continue;
       }
     }
