@@ -115,6 +115,15 @@ struct Tracer {
   const RayScene::Impl& scene;
   double start_d;  // rays start on this vertical plane, in front of the model and the floor's edge
 
+  // Whether the ray through plan point (X, Y) may meet the model: it keeps x = X and h - d = Y, so
+  // not outside the model's box in x and in h - d (widened by a micrometre, far more than the
+  // float rounding of the rays and of Embree's vertices). Most of a sheet is back plane and floor.
+  bool may_hit(double X, double Y) const {
+    constexpr double kMargin_mm = 1e-3;
+    return !scene.mesh.positions.empty() && X >= scene.lo.x - kMargin_mm && X <= scene.hi.x + kMargin_mm &&
+           Y >= scene.lo.y - scene.hi.z - kMargin_mm && Y <= scene.hi.y - scene.lo.z + kMargin_mm;
+  }
+
   // The unit normal of a triangle's plane, turned to face the viewer (+h, +d).
   glm::dvec3 facing(std::int32_t primitive) const {
     const auto& t = scene.mesh.triangles[static_cast<std::size_t>(primitive)];
@@ -142,7 +151,7 @@ struct Tracer {
     ray.ray.mask = ~0u;
     ray.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     ray.hit.primID = RTC_INVALID_GEOMETRY_ID;
-    if (!scene.mesh.positions.empty()) rtcIntersect1(scene.embree->handle(), &context, &ray);
+    if (may_hit(X, Y)) rtcIntersect1(scene.embree->handle(), &context, &ray);
 
     Traced traced;
     if (ray.hit.geomID != RTC_INVALID_GEOMETRY_ID) {

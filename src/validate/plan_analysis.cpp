@@ -6,26 +6,27 @@
 
 #include "origamic/plan_analysis.hpp"
 
+#include <CGAL/Arr_batched_point_location.h>
+#include <CGAL/Arr_observer.h>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 #include <limits>
 #include <map>
 #include <memory>
-#include <set>
-#include <variant>
 #include <optional>
+#include <set>
 #include <tuple>
 #include <unordered_map>
 #include <utility>
-
-#include <CGAL/Arr_batched_point_location.h>
-#include <CGAL/Arr_observer.h>
+#include <variant>
 
 #include "exact_kernel.hpp"
+#include "exact_runs.hpp"
 #include "origamic/error.hpp"
 #include "plan_analysis_geometry.hpp"
-#include "exact_runs.hpp"
 
 namespace origamic {
 namespace {
@@ -82,6 +83,7 @@ struct Analyzer {
   std::vector<std::uint8_t> cut_out;  // per region: every side on the CUTOUT layer
   std::vector<FoldEdge> folds;
   std::vector<std::vector<std::size_t>> folds_of;
+  std::vector<std::array<std::optional<Chord>, 2>> narrowest;  // per region, along Y and along X (check_strips)
   PlanAnalysis result;
 
   explicit Analyzer(const AnalysisOptions& o) : options(o), tolerance(o.tolerance_mm), W(o.min_strip_mm) {}
@@ -383,11 +385,13 @@ struct Analyzer {
   }
 
   void check_strips() {
+    narrowest.assign(faces.size(), {});
     for (std::size_t r = 0; r < faces.size(); ++r)
       for (const bool along_Y : {true, false}) {
         if (cut_out[r]) continue;
         int narrow = 0;
-        const std::optional<Chord> chord = narrowest_chord(rings[r], along_Y, W, narrow);
+        const std::optional<Chord>& chord = narrowest[r][along_Y ? 0 : 1] =
+            narrowest_chord(rings[r], along_Y, W, narrow);
         if (!chord) continue;
         const Point a = along_Y ? Point(chord->at, chord->lo) : Point(chord->lo, chord->at);
         const Point b = along_Y ? Point(chord->at, chord->hi) : Point(chord->hi, chord->at);
@@ -600,6 +604,7 @@ struct TipCutter {
   };
   Cut run() {
     Cut out;
+    if (a.narrowest.empty()) return out;  // no strip widths measured: nothing to part
     const FT W(options.min_strip_mm), wide = W + FT(options.margin_mm), reach(options.max_tip_mm);
     std::vector<Tip> tips;
     std::vector<bool> has_tip(a.faces.size(), false);  // one tip a face a round: along Y first
@@ -607,8 +612,7 @@ struct TipCutter {
       if (a.cut_out[r] || !a.place[r].placed) continue;
       for (const bool along_Y : {true, false}) {
         if (has_tip[r]) break;
-        int narrow = 0;
-        const std::optional<Chord> chord = narrowest_chord(a.rings[r], along_Y, W, narrow);
+        const std::optional<Chord>& chord = a.narrowest[r][along_Y ? 0 : 1];  // the analysis's, at this W
         if (!chord) continue;
         if (std::optional<Tip> tip = tip_of(a.rings[r], r, along_Y, *chord, W, wide, reach))
           tips.push_back(*tip), has_tip[r] = true;
