@@ -93,7 +93,7 @@ TEST(Cli, DesignWritesTheReportAndTheMaps) {
                     quoted(dir / "out") + " --dump-maps " + quoted(dir / "maps"));
   ASSERT_EQ(r.status, 0) << r.output;
   for (const char* name : {"D.png", "F.png", "T.png", "N.png", "kind.png", "S.png", "SS.png", "faces.png",
-                           "plan_preview.png"}) {
+                           "plan_preview.png", "E.png", "narrow.png"}) {
     std::ifstream png(dir / "maps" / name, std::ios::binary);
     std::array<char, 8> magic{};
     png.read(magic.data(), 8);

@@ -19,6 +19,7 @@
 #include "origamic/design.hpp"
 #include "origamic/error.hpp"
 #include "origamic/output.hpp"
+#include "origamic/raster_images.hpp"
 
 namespace origamic {
 namespace {
@@ -231,6 +232,33 @@ class HousePlan : public ::testing::Test {
   static Plan* house_;
 };
 Plan* HousePlan::house_ = nullptr;
+
+TEST(PlanExport, TheNarrowPlacesPictureDrawsThePlanAndMarksEachChord) {
+  // A 10 x 10 mm sheet at 4 px/mm, the main fold across its middle (row 20).
+  PixelGrid grid;
+  grid.cols = 40, grid.rows = 40, grid.px_per_mm = 4, grid.rows_above_fold = 20;
+  const std::vector<PlanPolyline> lines = {{LineKind::Cut, {{1, 2}, {9, 2}}},          // row 12
+                                           {LineKind::Mountain, {{1, -3}, {9, -3}}}};  // row 32
+  const std::vector<NarrowChord> chords = {{{5, 4}, {5, 4.25}}};                       // column 20, rows 3 and 4
+  const std::vector<std::uint8_t> rgb = narrow_places_rgb(grid, lines, chords);
+  ASSERT_EQ(rgb.size(), 3u * 40 * 40);
+  const auto at = [&](int col, int row) {
+    const std::size_t i = 3 * (static_cast<std::size_t>(row) * 40 + col);
+    return std::array<int, 3>{rgb[i], rgb[i + 1], rgb[i + 2]};
+  };
+  const std::array<int, 3> red{220, 0, 0}, green{0, 160, 0}, blue{0, 60, 255}, white{255, 255, 255};
+  EXPECT_EQ(at(8, 12), red);
+  EXPECT_EQ(at(35, 12), red);
+  EXPECT_EQ(at(8, 32), green);
+  EXPECT_EQ(at(20, 3), blue);
+  EXPECT_EQ(at(20, 4), blue);
+  EXPECT_EQ(at(18, 8), blue);  // the square's lower side: its middle (5, 4.125) 1.25 mm above row 8.5
+  EXPECT_EQ(at(35, 25), white);
+  // Blue only on the chord (three pixels thick) and the square round it: columns 15 to 25, rows to 8.
+  for (int row = 0; row < 40; ++row)
+    for (int col = 0; col < 40; ++col)
+      if (at(col, row) == blue) EXPECT_TRUE(15 <= col && col <= 25 && row <= 8) << col << ", " << row;
+}
 
 TEST(PlanExport, PdfPageIsTheSheetOrTheChosenPaperReadBackByPdfinfo) {
   const test::TempDir dir;

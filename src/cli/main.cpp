@@ -249,7 +249,8 @@ void add_design_options(CLI::App& design, DesignArgs& args) {
       ->capture_default_str();
   design.add_option(
       "--dump-maps", args.maps_dir,
-      "write the maps (D, F, T, N, hit kind, segments S, subsegments SS, faces) and a plan preview as PNGs here");
+      "write the maps (D, F, T, N, hit kind, segments S, subsegments SS, faces, likeness error E), a plan preview "
+      "and the plan's places narrower than W (narrow) as PNGs here");
 }
 
 std::string one_line(std::string_view message);
@@ -375,10 +376,12 @@ int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const
   }
   if (!args.maps_dir.empty()) {
     for (auto& file : origamic::raster_image_files(result.maps, args.maps_dir)) files.push_back(std::move(file));
-    for (auto& file :
-         origamic::slice_image_files(result.maps, result.segmentation, result.raster_plan, result.card, args.maps_dir))
+    std::vector<origamic::NarrowChord> narrow;
+    for (const origamic::PlanProblem& place : result.narrow_strips) narrow.push_back({place.from, place.to});
+    for (auto& file : origamic::slice_image_files(result.maps, result.segmentation, result.raster_plan, result.card,
+                                                  result.plan.lines, narrow, args.maps_dir))
       files.push_back(std::move(file));
-    written += "maps: " + args.maps_dir + "/{D,F,T,N,kind,S,SS,faces,E,plan_preview}.png\n";
+    written += "maps: " + args.maps_dir + "/{D,F,T,N,kind,S,SS,faces,E,plan_preview,narrow}.png\n";
   }
   origamic::write_files(files);
   progress.clear();
