@@ -182,6 +182,17 @@ TEST(Raster, PixelCentresBeyondTheSheetAreOutside) {
   const RasterMaps narrower = raster(scene, Sheet{100.4, 60}, RasterOptions{.px_per_mm = 1});
   EXPECT_EQ(narrower.kind(100, 5), HitKind::Outside);
   EXPECT_TRUE(std::isnan(narrower.d_mm(100, 5)));
+  // Every value of a pixel past the edge is written, though no ray is shot there (the grids are
+  // made unfilled): unset depths, the far reference, no normal, no triangle, no break beside it.
+  EXPECT_TRUE(std::isnan(narrower.h_mm(100, 5)));
+  EXPECT_EQ(narrower.D(100, 5), 1.0f);
+  EXPECT_EQ(narrower.F(100, 5), 1.0f);
+  EXPECT_EQ(narrower.T(100, 5), 1.0f);
+  EXPECT_EQ(narrower.normal(100, 5), glm::vec3(0.0f));
+  EXPECT_EQ(narrower.primitive(100, 5), -1);
+  EXPECT_TRUE(std::isnan(narrower.break_right(99, 5)));  // its left neighbour's, towards it
+  EXPECT_TRUE(std::isnan(narrower.break_right(100, 5)));
+  EXPECT_TRUE(std::isnan(narrower.break_below(100, 5)));
 }
 
 TEST(Raster, OutputDoesNotDependOnTheThreadCount) {

@@ -250,19 +250,26 @@ float break_between(const Tracer& tracer, const Way& way) {
 // The maps' breaks between neighbouring pixel centres on the sheet, in parallel over rows.
 void trace_breaks(const Tracer& tracer, RasterMaps& maps) {
   const PixelGrid& grid = maps.grid;
-  maps.break_right = Grid<float>(grid.cols, grid.rows, std::numeric_limits<float>::quiet_NaN());
-  maps.break_below = Grid<float>(grid.cols, grid.rows, std::numeric_limits<float>::quiet_NaN());
+  constexpr float none = std::numeric_limits<float>::quiet_NaN();
+  maps.break_right = Grid<float>::unfilled(grid.cols, grid.rows);  // every pixel written below
+  maps.break_below = Grid<float>::unfilled(grid.cols, grid.rows);
   const double px_mm = 1 / grid.px_per_mm;
   tbb::parallel_for(tbb::blocked_range<int>(0, grid.rows), [&](const tbb::blocked_range<int>& range) {
     for (int row = range.begin(); row != range.end(); ++row)
       for (int col = 0; col < grid.cols; ++col) {
-        if (maps.kind(col, row) == HitKind::Outside) continue;
+        if (maps.kind(col, row) == HitKind::Outside) {
+          maps.break_right(col, row) = maps.break_below(col, row) = none;
+          continue;
+        }
         const glm::dvec2 a(grid.X(col), grid.Y(row));
         const Traced at_a{
             maps.kind(col, row), {maps.h_mm(col, row), maps.d_mm(col, row)}, {}, maps.primitive(col, row)};
         for (const auto& [c, r, out] :
              {std::tuple{col + 1, row, &maps.break_right}, std::tuple{col, row + 1, &maps.break_below}}) {
-          if (!maps.kind.contains(c, r) || maps.kind(c, r) == HitKind::Outside) continue;
+          if (!maps.kind.contains(c, r) || maps.kind(c, r) == HitKind::Outside) {
+            (*out)(col, row) = none;
+            continue;
+          }
           const Traced at_b{maps.kind(c, r), {maps.h_mm(c, r), maps.d_mm(c, r)}, {}, maps.primitive(c, r)};
           (*out)(col, row) = break_between(tracer, {a, a + glm::dvec2(c - col, row - r) * px_mm, at_a, at_b});
         }
@@ -296,14 +303,15 @@ RasterMaps raster(const RayScene& scene, const Sheet& sheet, const RasterOptions
   RasterMaps maps;
   maps.grid = PixelGrid::covering(sheet, options.px_per_mm);
   const int cols = maps.grid.cols, rows = maps.grid.rows;
-  maps.kind = Grid<HitKind>(cols, rows, HitKind::Outside);
-  maps.d_mm = Grid<double>(cols, rows, std::numeric_limits<double>::quiet_NaN());
-  maps.h_mm = Grid<double>(cols, rows, std::numeric_limits<double>::quiet_NaN());
-  maps.D = Grid<float>(cols, rows, 1.0f);
-  maps.F = Grid<float>(cols, rows, 1.0f);
-  maps.T = Grid<float>(cols, rows, 1.0f);
-  maps.normal = Grid<glm::vec3>(cols, rows, glm::vec3(0.0f));
-  maps.primitive = Grid<std::int32_t>(cols, rows, -1);
+  // Every pixel is written once below, on all cores.
+  maps.kind = Grid<HitKind>::unfilled(cols, rows);
+  maps.d_mm = Grid<double>::unfilled(cols, rows);
+  maps.h_mm = Grid<double>::unfilled(cols, rows);
+  maps.D = Grid<float>::unfilled(cols, rows);
+  maps.F = Grid<float>::unfilled(cols, rows);
+  maps.T = Grid<float>::unfilled(cols, rows);
+  maps.normal = Grid<glm::vec3>::unfilled(cols, rows);
+  maps.primitive = Grid<std::int32_t>::unfilled(cols, rows);
 
   const double half = sheet.half_height_mm();
   const bool empty = s.mesh.positions.empty();
@@ -318,10 +326,17 @@ RasterMaps raster(const RayScene& scene, const Sheet& sheet, const RasterOptions
   tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& range) {
     for (int row = range.begin(); row != range.end(); ++row) {
       const double Y = maps.grid.Y(row);
-      if (Y < sheet.min_Y() || Y > sheet.max_Y()) continue;
+      const bool row_on_sheet = !(Y < sheet.min_Y() || Y > sheet.max_Y());
       for (int col = 0; col < cols; ++col) {
         const double X = maps.grid.X(col);
-        if (X > sheet.max_X()) continue;
+        if (!row_on_sheet || X > sheet.max_X()) {  // past the sheet's edge: the values unset
+          maps.kind(col, row) = HitKind::Outside;
+          maps.d_mm(col, row) = maps.h_mm(col, row) = std::numeric_limits<double>::quiet_NaN();
+          maps.D(col, row) = maps.F(col, row) = maps.T(col, row) = 1.0f;
+          maps.normal(col, row) = glm::vec3(0.0f);
+          maps.primitive(col, row) = -1;
+          continue;
+        }
         const Traced traced = tracer.trace(X, Y, true, true);
         const Hit& hit = traced.hit;
         maps.kind(col, row) = traced.kind;

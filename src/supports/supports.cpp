@@ -380,7 +380,7 @@ FaceOrderRun::Stopped FaceOrderRun::pass() {
 bool FaceOrderRun::part_faces(const std::vector<std::int32_t>& invalid, int loose) {
   std::vector<std::int32_t> apart = invalid;
   if (loose > 0) apart.insert(apart.end(), {kBackFace, kFloorFace});
-  const std::vector<std::int32_t> before = raster_plan_.face.values;
+  const auto before = raster_plan_.face.values;
   const int block_px = raster_plan_.block_px;
   SplitFaces split = split_disconnected_faces(std::move(raster_plan_), apart, crumb_px_, block_px);
   raster_plan_ = std::move(split.raster_plan);
