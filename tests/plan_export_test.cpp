@@ -19,7 +19,6 @@
 #include "origamic/design.hpp"
 #include "origamic/error.hpp"
 #include "origamic/output.hpp"
-#include "origamic/raster_images.hpp"
 
 namespace origamic {
 namespace {
@@ -233,33 +232,6 @@ class HousePlan : public ::testing::Test {
 };
 Plan* HousePlan::house_ = nullptr;
 
-TEST(PlanExport, TheNarrowPlacesPictureDrawsThePlanAndMarksEachChord) {
-  // A 10 x 10 mm sheet at 4 px/mm, the main fold across its middle (row 20).
-  PixelGrid grid;
-  grid.cols = 40, grid.rows = 40, grid.px_per_mm = 4, grid.rows_above_fold = 20;
-  const std::vector<PlanPolyline> lines = {{LineKind::Cut, {{1, 2}, {9, 2}}},          // row 12
-                                           {LineKind::Mountain, {{1, -3}, {9, -3}}}};  // row 32
-  const std::vector<NarrowChord> chords = {{{5, 4}, {5, 4.25}}};                       // column 20, rows 3 and 4
-  const std::vector<std::uint8_t> rgb = narrow_places_rgb(grid, lines, chords);
-  ASSERT_EQ(rgb.size(), 3u * 40 * 40);
-  const auto at = [&](int col, int row) {
-    const std::size_t i = 3 * (static_cast<std::size_t>(row) * 40 + col);
-    return std::array<int, 3>{rgb[i], rgb[i + 1], rgb[i + 2]};
-  };
-  const std::array<int, 3> red{220, 0, 0}, green{0, 160, 0}, blue{0, 60, 255}, white{255, 255, 255};
-  EXPECT_EQ(at(8, 12), red);
-  EXPECT_EQ(at(35, 12), red);
-  EXPECT_EQ(at(8, 32), green);
-  EXPECT_EQ(at(20, 3), blue);
-  EXPECT_EQ(at(20, 4), blue);
-  EXPECT_EQ(at(18, 8), blue);  // the square's lower side: its middle (5, 4.125) 1.25 mm above row 8.5
-  EXPECT_EQ(at(35, 25), white);
-  // Blue only on the chord (three pixels thick) and the square round it: columns 15 to 25, rows to 8.
-  for (int row = 0; row < 40; ++row)
-    for (int col = 0; col < 40; ++col)
-      if (at(col, row) == blue) EXPECT_TRUE(15 <= col && col <= 25 && row <= 8) << col << ", " << row;
-}
-
 TEST(PlanExport, PdfPageIsTheSheetOrTheChosenPaperReadBackByPdfinfo) {
   const test::TempDir dir;
   struct Case {
@@ -364,6 +336,46 @@ TEST(PlanExport, PdfLegendGoesToASecondPageWhenNoCornerOfTheSheetIsFree) {
   const auto [w, h] = pdfinfo_page_mm(dir / "plan.pdf");
   EXPECT_NEAR(w, 210, 0.0005);
   EXPECT_NEAR(h, 297, 0.0005);
+}
+
+TEST_F(HousePlan, TheNarrowPlacesPictureIsThePreviewWithEachChordMarkedBlue) {
+  const ExportOptions options = exports(FoldStyle::Score);
+  // A chord along Y on the sheet's left, and one 0.05 mm long along X in its middle.
+  const std::vector<NarrowChord> chords = {{{5, 100}, {5, 102}}, {{105, -50}, {105.05, -50}}};
+  const std::vector<std::uint8_t> marked = narrow_places_rgb(house(), options, chords);
+  const std::vector<std::uint8_t> plain = narrow_places_rgb(house(), options, {});
+  const int w = 840, h = 1188;  // 210 x 297 mm at 4 px/mm
+  ASSERT_EQ(marked.size(), 3u * w * h);
+  ASSERT_EQ(plain.size(), marked.size());
+  const auto blue = [](const std::vector<std::uint8_t>& rgb, int x, int y) {
+    const std::size_t i = 3 * (static_cast<std::size_t>(y) * 840 + x);
+    return rgb[i + 2] > 200 && rgb[i] < 60 && rgb[i + 1] < 110;
+  };
+  const auto pixel = [&](double X, double Y) {
+    return std::pair{static_cast<int>(X * 4), static_cast<int>((148.5 - Y) * 4)};
+  };
+  for (const auto& [X, Y] : {std::pair{5.0, 101.0}, std::pair{105.025, -50.0}}) {
+    const auto [x, y] = pixel(X, Y);
+    EXPECT_TRUE(blue(marked, x, y)) << X << ", " << Y;
+  }
+  // Each chord's square, 11 pixels a side: its left side 5.5 pixels from the chord's middle.
+  const auto [mx, my] = pixel(105.025, -50);
+  EXPECT_TRUE(blue(marked, mx - 5, my - 3) || blue(marked, mx - 6, my - 3));
+  EXPECT_FALSE(blue(marked, mx - 3, my - 3));  // inside the square, off the chord: the plan's
+  // Blue only there, and the plan drawn as plan_png draws it everywhere else.
+  std::size_t blue_pixels = 0, changed_elsewhere = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      EXPECT_FALSE(blue(plain, x, y));
+      const bool near =
+          (std::abs(x - 20) <= 7 && std::abs(y - 190) <= 11) || (std::abs(x - 420) <= 7 && std::abs(y - 794) <= 7);
+      blue_pixels += blue(marked, x, y);
+      const std::size_t i = 3 * (static_cast<std::size_t>(y) * w + x);
+      if (!near && (marked[i] != plain[i] || marked[i + 1] != plain[i + 1] || marked[i + 2] != plain[i + 2]))
+        ++changed_elsewhere;
+    }
+  EXPECT_GT(blue_pixels, 60u);
+  EXPECT_EQ(changed_elsewhere, 0u);
 }
 
 TEST_F(HousePlan, PdfCarriesItsLegendCaptionAndMetadata) {

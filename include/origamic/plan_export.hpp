@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -100,6 +101,21 @@ std::string plan_svg(const Plan& plan, const ExportOptions& options);
 /// perforated style), on white, at preview_px_per_mm, with tEXt chunks (title, description,
 /// software) and pHYs set to the resolution. \throws OutputError.
 std::string plan_png(const Plan& plan, const ExportOptions& options);
+
+/// A chord across a face where it is narrower than W, from side to side (plan mm, Y up from the
+/// main fold), as the plan's analysis reports it.
+struct NarrowChord {
+  PlanPoint from, to;
+};
+
+/// plan_png's picture with each chord over it in blue, three pixels wide, inside a blue square of
+/// 11 pixels (a chord a hundredth of a millimetre long shows at a glance): RGB bytes, row 0 at the
+/// top, ceil(sheet width x preview_px_per_mm) by ceil(height x it). \throws OutputError.
+std::vector<std::uint8_t> narrow_places_rgb(const Plan& plan, const ExportOptions& options,
+                                            std::span<const NarrowChord> chords);
+
+/// narrow_places_rgb as a PNG, for `--dump-maps` (narrow.png). \throws OutputError.
+std::string narrow_places_png(const Plan& plan, const ExportOptions& options, std::span<const NarrowChord> chords);
 
 /// The plan as a print-ready PDF at exactly 1:1 (1 pt = 25.4/72 mm), drawn by cairo: the page is
 /// pdf_page(sheet, paper) with the sheet centred on it, 0.1 mm lines in the layer colours and the

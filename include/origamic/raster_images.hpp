@@ -3,13 +3,11 @@
 #pragma once
 
 #include <filesystem>
-#include <span>
 #include <string>
 #include <vector>
 
 #include "origamic/likeness.hpp"
 #include "origamic/output.hpp"
-#include "origamic/plan.hpp"
 #include "origamic/raster.hpp"
 #include "origamic/segment.hpp"
 #include "origamic/slice.hpp"
@@ -21,27 +19,13 @@ namespace origamic {
 /// black), named for the folder dir. \throws OutputError if one cannot be encoded.
 std::vector<OutputFile> raster_image_files(const RasterMaps& maps, const std::filesystem::path& dir);
 
-/// A chord across a face where it is narrower than W, from side to side (plan mm, Y up from the
-/// main fold), as the plan's analysis reports it.
-struct NarrowChord {
-  PlanPoint from, to;
-};
-
-/// The finished plan at the grid's resolution with its places narrower than W: cuts red, folds
-/// green, the sheet's edge grey, on white; each chord blue, three pixels thick, inside a blue square
-/// of 11 pixels (a chord of a hundredth of a millimetre shows at a glance). Rgb8, row 0 at the top.
-std::vector<std::uint8_t> narrow_places_rgb(const PixelGrid& grid, std::span<const PlanPolyline> lines,
-                                            std::span<const NarrowChord> chords);
-
 /// The segmentation map S, the subsegment map SS and the face map as colour PNGs (one colour per id;
 /// back plane grey, floor tan), plan_preview.png: the raster plan in the seed's style (§4.6), cuts
 /// red, folds green, on white; and E.png, the likeness error of `card`, the finished plan as the
 /// 45-degree view sees it (|card h + d - model h + d|: black where the card meets the model, white
-/// at 2 W or more off; blue off the model); and narrow.png, the finished plan's lines and its places
-/// narrower than W (narrow_places_rgb). Named for the folder dir. \throws OutputError.
+/// at 2 W or more off; blue off the model). Named for the folder dir. \throws OutputError.
 std::vector<OutputFile> slice_image_files(const RasterMaps& maps, const Segmentation& segmentation,
                                           const RasterPlan& raster_plan, const CardView& card,
-                                          std::span<const PlanPolyline> lines, std::span<const NarrowChord> narrow,
                                           const std::filesystem::path& dir);
 
 }  // namespace origamic

@@ -376,11 +376,13 @@ int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const
   }
   if (!args.maps_dir.empty()) {
     for (auto& file : origamic::raster_image_files(result.maps, args.maps_dir)) files.push_back(std::move(file));
+    for (auto& file :
+         origamic::slice_image_files(result.maps, result.segmentation, result.raster_plan, result.card, args.maps_dir))
+      files.push_back(std::move(file));
     std::vector<origamic::NarrowChord> narrow;
     for (const origamic::PlanProblem& place : result.narrow_strips) narrow.push_back({place.from, place.to});
-    for (auto& file : origamic::slice_image_files(result.maps, result.segmentation, result.raster_plan, result.card,
-                                                  result.plan.lines, narrow, args.maps_dir))
-      files.push_back(std::move(file));
+    const std::filesystem::path narrow_png = std::filesystem::path(args.maps_dir) / "narrow.png";
+    files.push_back({narrow_png, origamic::narrow_places_png(result.plan, exports, narrow)});
     written += "maps: " + args.maps_dir + "/{D,F,T,N,kind,S,SS,faces,E,plan_preview,narrow}.png\n";
   }
   origamic::write_files(files);

@@ -115,7 +115,14 @@ std::string plan_svg(const Plan& plan, const ExportOptions& options) {
   return svg.str();
 }
 
-std::string plan_png(const Plan& plan, const ExportOptions& options) {
+namespace {
+
+// The plan in the seed's style at preview_px_per_mm, with `marks` in blue over it: RGB bytes.
+struct PlanPicture {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;
+};
+PlanPicture plan_picture(const Plan& plan, const ExportOptions& options, std::span<const NarrowChord> marks) {
   // The seed's figures show fold directions by pattern: the score style is previewed dashed.
   FoldStyleOptions folds = options.folds;
   if (folds.style == FoldStyle::Score) folds.style = FoldStyle::Dashed;
@@ -143,6 +150,21 @@ std::string plan_png(const Plan& plan, const ExportOptions& options) {
       cairo_stroke(cr);
     }
   }
+  // Marks in whole pixels of one colour; a chord shorter than a pixel is a dot.
+  constexpr double kSquare_px = 11;
+  cairo_set_source_rgb(cr, 0, 0.24, 1);
+  cairo_set_antialias(cr, CAIRO_ANTIALIAS_NONE);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  for (const NarrowChord& mark : marks) {
+    cairo_set_line_width(cr, 3 / scale);
+    cairo_move_to(cr, mark.from.X, mark.from.Y);
+    cairo_line_to(cr, mark.to.X, mark.to.Y);
+    cairo_stroke(cr);
+    cairo_set_line_width(cr, 1 / scale);
+    const double side = kSquare_px / scale;
+    cairo_rectangle(cr, (mark.from.X + mark.to.X - side) / 2, (mark.from.Y + mark.to.Y - side) / 2, side, side);
+    cairo_stroke(cr);
+  }
   cairo_destroy(cr);
   cairo_surface_flush(surface);
   const cairo_status_t status = cairo_surface_status(surface);
@@ -151,7 +173,7 @@ std::string plan_png(const Plan& plan, const ExportOptions& options) {
     throw OutputError("plan PNG: cannot draw (" + std::string(cairo_status_to_string(status)) + ")");
   }
   // Cairo's RGB24 pixels are native-endian 32-bit 0xXXRRGGBB words; libpng takes RGB bytes.
-  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3);
+  PlanPicture picture{w, h, std::vector<std::uint8_t>(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3)};
   const unsigned char* data = cairo_image_surface_get_data(surface);
   const int stride = cairo_image_surface_get_stride(surface);
   for (int y = 0; y < h; ++y)
@@ -159,17 +181,40 @@ std::string plan_png(const Plan& plan, const ExportOptions& options) {
       std::uint32_t pixel;
       std::memcpy(&pixel, data + static_cast<std::ptrdiff_t>(y) * stride + 4 * x, 4);
       std::uint8_t* out =
-          &rgb[(static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)) * 3];
+          &picture.rgb[(static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)) * 3];
       out[0] = static_cast<std::uint8_t>(pixel >> 16), out[1] = static_cast<std::uint8_t>(pixel >> 8),
       out[2] = static_cast<std::uint8_t>(pixel);
     }
   cairo_surface_destroy(surface);
-  return encode_png("plan PNG", w, h, rgb,
+  return picture;
+}
+
+}  // namespace
+
+std::string plan_png(const Plan& plan, const ExportOptions& options) {
+  const PlanPicture picture = plan_picture(plan, options, {});
+  const double scale = options.preview_px_per_mm;
+  return encode_png("plan PNG", picture.width, picture.height, picture.rgb,
                     {.texts = {{"Title", one_line("origamic plan: " + options.model)},
                                {"Description", plan_description(plan, options) + "; preview at " + mm_text(scale) +
                                                    " px/mm: cuts red, folds green (mountain dash-dot, valley dashed)"},
                                {"Software", std::string("origamic ") + version}},
                      .px_per_mm = scale});
+}
+
+std::vector<std::uint8_t> narrow_places_rgb(const Plan& plan, const ExportOptions& options,
+                                            std::span<const NarrowChord> chords) {
+  return plan_picture(plan, options, chords).rgb;
+}
+
+std::string narrow_places_png(const Plan& plan, const ExportOptions& options, std::span<const NarrowChord> chords) {
+  const PlanPicture picture = plan_picture(plan, options, chords);
+  return encode_png(
+      "narrow places PNG", picture.width, picture.height, picture.rgb,
+      {.texts = {{"Title", one_line("origamic places narrower than W: " + options.model)},
+                 {"Description", std::to_string(chords.size()) + " places narrower than W, blue, each in a square"},
+                 {"Software", std::string("origamic ") + version}},
+       .px_per_mm = options.preview_px_per_mm});
 }
 
 std::vector<OutputFile> plan_files(const Plan& plan, const ExportOptions& options, const std::string& base) {

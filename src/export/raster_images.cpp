@@ -96,54 +96,10 @@ std::vector<std::uint8_t> error_rgb(const Grid<float>& error, double W) {
   return pixels;
 }
 
-// Paints the pixels a segment from a to b (plan mm) passes through, `half` pixels either side.
-void draw_segment(const PixelGrid& grid, PlanPoint a, PlanPoint b, std::array<std::uint8_t, 3> rgb, int half,
-                  std::vector<std::uint8_t>& pixels) {
-  const double ca = a.X * grid.px_per_mm, ra = grid.rows_above_fold - a.Y * grid.px_per_mm;
-  const double cb = b.X * grid.px_per_mm, rb = grid.rows_above_fold - b.Y * grid.px_per_mm;
-  const int steps = static_cast<int>(std::ceil(2 * std::max(std::abs(cb - ca), std::abs(rb - ra)))) + 1;
-  for (int i = 0; i <= steps; ++i) {
-    const double t = static_cast<double>(i) / steps;
-    const int col = static_cast<int>(std::floor(ca + t * (cb - ca))),
-              row = static_cast<int>(std::floor(ra + t * (rb - ra)));
-    for (int r = row - half; r <= row + half; ++r)
-      for (int c = col - half; c <= col + half; ++c)
-        if (0 <= c && c < grid.cols && 0 <= r && r < grid.rows)
-          std::ranges::copy(rgb, &pixels[3 * (static_cast<std::size_t>(r) * grid.cols + c)]);
-  }
-}
-
 }  // namespace
-
-std::vector<std::uint8_t> narrow_places_rgb(const PixelGrid& grid, std::span<const PlanPolyline> lines,
-                                            std::span<const NarrowChord> chords) {
-  std::vector<std::uint8_t> pixels(3 * static_cast<std::size_t>(grid.cols) * grid.rows, 255);
-  for (const PlanPolyline& line : lines) {
-    const std::array<std::uint8_t, 3> rgb = line.kind == LineKind::Outline ? std::array<std::uint8_t, 3>{160, 160, 160}
-                                            : is_cut(line.kind) || line.perforation
-                                                ? std::array<std::uint8_t, 3>{220, 0, 0}
-                                                : std::array<std::uint8_t, 3>{0, 160, 0};
-    for (std::size_t i = 0; i + 1 < line.points.size(); ++i)
-      draw_segment(grid, line.points[i], line.points[i + 1], rgb, 0, pixels);
-  }
-  constexpr std::array<std::uint8_t, 3> kBlue{0, 60, 255};
-  constexpr double kSquare_px = 5;  // half the square's side
-  for (const NarrowChord& chord : chords) {
-    draw_segment(grid, chord.from, chord.to, kBlue, 1, pixels);
-    const double half_mm = kSquare_px / grid.px_per_mm;
-    const PlanPoint m{(chord.from.X + chord.to.X) / 2, (chord.from.Y + chord.to.Y) / 2};
-    const PlanPoint corners[] = {{m.X - half_mm, m.Y - half_mm},
-                                 {m.X + half_mm, m.Y - half_mm},
-                                 {m.X + half_mm, m.Y + half_mm},
-                                 {m.X - half_mm, m.Y + half_mm}};
-    for (std::size_t k = 0; k < 4; ++k) draw_segment(grid, corners[k], corners[(k + 1) % 4], kBlue, 0, pixels);
-  }
-  return pixels;
-}
 
 std::vector<OutputFile> slice_image_files(const RasterMaps& maps, const Segmentation& segmentation,
                                           const RasterPlan& raster_plan, const CardView& card,
-                                          std::span<const PlanPolyline> lines, std::span<const NarrowChord> narrow,
                                           const std::filesystem::path& dir) {
   const int w = maps.grid.cols, h = maps.grid.rows;
   const std::vector<std::pair<std::string, std::vector<std::uint8_t>>> images = {
@@ -152,7 +108,6 @@ std::vector<OutputFile> slice_image_files(const RasterMaps& maps, const Segmenta
       {"faces.png", id_rgb(raster_plan.face, true)},
       {"plan_preview.png", plan_preview_rgb(maps, raster_plan)},
       {"E.png", error_rgb(likeness_error_map(maps, card), raster_plan.min_strip_mm)},
-      {"narrow.png", narrow_places_rgb(maps.grid, lines, narrow)},
   };
   std::vector<OutputFile> files;
   for (const auto& [name, pixels] : images)
