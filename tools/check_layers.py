@@ -19,8 +19,8 @@ from pathlib import Path
 
 # The stage each public header belongs to: its types and calls are that stage's.
 PUBLIC_HEADERS = {
-    "oa.hpp": "core", "grid.hpp": "core", "error.hpp": "core", "output.hpp": "core", "mm_text.hpp": "core",
-    "version.hpp": "core",
+    "oa.hpp": "core", "grid.hpp": "core", "unfilled_vector.hpp": "core", "error.hpp": "core", "output.hpp": "core",
+    "mm_text.hpp": "core", "version.hpp": "core",
     "mesh_io.hpp": "load", "placement.hpp": "load",
     "raster.hpp": "raster",
     "segment.hpp": "segment",

@@ -5,10 +5,11 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <glm/vec3.hpp>
 #include <string>
 #include <vector>
 
-#include <glm/vec3.hpp>
+#include "origamic/unfilled_vector.hpp"
 
 namespace origamic {
 
@@ -18,7 +19,7 @@ struct TriangleMesh {
   std::vector<glm::dvec3> positions;
   std::vector<std::array<std::uint32_t, 3>> triangles;
   /// Unit shading normal at each triangle corner (3 per triangle, in triangle order), or empty.
-  std::vector<glm::vec3> corner_normals;
+  UnfilledVector<glm::vec3> corner_normals;
 };
 
 struct LoadOptions {

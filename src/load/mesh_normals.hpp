@@ -13,7 +13,7 @@ namespace origamic {
 /// corner angle, of the normals of the faces around the corner's vertex that lie within
 /// feature_angle_deg of the corner's own face, so sharp edges stay sharp. Where that mean is zero
 /// the corner takes its face's normal.
-std::vector<glm::vec3> feature_corner_normals(const TriangleMesh& mesh, double feature_angle_deg);
+UnfilledVector<glm::vec3> feature_corner_normals(const TriangleMesh& mesh, double feature_angle_deg);
 
 /// Makes the file's corner normals in mesh.corner_normals unit length; a zero or non-finite one takes
 /// its face's normal. \pre mesh.corner_normals holds 3 normals per triangle.

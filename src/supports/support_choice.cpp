@@ -73,6 +73,7 @@ class CandidateFinder {
         face_(round.raster_plan.face),
         faces_(round.raster_plan.faces),
         W_(round.raster_plan.min_strip_mm),
+        split_faces_(reach.split_faces),
         below_tips_(reach.below_tips),
         corners_(reach.corners),
         px_mm_(1 / round.maps.grid.px_per_mm),
@@ -464,12 +465,10 @@ class CandidateFinder {
     s.depth_mm = onto_v ? h : d;
     s.near = {h, d};
     s.far = support_fold(target.orientation, target.depth_mm, h, d);
-    const double length = (s.r1 - s.r0) * px_mm_;
-    s.picture_mm = std::max(0.0, picture_.added_error(s.orientation, s.depth_mm, {s.c0, s.c1, s.r0, s.r1})) / (W_ * W_);
-    s.cost = kCostPerLength * length + s.picture_mm;
     // A support that cuts the face it holds in two holds nothing (candidates_of drops it): the faces
     // it crosses are then not asked (on seedlike/sphere a third of the candidates, a fifth of the
-    // pixel runs the split tests walk).
+    // pixel runs the split tests walk), nor, where no third face may be cut, those after the first
+    // it cuts; nor is the picture, which only a support kept is priced by.
     const bool crosses_f = std::ranges::find(crossed, f) != crossed.end();
     if (f != g && crosses_f && splits(f, s, &memo)) {
       s.cuts.push_back(f);
@@ -477,7 +476,13 @@ class CandidateFinder {
     }
     std::ranges::sort(crossed);  // each face once already
     for (const std::int32_t x : crossed)
-      if (x != g && x != f && splits(x, s, &memo)) s.cuts.push_back(x);
+      if (x != g && x != f && splits(x, s, &memo)) {
+        s.cuts.push_back(x);
+        if (!split_faces_) return s;
+      }
+    const double length = (s.r1 - s.r0) * px_mm_;
+    s.picture_mm = std::max(0.0, picture_.added_error(s.orientation, s.depth_mm, {s.c0, s.c1, s.r0, s.r1})) / (W_ * W_);
+    s.cost = kCostPerLength * length + s.picture_mm;
     return s;
   }
 
@@ -488,7 +493,7 @@ class CandidateFinder {
   const Grid<std::int32_t>& face_;
   const std::vector<RasterFace>& faces_;
   double W_;
-  bool below_tips_, corners_;
+  bool split_faces_, below_tips_, corners_;
   double px_mm_;
   int block_;
   std::vector<int> slot_;                      // per face: its place in the tables below, -1 for faces not wanted
