@@ -489,6 +489,22 @@ TEST(Supports, CrumbsNoSupportHoldsAreGivenAwayTogether) {
   EXPECT_GE(r.likeness.coverage, 0.99);
 }
 
+// A hipped roof with two cross gables at its back (arch_german_semidetached, up y): each gable's
+// side slopes face along the main fold and slice into upright strips, which no support holds as
+// cheaply as a neighbour takes them. Given away in one batch, each strip went on into the next with
+// what it had taken, all into one plane (p95 3.74 W); a strip that has taken another's pixels is
+// now judged anew the next round, and the card stays within 2 W of its model.
+TEST(Supports, AFaceThatTookAnotherGivenAwayIsJudgedAnewNotGivenOnWithIt) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  DesignOptions options;
+  options.placement.up = UpAxis::Y;
+  const DesignResult r = design(test::models_dir() / "arch_german_semidetached.obj", options);
+  expect_exact_and_standing(r.plan);
+  EXPECT_LE(r.likeness.p95_W, 2.0);
+  EXPECT_LE(r.likeness.cut_out_share, 0.01);
+  EXPECT_GE(r.likeness.coverage, 0.98);
+}
+
 // A flat torus lying on the floor. Its rings of slices fold onto each other in chains; one ear
 // through each chain holds it (the old greedy choice left most of the ring to slats or cut it out:
 // 5.5 % of the model). Measured on the finished plan.
@@ -731,37 +747,22 @@ FramesChosen frames_chosen(const char* model, UpAxis up) {
 
 // Where the supports chosen first cost the likeness more than 1 W of p95 over the sliced plan, the
 // other frame's choice is tried too, and the design keeps the one that shows the model better. The
-// temple's first choice costs it 1.3 W.
+// water tower's first choice costs it 3.9 W (6.19 W against 2.24 W sliced); the other's, 5.66 W.
 TEST(Supports, WhereSupportsCostOverAStripWidthTheOtherFramesChoiceIsTriedAndTheBetterKept) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
-  const FramesChosen frames = frames_chosen("arch_temple.obj", UpAxis::Y);
+  const FramesChosen frames = frames_chosen("arch_water_tower.obj", UpAxis::Y);
   ASSERT_TRUE(frames.other.has_value());
   ASSERT_GT(frames.first.p95_W, frames.sliced.sliced_likeness.p95_W + 1);
   EXPECT_NE(frames.first.p95_W, frames.other->p95_W);
   DesignOptions options;
   options.placement.up = UpAxis::Y;
   options.tip_rounds = 0;  // the plan as supported: tips parted off later move its picture a hair
-  const DesignResult designed = design(test::models_dir() / "arch_temple.obj", options);
+  const DesignResult designed = design(test::models_dir() / "arch_water_tower.obj", options);
   EXPECT_EQ(designed.supports.frames, 2);
   EXPECT_EQ(designed.likeness.p95_W, std::min(frames.first.p95_W, frames.other->p95_W));
   expect_exact_and_standing(designed.plan);
   // The capitol's supports cost it nothing (0.88 W, sliced 0.89 W): one frame.
   EXPECT_EQ(standing_design("seedlike/capitol.stl").supports.frames, 1);
-}
-
-// A feature lost whole, small beside its model, hardly moves the p95 but shows in the mean error:
-// the castle keep's first frame gives its keep to the base (p95 0.27 -> 0.89 W, mean 0.09 ->
-// 0.53 W). Past a quarter W of mean the other frame's choice gets its turn, and it keeps the keep.
-TEST(Supports, AFeatureLostWholeCostsTheMeanErrorAndTheOtherFramesChoiceGetsItsTurn) {
-  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
-  const FramesChosen frames = frames_chosen("arch_castle_keep.obj", UpAxis::Z);
-  const Likeness& sliced = frames.sliced.sliced_likeness;
-  ASSERT_LE(frames.first.p95_W, sliced.p95_W + 1);
-  ASSERT_GT(frames.first.mean_W, sliced.mean_W + 0.25);
-  const DesignResult designed = standing_design("arch_castle_keep.obj");
-  EXPECT_EQ(designed.supports.frames, 2);
-  EXPECT_LE(designed.likeness.mean_W, sliced.mean_W + 0.25);
-  EXPECT_LT(designed.likeness.p95_W, frames.first.p95_W);
 }
 
 // Passes of rounds that held nothing are undone: the slices go back to those of the last exact
