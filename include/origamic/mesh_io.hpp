@@ -19,6 +19,7 @@ struct TriangleMesh {
   std::vector<glm::dvec3> positions;
   std::vector<std::array<std::uint32_t, 3>> triangles;
   /// Unit shading normal at each triangle corner (3 per triangle, in triangle order), or empty.
+  /// Its resize leaves new normals unwritten (UnfilledVector): write each.
   UnfilledVector<glm::vec3> corner_normals;
 };
 

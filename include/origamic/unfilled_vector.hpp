@@ -9,9 +9,10 @@
 namespace origamic {
 
 /// std::allocator, except that a value made without arguments is default-initialised: a trivial
-/// one is left unwritten. A grid made Grid::unfilled is first touched by the loop that fills it, on
-/// every core, not by a fill of zeros first (fresh memory costs about 3 ms/MB to touch on the
-/// 2-core machine: the 45-degree maps' grids took 48-102 ms to fill before their rays were shot).
+/// one is left unwritten. An array made so (a grid made Grid::unfilled, the corner normals) is first
+/// touched by the loop that fills it, on every core, not by a fill of zeros first (fresh memory costs
+/// about 3 ms/MB to touch on the 2-core machine: the 45-degree maps' grids took 48-102 ms to fill
+/// before their rays were shot).
 template <class T>
 struct DefaultInitAllocator : std::allocator<T> {
   template <class U>

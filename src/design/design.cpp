@@ -62,8 +62,8 @@ SupportedPlan supported_plan(const DesignResult& sliced, const DesignOptions& op
   };
   SupportedPlan first = add_supports(sliced.maps, sliced.raster_plan, options.sheet, options.plan, options.supports);
   const auto first_fares = fares(first.plan);
-  if (!std::get<0>(first_fares) && std::get<1>(first_fares) <= sliced.sliced_likeness.p95_W + kSupportsMayAddP95_W)
-    return first;
+  const auto& [fails, p95, mean] = first_fares;
+  if (!fails && p95 <= sliced.sliced_likeness.p95_W + kSupportsMayAddP95_W) return first;
   std::optional<SupportedPlan> other =
       add_supports_in_other_frame(sliced.maps, sliced.raster_plan, options.sheet, options.plan, options.supports);
   if (!other) return first;

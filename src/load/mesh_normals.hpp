@@ -3,7 +3,6 @@
 #pragma once
 
 #include <glm/vec3.hpp>
-#include <vector>
 
 #include "origamic/mesh_io.hpp"
 

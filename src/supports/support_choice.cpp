@@ -447,7 +447,8 @@ class CandidateFinder {
   // The support from its start to its landing (both rows outside it), with its cost: the error it
   // adds to the picture (SupportPicture, per W x W of plan: a support W wide and L long that shows
   // the model k W off costs k L), a little for its length; and the faces it cuts in two
-  // among those it crosses.
+  // among those it crosses. One candidates_of drops (it cuts f, or a third face where none may be
+  // cut) has no cost and names only the first face it cuts.
   Candidate candidate(const SupportStart& start, Landing landing, const BlockColumn& column, SplitMemo& memo) const {
     const auto [f, edge, up, h, d] = start;
     const std::int32_t g = landing.target;
