@@ -7,7 +7,6 @@
 #include <limits>
 #include <queue>
 #include <tuple>
-#include <unordered_map>
 #include <utility>
 
 #include "origamic/plan.hpp"
@@ -147,22 +146,21 @@ class EarSearch::Paths {
   // before it is queued, so each state queues a few labels, not one per path into it.
   struct State {
     double Y;
+    long long step;                   // Y in fold tolerances
     std::int64_t best[2] = {-1, -1};  // the two cheapest labels of different sources, cheaper first
     int settled = 0;                  // of them, popped
   };
 
   // States by face and line, the line to the fold tolerance (two lines a rounding apart may fall on
-  // either side of a step and make two states: harmless, the hinge rule compares the lines).
+  // either side of a step and make two states: harmless, the hinge rule compares the lines). A face
+  // is entered on a few lines: its states are found by a walk along them, not a hash.
   State& state_of(std::int32_t face, double Y) {
-    const auto step = static_cast<std::int64_t>(std::llround(Y / kFoldLineTolerance_mm));
-    const std::uint64_t key =
-        (static_cast<std::uint64_t>(face) << 40) ^ static_cast<std::uint64_t>(step & ((1LL << 40) - 1));
-    const auto [it, fresh] = state_index_.try_emplace(key, static_cast<std::uint32_t>(states_.size()));
-    if (fresh) {
-      states_.push_back(State{Y});
-      states_of_[static_cast<std::size_t>(face)].push_back(it->second);
-    }
-    return states_[it->second];
+    const auto step = std::llround(Y / kFoldLineTolerance_mm);
+    std::vector<std::uint32_t>& of_face = states_of_[static_cast<std::size_t>(face)];
+    for (const std::uint32_t k : of_face)
+      if (states_[k].step == step) return states_[k];
+    of_face.push_back(static_cast<std::uint32_t>(states_.size()));
+    return states_.emplace_back(State{Y, step});
   }
 
   bool allowed(const Arc& arc) const { return arc.support < 0 || usable_[static_cast<std::size_t>(arc.support)]; }
@@ -222,7 +220,6 @@ class EarSearch::Paths {
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue_;
   std::vector<State> states_;
   std::vector<std::vector<std::uint32_t>> states_of_;  // per face
-  std::unordered_map<std::uint64_t, std::uint32_t> state_index_;
 };
 
 namespace {
