@@ -146,7 +146,7 @@ class EarSearch::Paths {
   // before it is queued, so each state queues a few labels, not one per path into it.
   struct State {
     double Y;
-    long long step;                   // Y in fold tolerances
+    std::int64_t step;                // Y in fold tolerances
     std::int64_t best[2] = {-1, -1};  // the two cheapest labels of different sources, cheaper first
     int settled = 0;                  // of them, popped
   };
@@ -155,7 +155,7 @@ class EarSearch::Paths {
   // either side of a step and make two states: harmless, the hinge rule compares the lines). A face
   // is entered on a few lines: its states are found by a walk along them, not a hash.
   State& state_of(std::int32_t face, double Y) {
-    const auto step = std::llround(Y / kFoldLineTolerance_mm);
+    const auto step = static_cast<std::int64_t>(std::llround(Y / kFoldLineTolerance_mm));
     std::vector<std::uint32_t>& of_face = states_of_[static_cast<std::size_t>(face)];
     for (const std::uint32_t k : of_face)
       if (states_[k].step == step) return states_[k];
