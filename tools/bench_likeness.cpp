@@ -5,14 +5,16 @@
 // read back and analysed by `origamic validate`'s reader, its regions seen along the 45-degree view
 // against the model's own depth (likeness.hpp). Prints per model the finished p95 and mean error
 // (in W), the sliced p95, coverage, support and cut-out shares, faces, folds, whether it stands,
-// its places narrower than W (read back, as `origamic validate --min-strip W` counts them) and the
-// time of the design, then the means; writes OUT_DIR/contact_sheet.png (per model: the model, the
-// pop-up, the plan) and each model's pictures and DXF under OUT_DIR/models/.
+// its places narrower than W (read back, as `origamic validate --min-strip W` counts them), the
+// time of the design and, of those places, the ones between two parallel folds, then the means; writes
+// OUT_DIR/contact_sheet.png (per model: the model, the pop-up, the plan) and each model's pictures and DXF under
+// OUT_DIR/models/.
 #include <cairo.h>
 
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -81,12 +83,35 @@ struct Row {
   int faces = 0, folds = 0, supports = 0, removed = 0;
   bool stands = false, read_back_stands = false;  // as designed and as read back
   int narrow = 0;                                 // places narrower than W, read back
+  int parallel = 0;                               // of them, between two parallel folds
   double design_s = 0;
   // Where the card is more than 2 W off its model: shares of the model's pixels showing a face of
   // the model, a support, the back plane or floor, or a hole (the finished card, as designed).
   std::array<double, 4> far_off{};
   std::string error;  // the design failed
 };
+
+// The places narrower than W that run along Y from a fold to a fold: two parallel folds closer than
+// W (issue 23), on the lines as the drawing has them.
+int between_two_folds(const PlanAnalysis& analysis, const std::vector<PlanPolyline>& lines) {
+  const auto on_a_fold = [&](PlanPoint p) {
+    const double Y = p.Y + analysis.main_fold_Y, eps = 1e-9;  // the drawing's frame, a rounding apart
+    for (const PlanPolyline& line : lines) {
+      if (line.kind != LineKind::Mountain && line.kind != LineKind::Valley) continue;
+      for (std::size_t i = 1; i < line.points.size(); ++i) {
+        const PlanPoint &a = line.points[i - 1], &b = line.points[i];
+        if (a.Y == b.Y && std::abs(a.Y - Y) <= eps && std::min(a.X, b.X) - eps <= p.X &&
+            p.X <= std::max(a.X, b.X) + eps)
+          return true;
+      }
+    }
+    return false;
+  };
+  return static_cast<int>(std::ranges::count_if(analysis.problems, [&](const PlanProblem& problem) {
+    return problem.kind == PlanProblemKind::NarrowStrip && problem.from.X == problem.to.X && on_a_fold(problem.from) &&
+           on_a_fold(problem.to);
+  }));
+}
 
 // A cairo surface of a rendered picture.
 cairo_surface_t* surface_of(const Image& image) {
@@ -236,9 +261,11 @@ Row measure(const Model& model, const DesignOptions& base, const fs::path& out, 
   ExportOptions exports;
   exports.model = row.name;
   write_files({{dxf, plan_dxf(result.plan, exports)}});
-  const PlanAnalysis analysis = analyze_plan(read_plan_dxf(dxf, {}), {.min_strip_mm = options.slice.min_strip_mm});
+  const std::vector<PlanPolyline> lines = read_plan_dxf(dxf, {});
+  const PlanAnalysis analysis = analyze_plan(lines, {.min_strip_mm = options.slice.min_strip_mm});
   row.narrow =
       static_cast<int>(std::ranges::count(analysis.problems, PlanProblemKind::NarrowStrip, &PlanProblem::kind));
+  row.parallel = between_two_folds(analysis, lines);
   row.read_back_stands = analysis.errors == row.narrow;  // a narrow strip is an error; it stands if only those
   row.read_back = likeness(result.maps, card_view(result.maps.grid, analysis.regions, {}), options.slice.min_strip_mm);
 
@@ -289,8 +316,8 @@ int main(int argc, char** argv) {
   fs::create_directories(out / "models");
   std::vector<Row> rows;
   std::vector<Cell> cells;
-  std::printf("%-30s %7s %7s %7s %7s %7s %7s %7s %5s %5s %5s %-9s %6s %6s\n", "model", "p95 W", "mean W", "sliced",
-              "p95 rb", "cover", "suppt", "cutout", "faces", "folds", "rm", "stands", "narrow", "time s");
+  std::printf("%-30s %7s %7s %7s %7s %7s %7s %7s %5s %5s %5s %-9s %6s %6s %5s\n", "model", "p95 W", "mean W", "sliced",
+              "p95 rb", "cover", "suppt", "cutout", "faces", "folds", "rm", "stands", "narrow", "time s", "folds<W");
   for (const Model& model : models_in(models_dir)) {
     const std::string name = name_of(model.file);
     if (!only.empty() && std::ranges::find(only, name) == only.end()) continue;
@@ -314,14 +341,14 @@ int main(int argc, char** argv) {
         row.finished.p95_W, row.sliced.p95_W, row.finished.mean_W, 100 * row.finished.coverage,
         100 * row.finished.support_share, 100 * row.finished.cut_out_share, row.stands ? "stands" : "does not stand");
     cell.numbers = numbers;
-    std::printf("%-30s %7.2f %7.2f %7.2f %7.2f %6.1f%% %6.1f%% %6.2f%% %5d %5d %5d %-9s %6d %6.2f\n", name.c_str(),
+    std::printf("%-30s %7.2f %7.2f %7.2f %7.2f %6.1f%% %6.1f%% %6.2f%% %5d %5d %5d %-9s %6d %6.2f %5d\n", name.c_str(),
                 row.finished.p95_W, row.finished.mean_W, row.sliced.p95_W, row.read_back.p95_W,
                 100 * row.finished.coverage, 100 * row.finished.support_share, 100 * row.finished.cut_out_share,
                 row.faces, row.folds, row.removed,
                 row.stands && row.read_back_stands ? "yes"
                 : row.stands                       ? "rb-NO"
                                                    : "NO",
-                row.narrow, row.design_s);
+                row.narrow, row.design_s, row.parallel);
     std::fflush(stdout);
     rows.push_back(row);
     cells.push_back(cell);
@@ -366,8 +393,12 @@ int main(int argc, char** argv) {
   const int clean = static_cast<int>(std::ranges::count(rows, 0, &Row::narrow));
   int narrow = 0;
   for (const Row& r : rows) narrow += r.narrow;
-  std::printf("no place narrower than W, read back: %d of %zu; places narrower than W: %d in all\n", clean, rows.size(),
-              narrow);
+  int parallel = 0;
+  for (const Row& r : rows) parallel += r.parallel;
+  std::printf(
+      "no place narrower than W, read back: %d of %zu; places narrower than W: %d in all, %d of them between two "
+      "parallel folds\n",
+      clean, rows.size(), narrow, parallel);
   std::printf("design time: mean %.2f s, total %.1f s\n", mean([](const Row& r) { return r.design_s; }),
               mean([](const Row& r) { return r.design_s; }) * n);
   write_contact_sheet(cells, out / "contact_sheet.png");
