@@ -812,7 +812,7 @@ TEST(Supports, ThePlanKeptIsTheExactPlanOfTheSlicesKept) {
   DesignOptions options;
   options.placement.up = UpAxis::Z;
   options.tip_rounds = 0;
-  const DesignResult r = design(test::models_dir() / "seedlike/sphere.stl", options);
+  const DesignResult r = design(test::models_dir() / "prim_torus.stl", options);
   expect_exact_and_standing(r.plan);
   ASSERT_GT(r.supports.passes_undone, 0) << "a design with undone passes";
   const Plan fresh = build_plan(r.maps, r.raster_plan, DesignOptions{}.sheet, PlanOptions{});
@@ -834,6 +834,35 @@ namespace {
 // the top's back edge a support reaches the back plane, 18.6 mm away, either across C's top or
 // over bare back plane right of C: equally long, so the old cost (length) took the first it found,
 // from the left; the picture's cost takes the second.
+TEST(Supports, AnEarThroughASupportShorterThanWCostsTheShortSupportCostMore) {
+  SupportOptions options;
+  const double W = 3;
+  // An H support at h = 50 from a V face at d = 40 back to one at d = 37.5: its folds 2.5 mm apart.
+  Candidate c;
+  c.face = 2, c.target = 3, c.cost = 1.5;
+  c.near = {50, 40}, c.far = {50, 37.5};
+  const std::vector<std::uint8_t> stands = {1, 1, 0, 0, 1};
+  const SupportEdge short_one = support_edge(c, stands, options, W);
+  EXPECT_EQ(short_one.face_Y, 10);
+  EXPECT_EQ(short_one.target_Y, 12.5);
+  EXPECT_EQ(short_one.cost, 1.5 + options.short_support_cost_mm);
+  EXPECT_GT(options.short_support_cost_mm, 0);
+  EXPECT_EQ(short_one.picture, 1.5) << "the picture's part is the candidate's own";
+  // W apart, or a rounding short of it: no more.
+  c.far = {50, 37};
+  EXPECT_EQ(support_edge(c, stands, options, W).cost, 1.5);
+  c.far = {50, 37 + kFoldLineTolerance_mm / 2};
+  EXPECT_EQ(support_edge(c, stands, options, W).cost, 1.5);
+  // Down the plan, a V support from an H face at h = 20 to one at h = 18: 2 mm apart.
+  c.near = {20, 40}, c.far = {18, 40};
+  EXPECT_EQ(support_edge(c, stands, options, W).cost, 1.5 + options.short_support_cost_mm);
+  // A face it cuts in two costs the split cost, ten times that where it stands.
+  c.cuts = {3, 4};
+  EXPECT_EQ(support_edge(c, stands, options, W).cost, 1.5 + 11 * options.split_cost_mm + options.short_support_cost_mm);
+  options.short_support_cost_mm = 0;
+  EXPECT_EQ(support_edge(c, stands, options, W).cost, 1.5 + 11 * options.split_cost_mm);
+}
+
 TEST(Supports, ASupportThroughTheBackPlaneIsChosenOverAnEquallyLongOneAcrossAVisibleFace) {
   const Sheet sheet;
   const RayScene scene(

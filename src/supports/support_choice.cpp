@@ -624,6 +624,15 @@ std::vector<Candidate> candidates_of(const CandidateFinder& finder, const std::v
 
 }  // namespace
 
+SupportEdge support_edge(const Candidate& c, const std::vector<std::uint8_t>& stands, const SupportOptions& options,
+                         double W) {
+  double extra = 0;
+  for (const std::int32_t x : c.cuts) extra += (stands[static_cast<std::size_t>(x)] ? 10 : 1) * options.split_cost_mm;
+  const double face_Y = c.near.h - c.near.d, target_Y = c.far.h - c.far.d;
+  if (std::abs(target_Y - face_Y) < W - kFoldLineTolerance_mm) extra += options.short_support_cost_mm;
+  return {c.face, c.target, face_Y, target_Y, c.cost + extra, c.cost, c.cuts};
+}
+
 std::vector<Candidate> support_candidates(const SupportRound& round, const std::vector<std::int32_t>& faces,
                                           SupportReach reach) {
   const SupportPicture picture(round.maps, round.raster_plan);
@@ -704,17 +713,11 @@ class EarTaker {
   }
 
  private:
-  // A support that cuts a face in two leaves a piece to hold: a face not yet held costs the split
-  // cost, one that stands ten times that (its pieces need holding anew).
   std::vector<SupportEdge> edges_now() const {
     std::vector<SupportEdge> edges;
     edges.reserve(candidates_.size());
-    for (const Candidate& c : candidates_) {
-      double cuts = 0;
-      for (const std::int32_t x : c.cuts)
-        cuts += (stands_[static_cast<std::size_t>(x)] ? 10 : 1) * options_.split_cost_mm;
-      edges.push_back({c.face, c.target, c.near.h - c.near.d, c.far.h - c.far.d, c.cost + cuts, c.cost, c.cuts});
-    }
+    for (const Candidate& c : candidates_)
+      edges.push_back(support_edge(c, stands_, options_, round_.raster_plan.min_strip_mm));
     return edges;
   }
   int block_px() const { return round_.raster_plan.block_px; }

@@ -78,6 +78,13 @@ struct SupportRound {
 std::vector<Candidate> support_candidates(const SupportRound& round, const std::vector<std::int32_t>& faces,
                                           SupportReach reach);
 
+/// The ear search's edge of a candidate support: its cost and what else it costs. Cutting a face in
+/// two leaves a piece to hold: a face not yet held costs the split cost, one that stands (`stands`,
+/// per face) ten times that, its pieces needing holding anew. A support shorter than W leaves a
+/// strip narrower than W between its two parallel folds: it costs the short support cost more.
+SupportEdge support_edge(const Candidate& c, const std::vector<std::uint8_t>& stands, const SupportOptions& options,
+                         double W);
+
 struct SupportChoice {
   std::vector<Candidate> supports;
   // Invalid faces whose every ear costs the picture more than cutting them out or giving them to a
