@@ -6,9 +6,9 @@
 // against the model's own depth (likeness.hpp). Prints per model the finished p95 and mean error
 // (in W), the sliced p95, coverage, support and cut-out shares, faces, folds, whether it stands,
 // its places narrower than W (read back, as `origamic validate --min-strip W` counts them), the
-// time of the design and, of those places, the ones between two parallel folds, then the means; writes
-// OUT_DIR/contact_sheet.png (per model: the model, the pop-up, the plan) and each model's pictures and DXF under
-// OUT_DIR/models/.
+// time of the design and, of those places, the ones between two parallel folds, then the means;
+// writes OUT_DIR/contact_sheet.png (per model: the model, the pop-up, the plan) and each model's
+// pictures and DXF under OUT_DIR/models/.
 #include <cairo.h>
 
 #include <algorithm>
