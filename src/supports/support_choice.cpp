@@ -8,9 +8,10 @@
 #include <cassert>
 #include <climits>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <optional>
 #include <span>
-#include <functional>
 #include <tuple>
 #include <unordered_map>
 #include <utility>
@@ -672,7 +673,9 @@ class EarTaker {
     for (std::size_t i = 0; i < invalid.size(); ++i) {
       const auto f = static_cast<std::size_t>(invalid[i]);
       open_[f] = 1;
-      limit_[f] = std::max(0.0, std::min(picture_.hole_error(invalid[i]), joins[i].error)) / (W * W);
+      const bool within_cap = picture_.mean_error_mm(joins[i].error, faces[f].pixels) <= options.join_error_cap_W * W;
+      const double join = within_cap ? joins[i].error : std::numeric_limits<double>::infinity();
+      limit_[f] = std::max(0.0, std::min(picture_.hole_error(invalid[i]), join)) / (W * W);
     }
   }
 

@@ -41,6 +41,11 @@ class SupportPicture {
   /// above the main fold and the floor below it, and no model. In mm times mm², as added_error.
   double hole_error(std::int32_t f) const { return hole_error_[static_cast<std::size_t>(f)]; }
 
+  /// The mean error over `pixels` pixels of plan that `error` (as hole_error's) makes, in mm.
+  double mean_error_mm(double error, std::int64_t pixels) const {
+    return pixels > 0 ? error * grid_.px_per_mm * grid_.px_per_mm / static_cast<double>(pixels) : 0.0;
+  }
+
   /// Where face f would best go when no support holds it: the neighbour (not the back plane, the
   /// floor, a hole, a support or a face in `not_into`) whose plane shows the model over f best (the
   /// least error added) and stays on the card there (on_card), and the error giving f to it would

@@ -461,6 +461,7 @@ std::vector<std::size_t> FaceOrderRun::give_away(const std::vector<std::int32_t>
                                                  std::optional<SupportPicture> picture) {
   std::vector<std::size_t> kept;
   std::vector<std::int32_t> kept_faces;
+  const double cap_mm = setting_.options.join_error_cap_W * raster_plan_.min_strip_mm;
   // The picture as the plan is now, each face given to it: it changes the faces around the next.
   std::vector<std::vector<PixelAt>> pixels = pixels_of(faces);
   std::vector<std::size_t> own_pixels;
@@ -471,12 +472,16 @@ std::vector<std::size_t> FaceOrderRun::give_away(const std::vector<std::int32_t>
     const std::int32_t f = faces[i];
     if (!card_piece(f) && !(grown == Grown::KeptForNextRound && pixels[i].size() > own_pixels[i])) {
       if (!picture) picture.emplace(setting_.maps, raster_plan_);
+      const auto worth = [&](double error) {
+        return error < picture->hole_error(f) &&
+               picture->mean_error_mm(error, static_cast<std::int64_t>(pixels[i].size())) <= cap_mm;
+      };
       SupportPicture::Shares shares = picture->shared_join(raster_plan_, pixels[i], kept_faces);
-      if (!(shares.error < picture->hole_error(f))) {
+      if (!worth(shares.error)) {
         const SupportPicture::Join to = picture->nearest_join(raster_plan_, pixels[i], kept_faces);
         shares = {std::vector<std::int32_t>(pixels[i].size(), to.into), to.error};
       }
-      if (shares.error < picture->hole_error(f)) {
+      if (worth(shares.error)) {
         share(f, shares, pixels[i], *picture);
         // A face still to come that took some of f takes those pixels with it, in row order.
         std::vector<std::pair<std::size_t, std::size_t>> took;  // such a face, its pixels before
