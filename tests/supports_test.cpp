@@ -804,7 +804,8 @@ TEST(Supports, WhereSupportsCostOverAStripWidthTheOtherFramesChoiceIsTriedAndThe
   EXPECT_EQ(standing_design("seedlike/capitol.stl").supports.frames, 1);
 }
 
-// The faces a plan gave to neighbours showing them more than `cap_W` off the model on average.
+// The faces a plan gave to neighbours whose planes added more than `cap_W` of error per pixel of the
+// face, on average (to a hair: the loop divides the sum by the pixels, the report by the area).
 int joined_farther_than(const SupportReport& report, double W, double cap_W) {
   return static_cast<int>(std::ranges::count_if(report.joined_faces, [&](const JoinedFace& joined) {
     return joined.joined_cost * W / joined.area_mm2 > cap_W + 1e-9;
@@ -813,8 +814,8 @@ int joined_farther_than(const SupportReport& report, double W, double cap_W) {
 
 // arch_city_block's towers went, join after join, into shelves far off the model: faces no support
 // held, each given to the neighbour that showed it best then (a cascade). With joins capped
-// (SupportOptions::join_error_cap_W) no face goes to a neighbour farther off than the cap: it is
-// held, however dearly, or cut out.
+// (SupportOptions::join_error_cap_W) no face goes to a neighbour whose plane adds more than the cap: it is
+// held where that costs no more than its hole, or cut out.
 TEST(Supports, WithJoinsCappedNoFaceGoesToANeighbourFartherOffThanTheCap) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   DesignOptions options;
@@ -838,7 +839,7 @@ TEST(Supports, WithJoinsCappedNoFaceGoesToANeighbourFartherOffThanTheCap) {
 
 // Where both frames' supports cost the likeness over 1 W of p95 and gave faces to neighbours more
 // than 3 W off, the other frame is tried a third time with such joins capped, and the best of the
-// three plans kept: arch_city_block 5.53 W -> 4.39 W (sliced 1.17 W).
+// three plans kept: arch_city_block 5.53 W -> 4.39 W (sliced 1.17 W), better than either frame.
 TEST(Supports, WhereBothFramesGaveFacesFarAwayATryWithJoinsCappedIsKeptWhereBetter) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   DesignOptions options;

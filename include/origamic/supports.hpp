@@ -36,9 +36,10 @@ struct SupportOptions {
   // 7,346 / 4,383 / 2,257, mean p95 2.25 / 2.03 / 1.99 -> 2.22 / 2.02 / 2.00 W, all standing.
   double short_support_cost_mm = 2;
   // A face no support holds goes to a neighbour (or has its supports bounded by what that would
-  // cost) only where the neighbour's plane shows it at most this many W off the model on average;
-  // past it the face is held, however dearly, or cut out. Unbounded by default: design() bounds it
-  // in its second try where the first gave faces far away (design.cpp, supported_plan).
+  // cost) only where the neighbour's plane adds at most this many W of error per pixel of the face,
+  // on average; past it the face is held where that costs the picture no more than its hole, else
+  // cut out. Unbounded by default: design() bounds it in a third try where the first two gave
+  // faces far away (design.cpp, supported_plan).
   double join_error_cap_W = std::numeric_limits<double>::infinity();
   // When supports run out, cut the faces they could not hold out of the sheet (holes, reported as
   // "removed") so that what is left stands; off, such faces stay in the plan, reported invalid.
@@ -99,8 +100,8 @@ struct SupportReport {
   int orders = 0;       // face orders tried (SupportOptions::orders); the rest is of the one kept
   // Chosen on the raster plan's mirror image and mirrored back (add_supports and
   // add_supports_in_other_frame), and the tries made: 2 when the design tried the other frame too,
-  // its first choice having cost the likeness over 1 W (design.hpp); 3 when both had and faces were
-  // given far off the model, and the other frame was tried again with such joins capped.
+  // its first choice having cost the likeness over 1 W (design.hpp); 3 when it tried the other frame
+  // again with joins capped (design.cpp, supported_plan).
   bool mirror_image = false;
   bool drawn_in_mirror_image = false;  // and its plan kept as drawn there: drawn here, it did not stand
   int frames = 1;
