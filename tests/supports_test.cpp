@@ -421,6 +421,14 @@ TEST(Supports, AModelOfStripsStandsAndEveryFaceCutOutIsReportedWithWhy) {
   EXPECT_LT(r.likeness.cut_out_share, 0.03);
 }
 
+// A real model designed at the default options, up `up`, sliced: no supports.
+DesignResult sliced_design(const char* model, UpAxis up) {
+  DesignOptions options;
+  options.placement.up = up;
+  options.supports.enabled = false;
+  return design(test::models_dir() / model, options);
+}
+
 // A real model (Z up) designed at the default options but `orders` and `seed`: its plan must stand.
 DesignResult standing_design(const char* model, const DesignOptions& options) {
   DesignResult r = design(test::models_dir() / model, options);
@@ -522,10 +530,8 @@ TEST(Supports, TheCastleKeepsFirstChoiceHoldsItsKeep) {
 // faces it crosses after the first it cuts, and that changes no candidate kept.
 TEST(Supports, WhereNoThirdFaceMayBeCutTheCandidatesAreThoseThatCutNone) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
-  DesignOptions options;
-  options.placement.up = UpAxis::Z;
-  options.supports.enabled = false;
-  const DesignResult s = design(test::models_dir() / "seedlike/sphere.stl", options);
+  const DesignOptions options;
+  const DesignResult s = sliced_design("seedlike/sphere.stl", UpAxis::Z);
   const ExactPlan exact_plan(s.maps, s.raster_plan, options.sheet, options.plan);
   std::vector<std::int32_t> faces;
   for (std::size_t f = 2; f < s.raster_plan.faces.size(); ++f) faces.push_back(static_cast<std::int32_t>(f));
@@ -769,10 +775,8 @@ struct FramesChosen {
   std::optional<Likeness> other;  // none where the plan has one frame
 };
 FramesChosen frames_chosen(const char* model, UpAxis up) {
-  DesignOptions options;
-  options.placement.up = up;
-  options.supports.enabled = false;
-  FramesChosen chosen{design(test::models_dir() / model, options), {}, {}};
+  const DesignOptions options;
+  FramesChosen chosen{sliced_design(model, up), {}, {}};
   const DesignResult& s = chosen.sliced;
   const auto likeness_of = [&](const Plan& plan) {
     return likeness(s.maps, card_view(s.maps.grid, plan), options.slice.min_strip_mm);
@@ -814,17 +818,14 @@ int joined_farther_than(const SupportReport& report, double W, double cap_W) {
 
 // arch_city_block's towers went, join after join, into shelves far off the model: faces no support
 // held, each given to the neighbour that showed it best then (a cascade). With joins capped
-// (SupportOptions::join_error_cap_W) no face goes to a neighbour whose plane adds more than the cap: it is
-// held where that costs no more than its hole, or cut out.
+// (SupportOptions::join_error_cap_W) no face goes to a neighbour whose plane adds more than the
+// cap: it is held where that costs no more than its hole, or cut out.
 TEST(Supports, WithJoinsCappedNoFaceGoesToANeighbourFartherOffThanTheCap) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
-  DesignOptions options;
-  options.placement.up = UpAxis::Z;
-  options.supports.enabled = false;
-  const DesignResult s = design(test::models_dir() / "arch_city_block.obj", options);
+  const DesignResult s = sliced_design("arch_city_block.obj", UpAxis::Z);
+  const DesignOptions options;
   const double W = options.slice.min_strip_mm;
   SupportOptions capped = options.supports;
-  capped.enabled = true;
   const std::optional<SupportedPlan> uncapped =
       add_supports_in_other_frame(s.maps, s.raster_plan, options.sheet, options.plan, capped);
   capped.join_error_cap_W = 3;
