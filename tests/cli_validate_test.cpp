@@ -164,27 +164,30 @@ TEST(CliValidate, APlanWithPlacesNarrowerThanWIsInvalidUnlessAllowNarrow) {
       test::run_origamic("design " + house + " --min-strip 3 --strict --out " + test::quoted(dir / "strict"));
   EXPECT_EQ(strict.status, 3) << strict.output;
   EXPECT_NE(strict.output.find("plan INVALID: "), std::string::npos) << strict.output;
-  EXPECT_NE(strict.output.find(" places narrower than W (--allow-narrow accepts them)"), std::string::npos)
-      << strict.output;
   const auto plan = nlohmann::json::parse(std::ifstream(dir / "strict" / "house.json"))["plan"];
   EXPECT_EQ(plan["verdict"], "invalid");
   EXPECT_TRUE(plan["stands"].get<bool>());
-  const int narrow = plan["narrow_strip_count"].get<int>();
+  const int narrow = plan["narrow_strip_count"].get<int>(), between = plan["narrow_between_folds_count"].get<int>();
   EXPECT_GT(narrow, 0) << "the house's roof steps leave strips under 3 mm";
+  const std::string places = "; " + std::to_string(narrow) + " places narrower than W" +
+                             (between > 0 ? ", " + std::to_string(between) + " of them between two folds" : "");
+  EXPECT_NE(strict.output.find(places + " (--allow-narrow accepts them)"), std::string::npos) << strict.output;
   EXPECT_FALSE(plan["allow_narrow"].get<bool>());
   for (const char* name : {"house.dxf", "house.svg", "house.pdf", "house.png"})
     EXPECT_TRUE(std::filesystem::exists(dir / "strict" / name)) << name;
   const std::string dxf = test::quoted(dir / "strict" / "house.dxf");
   EXPECT_EQ(test::run_origamic("validate --min-strip 3 " + dxf).status, 3);
+  // The places between two folds less than W apart, as the DXF read back has them.
+  const test::CommandRun read_back = test::run_origamic("validate --json --min-strip 3 " + dxf, true);
+  EXPECT_EQ(nlohmann::json::parse(read_back.output)["counts"]["narrow_between_folds"].get<int>(), between)
+      << read_back.output;
   EXPECT_EQ(test::run_origamic("validate " + dxf).status, 0) << "it stands";
 
   const test::CommandRun allowed = test::run_origamic(
       "design " + house + " --min-strip 3 --strict --allow-narrow --out " + test::quoted(dir / "allowed"));
   EXPECT_EQ(allowed.status, 0) << allowed.output;
   EXPECT_NE(allowed.output.find("plan VALID: "), std::string::npos) << allowed.output;
-  EXPECT_NE(allowed.output.find("; " + std::to_string(narrow) + " places narrower than W (allowed); "),
-            std::string::npos)
-      << allowed.output;
+  EXPECT_NE(allowed.output.find(places + " (allowed); "), std::string::npos) << allowed.output;
   const auto allowed_plan = nlohmann::json::parse(std::ifstream(dir / "allowed" / "house.json"))["plan"];
   EXPECT_EQ(allowed_plan["verdict"], "valid");
   EXPECT_EQ(allowed_plan["narrow_strip_count"], narrow);

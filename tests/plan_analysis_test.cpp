@@ -305,6 +305,23 @@ TEST(PlanAnalysis, StripNarrowerThanWIsReportedWithItsPlace) {
   EXPECT_EQ(p.from.Y, b.h - b.d);
   EXPECT_EQ(p.to.Y, b.h);
   EXPECT_EQ(a.errors, 1) << listing(a);
+  // Its two folds, the mountain below it and the valley above, lie 2 mm apart: no one folds that.
+  EXPECT_EQ(p.folds_apart_mm, 2.0);
+  EXPECT_NE(p.message.find("two of its folds, at Y = 59.7 and 61.7, lie 2 mm apart"), std::string::npos) << p.message;
+  EXPECT_EQ(a.narrow_between_folds, 1);
+  EXPECT_NE(analysis_summary_line(a).find("1 narrow strip (1 between two folds)"), std::string::npos)
+      << analysis_summary_line(a);
+  // A hole between the folds in the middle, touching neither: they still face each other beside it.
+  std::vector<PlanPolyline> slit = lines;
+  const double y0 = b.h - b.d + 0.5, y1 = b.h - b.d + 1.5;
+  slit.push_back(
+      {LineKind::Cut, {{b.mid() - 5, y0}, {b.mid() + 5, y0}, {b.mid() + 5, y1}, {b.mid() - 5, y1}, {b.mid() - 5, y0}}});
+  const PlanAnalysis s = analyze_plan(slit, {.min_strip_mm = 3});
+  const auto beside = problems_of(s, PlanProblemKind::NarrowStrip);
+  ASSERT_FALSE(beside.empty()) << listing(s);
+  const auto strip = std::ranges::find(beside, region_at(s, {b.x0 + 1, b.h - 1}), &PlanProblem::region);
+  ASSERT_NE(strip, beside.end()) << listing(s);
+  EXPECT_EQ(strip->folds_apart_mm, 2.0) << listing(s);
 
   // A box 2.5 mm wide: front and top are narrow along X.
   const Box thin{.d = 37.3, .h = 61.7, .x0 = 100, .x1 = 102.5};
@@ -316,7 +333,27 @@ TEST(PlanAnalysis, StripNarrowerThanWIsReportedWithItsPlace) {
     EXPECT_EQ(q.from.X, 100);
     EXPECT_EQ(q.to.X, 102.5);
     EXPECT_EQ(q.from.Y, q.to.Y);
+    EXPECT_EQ(q.folds_apart_mm, 0) << "across the main fold's direction no two folds face each other";
   }
+  EXPECT_EQ(c.narrow_between_folds, 0);
+}
+
+TEST(PlanAnalysis, AStripNarrowerThanWBetweenAFoldAndACutIsNoFoldPair) {
+  // The box's top face, 37.3 mm deep, with a hole cut in it 1 mm above its mountain fold: the face
+  // is 1 mm wide along Y through the vertex in the middle of the hole's lower side, between the
+  // fold and the cut; its folds lie 37.3 mm apart.
+  const Box b;
+  std::vector<PlanPolyline> lines = box_plan(b);
+  const double y0 = b.h - b.d + 1, y1 = y0 + 10;
+  lines.push_back({LineKind::Cut, {{80, y0}, {95, y0}, {110, y0}, {110, y1}, {80, y1}, {80, y0}}});
+  const PlanAnalysis a = analyze_plan(lines, {.min_strip_mm = 3});
+  const auto narrow = problems_of(a, PlanProblemKind::NarrowStrip);
+  ASSERT_EQ(narrow.size(), 1u) << listing(a);
+  EXPECT_EQ(narrow[0].region, region_at(a, {b.mid(), b.h - 1}));
+  EXPECT_NEAR(narrow[0].value_mm, 1.0, 1e-12);
+  EXPECT_EQ(narrow[0].folds_apart_mm, 0);
+  EXPECT_EQ(a.narrow_between_folds, 0);
+  EXPECT_EQ(analysis_summary_line(a).find("between two folds"), std::string::npos) << analysis_summary_line(a);
 }
 
 // The box plan whose top face H(h) ends on the right in a tip: its right side is a cut slanted from

@@ -6,7 +6,8 @@
 // against the model's own depth (likeness.hpp). Prints per model the finished p95 and mean error
 // (in W), the sliced p95, coverage, support and cut-out shares, faces, folds, whether it stands,
 // its places narrower than W (read back, as `origamic validate --min-strip W` counts them), the
-// time of the design and, of those places, the ones between two parallel folds, then the means;
+// time of the design and, of those places, the ones between two parallel folds less than W apart
+// (PlanProblem::folds_apart_mm), then the means;
 // writes OUT_DIR/contact_sheet.png (per model: the model, the pop-up, the plan) and each model's
 // pictures and DXF under OUT_DIR/models/.
 #include <cairo.h>
@@ -83,35 +84,13 @@ struct Row {
   int faces = 0, folds = 0, supports = 0, removed = 0;
   bool stands = false, read_back_stands = false;  // as designed and as read back
   int narrow = 0;                                 // places narrower than W, read back
-  int parallel = 0;                               // of them, between two parallel folds
+  int parallel = 0;                               // of them, between two parallel folds under W apart
   double design_s = 0;
   // Where the card is more than 2 W off its model: shares of the model's pixels showing a face of
   // the model, a support, the back plane or floor, or a hole (the finished card, as designed).
   std::array<double, 4> far_off{};
   std::string error;  // the design failed
 };
-
-// The places narrower than W that run along Y from a fold to a fold: two parallel folds closer than
-// W (issue 23), on the lines as the drawing has them.
-int between_two_folds(const PlanAnalysis& analysis, const std::vector<PlanPolyline>& lines) {
-  const auto on_a_fold = [&](PlanPoint p) {
-    const double Y = p.Y + analysis.main_fold_Y, eps = 1e-9;  // the drawing's frame, a rounding apart
-    for (const PlanPolyline& line : lines) {
-      if (line.kind != LineKind::Mountain && line.kind != LineKind::Valley) continue;
-      for (std::size_t i = 1; i < line.points.size(); ++i) {
-        const PlanPoint &a = line.points[i - 1], &b = line.points[i];
-        if (a.Y == b.Y && std::abs(a.Y - Y) <= eps && std::min(a.X, b.X) - eps <= p.X &&
-            p.X <= std::max(a.X, b.X) + eps)
-          return true;
-      }
-    }
-    return false;
-  };
-  return static_cast<int>(std::ranges::count_if(analysis.problems, [&](const PlanProblem& problem) {
-    return problem.kind == PlanProblemKind::NarrowStrip && problem.from.X == problem.to.X && on_a_fold(problem.from) &&
-           on_a_fold(problem.to);
-  }));
-}
 
 // A cairo surface of a rendered picture.
 cairo_surface_t* surface_of(const Image& image) {
@@ -265,7 +244,7 @@ Row measure(const Model& model, const DesignOptions& base, const fs::path& out, 
   const PlanAnalysis analysis = analyze_plan(lines, {.min_strip_mm = options.slice.min_strip_mm});
   row.narrow =
       static_cast<int>(std::ranges::count(analysis.problems, PlanProblemKind::NarrowStrip, &PlanProblem::kind));
-  row.parallel = between_two_folds(analysis, lines);
+  row.parallel = analysis.narrow_between_folds;
   row.read_back_stands = analysis.errors == row.narrow;  // a narrow strip is an error; it stands if only those
   row.read_back = likeness(result.maps, card_view(result.maps.grid, analysis.regions, {}), options.slice.min_strip_mm);
 

@@ -65,6 +65,9 @@ struct PlanProblem {
   std::int32_t region = -1;  // the face concerned (index in PlanAnalysis::regions), -1 for none
   double value_mm = 0;       // the measured amount, for the kinds that say so
   std::string message;       // one line, with the plan coordinates
+  // NarrowStrip along Y: how far apart the face's two nearest parallel folds lie, one below it and
+  // one above, where that is under W (the strip between them cannot be folded); 0 for none.
+  double folds_apart_mm = 0;
 };
 
 /// The sheet, in plan mm: the bounding box of the outline, or of every line when there is none.
@@ -87,6 +90,7 @@ struct PlanAnalysis {
   std::vector<PlanProblem> problems;  // errors and warnings, errors first, each group in plan order
   int faces = 0;                      // nodes other than the back plane and the floor
   int errors = 0, warnings = 0;
+  int narrow_between_folds = 0;                       // NarrowStrip problems with folds_apart_mm > 0
   double cut_mm = 0, mountain_mm = 0, valley_mm = 0;  // lengths inside the sheet
   bool arrangement_valid = false;                     // CGAL's is_valid on the exact arrangement
 

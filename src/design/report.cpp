@@ -98,12 +98,20 @@ nlohmann::json joined_json(const std::vector<JoinedFace>& faces) {
 // The places the plan is narrower than W, from the exact measure of its lines.
 nlohmann::json narrow_places_json(const std::vector<PlanProblem>& narrow) {
   nlohmann::json list = nlohmann::json::array();
-  for (const PlanProblem& p : narrow)
+  for (const PlanProblem& p : narrow) {
     list.push_back({{"width_mm", p.value_mm},
                     {"from_XY", {p.from.X, p.from.Y}},
                     {"to_XY", {p.to.X, p.to.Y}},
                     {"message", p.message}});
+    if (p.folds_apart_mm > 0) list.back()["folds_apart_mm"] = p.folds_apart_mm;
+  }
   return list;
+}
+
+// How many of the places narrower than W lie between two parallel folds less than W apart.
+std::size_t between_folds(const std::vector<PlanProblem>& narrow) {
+  return static_cast<std::size_t>(
+      std::ranges::count_if(narrow, [](const PlanProblem& p) { return p.folds_apart_mm > 0; }));
 }
 
 // What a cutter draws: the cut lines' segments and vertices, how many segments are under 1 mm (a
@@ -150,6 +158,7 @@ nlohmann::json plan_json(const DesignResult& result) {
   return {{"verdict", design_valid(result) ? "valid" : "invalid"},
           {"stands", plan_stands(plan, result.allow_dangling)},
           {"narrow_strip_count", result.narrow_strips.size()},
+          {"narrow_between_folds_count", between_folds(result.narrow_strips)},
           {"allow_narrow", result.allow_narrow},
           {"counts",
            {{"faces", plan.faces.size() - 2},
@@ -239,12 +248,14 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
 
 namespace {
 
-// What the summary says of the places narrower than W, beside their number: that they are allowed,
-// or that --allow-narrow would make a plan that stands valid.
-const char* narrow_note(const DesignResult& result) {
+// What the summary says of the places narrower than W, beside their number: how many lie between
+// two folds, and that they are allowed, or that --allow-narrow would make a plan that stands valid.
+std::string narrow_note(const DesignResult& result) {
   if (result.narrow_strips.empty()) return "";
-  if (result.allow_narrow) return " (allowed)";
-  return plan_stands(result.plan, result.allow_dangling) ? " (--allow-narrow accepts them)" : "";
+  const std::size_t folds = between_folds(result.narrow_strips);
+  std::string note = folds > 0 ? ", " + std::to_string(folds) + " of them between two folds" : "";
+  if (result.allow_narrow) return note + " (allowed)";
+  return note + (plan_stands(result.plan, result.allow_dangling) ? " (--allow-narrow accepts them)" : "");
 }
 
 }  // namespace
@@ -266,7 +277,7 @@ std::string summary_line(const DesignResult& result) {
                 100 * result.likeness.cut_out_share, result.supports.supports,
                 design_valid(result) ? "VALID" : "INVALID", v.valid, v.indirect, v.floating, v.dangling, v.invalid,
                 v.removed, result.narrow_strips.size(), result.narrow_strips.size() == 1 ? "place" : "places",
-                narrow_note(result), total_ms);
+                narrow_note(result).c_str(), total_ms);
   return line;
 }
 

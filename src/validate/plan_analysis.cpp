@@ -384,6 +384,65 @@ struct Analyzer {
     }
   }
 
+  // Two folds of region r, one below it and one above, less than W apart where they overlap along
+  // X with nothing of the region's boundary between them: the strip of paper between them can be
+  // neither cut nor folded (issue 23). The nearest such pair, at a place where the region spans
+  // from one to the other: the middle of their overlap, else of a stretch of it between the
+  // region's vertices.
+  struct FoldPair {
+    FT X, lo, hi;
+  };
+  std::optional<FoldPair> nearest_fold_pair(std::size_t r) const {
+    std::optional<FoldPair> best;
+    const auto region = static_cast<std::int32_t>(r);
+    for (const std::size_t i : folds_of[r]) {
+      const FoldEdge& below = folds[i];
+      if (below.upper != region) continue;
+      for (const std::size_t j : folds_of[r]) {
+        const FoldEdge& above = folds[j];
+        if (above.lower != region || !(below.Y < above.Y) || !(above.Y - below.Y < W)) continue;
+        if (best && !(above.Y - below.Y < best->hi - best->lo)) continue;
+        const FT X_lo = CGAL::max(below.X_lo, above.X_lo), X_hi = CGAL::min(below.X_hi, above.X_hi);
+        if (!(X_lo < X_hi)) continue;
+        if (const std::optional<FT> X = open_between(r, X_lo, X_hi, below.Y, above.Y))
+          best = FoldPair{*X, below.Y, above.Y};
+      }
+    }
+    return best;
+  }
+  // An X in (X_lo, X_hi) where no side of region r meets the open vertical segment from Y lo to Y
+  // hi: the middle of the interval, or of a stretch of it between the region's vertices there.
+  std::optional<FT> open_between(std::size_t r, const FT& X_lo, const FT& X_hi, const FT& lo, const FT& hi) const {
+    std::vector<FT> breaks{X_lo, X_hi};
+    for (const Ring& ring : rings[r])
+      for (const Point& p : ring)
+        if (X_lo < p.x() && p.x() < X_hi) breaks.push_back(p.x());
+    std::sort(breaks.begin(), breaks.end());
+    const auto middle = (X_lo + X_hi) / 2;
+    if (!crosses_between(r, middle, lo, hi)) return middle;
+    for (std::size_t k = 1; k < breaks.size(); ++k)
+      if (breaks[k - 1] < breaks[k]) {
+        const FT X = (breaks[k - 1] + breaks[k]) / 2;
+        if (!crosses_between(r, X, lo, hi)) return X;
+      }
+    return std::nullopt;
+  }
+  // Whether a side of region r meets the open vertical segment at X from Y lo to Y hi.
+  bool crosses_between(std::size_t r, const FT& X, const FT& lo, const FT& hi) const {
+    for (const Ring& ring : rings[r])
+      for (std::size_t k = 0; k < ring.size(); ++k) {
+        const Point &p = ring[k], &q = ring[(k + 1) % ring.size()];
+        if ((p.x() < X && q.x() < X) || (X < p.x() && X < q.x())) continue;
+        if (p.x() == q.x()) {  // along the segment's line: it meets it where their Y ranges overlap
+          if (CGAL::min(p.y(), q.y()) < hi && lo < CGAL::max(p.y(), q.y())) return true;
+          continue;
+        }
+        const FT Y = p.y() + (q.y() - p.y()) * (X - p.x()) / (q.x() - p.x());
+        if (lo < Y && Y < hi) return true;
+      }
+    return false;
+  }
+
   void check_strips() {
     narrowest.assign(faces.size(), {});
     for (std::size_t r = 0; r < faces.size(); ++r)
@@ -399,12 +458,24 @@ struct Analyzer {
         const double width = nearest_double(chord->hi - chord->lo);
         const std::string where = along_Y ? "at X = " + num(from.X) + " from Y = " + num(from.Y) + " to " + num(to.Y)
                                           : "at Y = " + num(from.Y) + " from X = " + num(from.X) + " to " + num(to.X);
-        add({PlanProblemKind::NarrowStrip, plan_point(CGAL::midpoint(a, b)), from, to, static_cast<std::int32_t>(r),
-             width,
-             "face " + (place[r].placed ? face_text(place[r]) + " " : "") + "at " +
-                 point_text(result.regions[r].inside) + " is " + num(width) + " mm wide along " +
-                 (along_Y ? "Y " : "X ") + where + ", under W = " + num(options.min_strip_mm) + " mm" +
-                 (narrow > 1 ? " (" + std::to_string(narrow) + " such places)" : "")});
+        PlanProblem problem{PlanProblemKind::NarrowStrip,
+                            plan_point(CGAL::midpoint(a, b)),
+                            from,
+                            to,
+                            static_cast<std::int32_t>(r),
+                            width,
+                            "face " + (place[r].placed ? face_text(place[r]) + " " : "") + "at " +
+                                point_text(result.regions[r].inside) + " is " + num(width) + " mm wide along " +
+                                (along_Y ? "Y " : "X ") + where + ", under W = " + num(options.min_strip_mm) + " mm" +
+                                (narrow > 1 ? " (" + std::to_string(narrow) + " such places)" : "")};
+        if (const std::optional<FoldPair> pair = along_Y ? nearest_fold_pair(r) : std::nullopt) {
+          const PlanPoint lo = plan_point(Point(pair->X, pair->lo)), hi = plan_point(Point(pair->X, pair->hi));
+          problem.folds_apart_mm = nearest_double(pair->hi - pair->lo);
+          problem.message += "; two of its folds, at Y = " + num(lo.Y) + " and " + num(hi.Y) + ", lie " +
+                             num(problem.folds_apart_mm) + " mm apart at X = " + num(lo.X);
+          ++result.narrow_between_folds;
+        }
+        add(std::move(problem));
       }
   }
 

@@ -78,7 +78,11 @@ std::string analysis_summary_line(const PlanAnalysis& analysis) {
   for (const PlanProblem& p : analysis.problems)
     if (is_error(p.kind)) ++errors[p.kind];
   std::string counts;
-  for (const auto& [kind, count] : errors) counts += (counts.empty() ? "" : ", ") + counted(kind, count);
+  for (const auto& [kind, count] : errors) {
+    counts += (counts.empty() ? "" : ", ") + counted(kind, count);
+    if (kind == PlanProblemKind::NarrowStrip && analysis.narrow_between_folds > 0)
+      counts += " (" + std::to_string(analysis.narrow_between_folds) + " between two folds)";
+  }
   if (!counts.empty()) line += "; " + counts;
   if (analysis.warnings > 0)
     line += " (" + std::to_string(analysis.warnings) + (analysis.warnings == 1 ? " warning)" : " warnings)");
@@ -88,7 +92,7 @@ std::string analysis_summary_line(const PlanAnalysis& analysis) {
 std::string analysis_json(const PlanAnalysis& analysis, const std::string& file_name) {
   const Validity& v = analysis.validity;
   nlohmann::json problems = nlohmann::json::array();
-  for (const PlanProblem& p : analysis.problems)
+  for (const PlanProblem& p : analysis.problems) {
     problems.push_back({{"kind", std::string(to_string(p.kind))},
                         {"severity", is_error(p.kind) ? "error" : "warning"},
                         {"at", point_json(p.at)},
@@ -97,6 +101,8 @@ std::string analysis_json(const PlanAnalysis& analysis, const std::string& file_
                         {"face", p.region},
                         {"value_mm", p.value_mm},
                         {"message", p.message}});
+    if (p.folds_apart_mm > 0) problems.back()["folds_apart_mm"] = p.folds_apart_mm;
+  }
   nlohmann::json faces = nlohmann::json::array();
   for (std::size_t r = 0; r < analysis.regions.size(); ++r) {
     const PlanRegion& region = analysis.regions[r];
@@ -132,6 +138,7 @@ std::string analysis_json(const PlanAnalysis& analysis, const std::string& file_
         {"floating", v.floating},
         {"dangling", v.dangling},
         {"invalid", v.invalid},
+        {"narrow_between_folds", analysis.narrow_between_folds},
         {"errors", analysis.errors},
         {"warnings", analysis.warnings}}},
       {"length_mm", {{"cut", analysis.cut_mm}, {"mountain", analysis.mountain_mm}, {"valley", analysis.valley_mm}}},
