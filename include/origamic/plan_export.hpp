@@ -90,6 +90,13 @@ void check_export_options(const ExportOptions& options, const Sheet& sheet);
 /// Coordinates carry 16 decimals. \throws OutputError if dxflib cannot write its temporary file.
 std::string plan_dxf(const Plan& plan, const ExportOptions& options);
 
+/// The plan's lines (folds scored) as plan_dxf writes them and `origamic validate` reads them back:
+/// Y up from the sheet's lower edge (plan Y plus half the sheet's height, in the file's doubles), a
+/// point the file writes as the one before it left out, a line left with one point dropped. Points
+/// a rounding apart in the plan (a fold on h - d and a support's corner on the pixel lattice,
+/// 7e-15 mm apart) are one point there.
+std::vector<PlanPolyline> plan_dxf_lines(const Plan& plan);
+
 /// The plan as SVG in mm (width/height in mm, viewBox in mm, no transforms; SVG y = half the sheet
 /// height - plan Y), <title>, <desc> and Dublin Core <metadata>, one Inkscape layer group per used
 /// layer, hairline strokes, 6 decimals. Dashed folds stay one polyline each with their fitted
