@@ -338,6 +338,26 @@ TEST(PlanAnalysis, StripNarrowerThanWIsReportedWithItsPlace) {
   EXPECT_EQ(c.narrow_between_folds, 0);
 }
 
+TEST(PlanAnalysis, TheStripUnderANotchIsNarrowWhereOnlyItsCornersAreVertices) {
+  // The box's top face, 37.3 mm deep, with a notch cut down from its valley fold to 1 mm above its
+  // mountain fold: the face is 1 mm wide along Y under the notch, between the fold and the notch's
+  // floor, whose corners are the only vertices there. On the line through a corner the closed face
+  // reaches the valley fold (the notch's wall is its side): the strip is the face just inside.
+  const Box b;
+  std::vector<PlanPolyline> lines = box_plan(b);
+  const double floor_Y = b.h - b.d + 1;
+  lines.push_back({LineKind::Cut, {{80, b.h}, {80, floor_Y}, {110, floor_Y}, {110, b.h}}});
+  const PlanAnalysis a = analyze_plan(lines, {.min_strip_mm = 3});
+  const auto narrow = problems_of(a, PlanProblemKind::NarrowStrip);
+  ASSERT_EQ(narrow.size(), 1u) << listing(a);
+  EXPECT_EQ(narrow[0].region, region_at(a, {b.mid() - 30, b.h - 1}));
+  EXPECT_EQ(narrow[0].value_mm, floor_Y - (b.h - b.d));
+  EXPECT_EQ(narrow[0].from.X, 80);
+  EXPECT_EQ(narrow[0].from.Y, b.h - b.d);
+  EXPECT_EQ(narrow[0].to.Y, floor_Y);
+  EXPECT_NE(narrow[0].message.find("(2 such places)"), std::string::npos) << "one at each corner";
+}
+
 TEST(PlanAnalysis, AStripNarrowerThanWBetweenAFoldAndACutIsNoFoldPair) {
   // The box's top face, 37.3 mm deep, with a hole cut in it 1 mm above its mountain fold: the face
   // is 1 mm wide along Y through the vertex in the middle of the hole's lower side, between the
@@ -529,16 +549,17 @@ TEST(TipRepair, ATipGoesOnlyToAFaceWhosePlaneKeepsItOnTheCard) {
       {LineKind::Cut, {{left.x1, -left.d}, {left.x1 - run, left.h - left.d}}}};
   add_box(lines, box_with_a_tip(right, run, 2));
   const PlanAnalysis before = analyze_plan(lines, {.min_strip_mm = W});
-  // The two tips and the left box's top, 2 mm deep all along.
-  ASSERT_EQ(problems_of(before, PlanProblemKind::NarrowStrip).size(), 3u) << listing(before);
-  ASSERT_EQ(before.errors, 3) << listing(before);
+  // The two tips, the left box's top, 2 mm deep all along, and the floor's wedge above the left tip,
+  // 2 mm high at the tip's foot.
+  ASSERT_EQ(problems_of(before, PlanProblemKind::NarrowStrip).size(), 4u) << listing(before);
+  ASSERT_EQ(before.errors, 4) << listing(before);
   const TipRepair repaired = blunt_narrow_tips(lines, {.min_strip_mm = W});
   EXPECT_EQ(repaired.tips, 1);
   const PlanAnalysis after = analyze_plan(repaired.lines, {.min_strip_mm = W});
   EXPECT_TRUE(problems_of(after, PlanProblemKind::OutsideCard).empty()) << listing(after);
   const auto narrow = problems_of(after, PlanProblemKind::NarrowStrip);
-  ASSERT_EQ(narrow.size(), 2u) << listing(after);
-  EXPECT_EQ(after.errors, 2) << listing(after);
+  ASSERT_EQ(narrow.size(), 3u) << listing(after);
+  EXPECT_EQ(after.errors, 3) << listing(after);
   EXPECT_TRUE(std::ranges::any_of(narrow, [&](const PlanProblem& p) { return p.from.X == slant_at_0; }))
       << "the left tip stays";
   const std::int32_t tip = region_at(after, {left.x1 - 0.5, -1.8});

@@ -44,8 +44,9 @@ enum class PlanProblemKind : std::uint8_t {
   Dangling,           // all its folds on one line: it swings about it
   Invalid,            // held by neither two disjoint fold paths nor a connective face
   NarrowStrip,        // narrower than W: the shortest chord of a face along X or along Y through one of
-                      // its vertices, longer than zero (a corner's tip is no strip) and shorter than W;
-                      // one per face and direction (from/to: the chord, value_mm: its length)
+                      // its vertices (the face just before the line or just after it), longer than zero
+                      // (a corner's tip is no strip) and shorter than W; one per face and direction
+                      // (from/to: the chord, value_mm: its length)
   OutsideCard,        // part of a face reaches below the floor or behind the back plane, by more than
                       // the tolerance, when the card is open at 90 degrees (value_mm: how far): paper
                       // through paper, poking out through the hole it leaves

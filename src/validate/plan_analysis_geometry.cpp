@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <tuple>
 #include <unordered_map>
@@ -355,8 +356,13 @@ Point inside_point(const std::vector<Ring>& rings) {
 
 // The shortest chord through a vertex, along Y (vertical chords at each vertex X) or along X, that is
 // longer than zero (a corner's tip is no strip) and shorter than W; `narrow` counts such chords. A
-// chord is a connected piece of the closed face on the line: the union of the stretches inside just
-// before and just after the line (half-open crossing rules on both sides, exact).
+// chord is a stretch of the face along the line just before it or just after it (half-open
+// crossing rules on each side, exact), each side on its own: where a side of the face runs along
+// the line, as a notch's wall does, the face on the line's other side may be narrower than the
+// closed face on the line. Taken as the union of the two sides, the strip under a notch or beside
+// a hole, whose corners are its only vertices, was not seen: 4,447 places at W = 3 mm over the 37
+// plans, 4,734 seen so (teeth of a traced line a fraction of a millimetre high, strips of a face
+// between a notch and a fold).
 std::optional<Chord> narrowest_chord(const std::vector<Ring>& rings, bool along_Y, const FT& W, int& narrow) {
   struct Edge {
     FT u0, v0, u1, v1;  // u across the chord, v along it; u0 <= u1
@@ -378,6 +384,7 @@ std::optional<Chord> narrowest_chord(const std::vector<Ring>& rings, bool along_
   std::vector<const Edge*> active;
   std::vector<FT> after, before;
   std::vector<std::pair<FT, FT>> pieces;
+  std::vector<std::uint8_t> counted;
   std::size_t next_edge = 0;
   for (std::size_t i = 0; i < vertices.size();) {
     const FT u = vertices[i].first;
@@ -397,18 +404,15 @@ std::optional<Chord> narrowest_chord(const std::vector<Ring>& rings, bool along_
       std::sort(side->begin(), side->end());
       for (std::size_t k = 0; k + 1 < side->size(); k += 2) pieces.emplace_back((*side)[k], (*side)[k + 1]);
     }
+    // A stretch the same on both sides (the face crosses the line there) is one chord.
     std::sort(pieces.begin(), pieces.end());
-    std::vector<std::pair<FT, FT>> merged;
-    for (const auto& piece : pieces)
-      if (!merged.empty() && piece.first <= merged.back().second)
-        merged.back().second = CGAL::max(merged.back().second, piece.second);
-      else
-        merged.push_back(piece);
-    const std::pair<FT, FT>* last = nullptr;
+    pieces.erase(std::unique(pieces.begin(), pieces.end()), pieces.end());
+    counted.assign(pieces.size(), 0);
     for (std::size_t k = i; k < j; ++k)
-      for (const auto& piece : merged) {
-        if (vertices[k].second < piece.first || piece.second < vertices[k].second || &piece == last) continue;
-        last = &piece;  // vertices of one chord count it once
+      for (std::size_t m = 0; m < pieces.size(); ++m) {
+        const auto& piece = pieces[m];
+        if (vertices[k].second < piece.first || piece.second < vertices[k].second || counted[m]) continue;
+        counted[m] = 1;  // vertices of one chord count it once
         const FT length = piece.second - piece.first;
         if (!CGAL::is_positive(length) || !(length < W)) continue;
         ++narrow;
