@@ -201,7 +201,7 @@ struct PlanFrameLines {
   bool exact = true;
 };
 PlanFrameLines in_plan_frame(const std::vector<PlanPolyline>& file_lines, const Plan& plan) {
-  const auto in_file = [&](const PlanPoint& p) { return std::pair{p.X, p.Y + plan.sheet.half_height_mm()}; };
+  const auto in_file = [&](const PlanPoint& p) { return std::pair{p.X, dxf_file_Y(plan.sheet, p.Y)}; };
   std::map<std::pair<double, double>, PlanPoint> known;
   for (const PlanPolyline& line : plan.lines)
     for (const PlanPoint& p : line.points) known.emplace(in_file(p), p);
