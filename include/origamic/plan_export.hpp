@@ -90,10 +90,6 @@ void check_export_options(const ExportOptions& options, const Sheet& sheet);
 /// Coordinates carry 16 decimals. \throws OutputError if dxflib cannot write its temporary file.
 std::string plan_dxf(const Plan& plan, const ExportOptions& options);
 
-/// A plan Y as plan_dxf writes it: up from the sheet's lower edge (plan Y plus half the sheet's
-/// height, rounded to a double), where cutter beds and CAD pages start.
-double dxf_file_Y(const Sheet& sheet, double Y);
-
 /// The plan's lines (folds scored) as plan_dxf writes them and `origamic validate` reads them back:
 /// Y up from the sheet's lower edge (plan Y plus half the sheet's height, in the file's doubles), a
 /// point the file writes as the one before it left out, a line left with one point dropped. Points

@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <optional>
 #include <tuple>
 #include <utility>
@@ -192,37 +191,9 @@ void face_areas(Plan& plan, const std::vector<double>& area) {
     if (plan.regions[i].face >= 0) plan.faces[static_cast<std::size_t>(plan.regions[i].face)].area_mm2 += area[i];
 }
 
-// Lines in the DXF's frame (plan_dxf_lines) back in the plan's: a point the plan has keeps its
-// coordinates, a new one (where a tip was parted) has half the sheet taken off its Y. `exact` says
-// whether every new point comes back to the same double in the file; below a quarter of the sheet's
-// height the subtraction may round.
-struct PlanFrameLines {
-  std::vector<PlanPolyline> lines;
-  bool exact = true;
-};
-PlanFrameLines in_plan_frame(const std::vector<PlanPolyline>& file_lines, const Plan& plan) {
-  const auto in_file = [&](const PlanPoint& p) { return std::pair{p.X, dxf_file_Y(plan.sheet, p.Y)}; };
-  std::map<std::pair<double, double>, PlanPoint> known;
-  for (const PlanPolyline& line : plan.lines)
-    for (const PlanPoint& p : line.points) known.emplace(in_file(p), p);
-  PlanFrameLines out{file_lines, true};
-  for (PlanPolyline& line : out.lines)
-    for (PlanPoint& p : line.points) {
-      const std::pair<double, double> written{p.X, p.Y};
-      if (const auto found = known.find(written); found != known.end()) {
-        p = found->second;
-        continue;
-      }
-      p.Y -= plan.sheet.half_height_mm();
-      out.exact = out.exact && in_file(p) == written;
-    }
-  return out;
-}
-
 // Issue 23: the tips of faces narrower than W parted off on the exact plan (blunt_narrow_tips),
 // round after round while the plan stands, has fewer narrow places and shows the model as the
-// supported plan does. The rounds work on the lines as the plan's DXF holds them, so that the
-// places left, measured on the plan kept, are what `origamic validate` finds in the file.
+// supported plan does; the places left are those of the plan kept, as its lines read back.
 void blunt_tips(DesignResult& result, const DesignOptions& options) {
   const double W = options.slice.min_strip_mm;
   const Likeness supported = likeness(result.maps, card_view(result.maps.grid, result.plan.regions, {}), W);
@@ -231,22 +202,11 @@ void blunt_tips(DesignResult& result, const DesignOptions& options) {
     const Likeness shown = likeness(result.maps, card_view(result.maps.grid, analysis.regions, {}), W);
     return shown.p95_W <= supported.p95_W + kTipsMayAddP95_W && shown.mean_W <= supported.mean_W + kTipsMayAddMean_W;
   };
-  TipRepair repaired =
-      blunt_narrow_tips(plan_dxf_lines(result.plan),
-                        {.min_strip_mm = W, .max_tip_mm = kTipReach_W * W, .rounds = options.tip_rounds}, keep);
-  const auto narrow_of = [&](const PlanAnalysis& analysis) {
-    result.narrow_strips.clear();
-    for (const PlanProblem& problem : analysis.problems)
-      if (problem.kind == PlanProblemKind::NarrowStrip) result.narrow_strips.push_back(problem);
-  };
-  if (repaired.rounds == 0) return narrow_of(repaired.analysis);
+  TipRepair repaired = blunt_narrow_tips(
+      result.plan.lines, {.min_strip_mm = W, .max_tip_mm = kTipReach_W * W, .rounds = options.tip_rounds}, keep);
+  if (repaired.rounds == 0) return;
   Plan& plan = result.plan;
-  PlanFrameLines kept = in_plan_frame(repaired.lines, plan);
-  plan.lines = std::move(kept.lines);
-  if (kept.exact)
-    narrow_of(repaired.analysis);
-  else
-    result.narrow_strips = narrow_places(plan, W);
+  plan.lines = std::move(repaired.lines);
   plan.regions = regions_named(std::move(repaired.analysis.regions), repaired.origin, plan.regions);
   plan.cut_mm = repaired.analysis.cut_mm, plan.mountain_mm = repaired.analysis.mountain_mm;
   plan.valley_mm = repaired.analysis.valley_mm;
@@ -313,10 +273,8 @@ void design_loaded(LoadedMesh loaded, const std::filesystem::path& model_file, c
   starting("strip widths and likeness");
   const auto drawn = [](const PlanPolyline& line) { return line.kind != LineKind::Outline; };
   if (std::ranges::any_of(result.plan.lines, drawn)) {
-    if (options.tip_rounds > 0)
-      blunt_tips(result, options);
-    else
-      result.narrow_strips = narrow_places(result.plan, options.slice.min_strip_mm);
+    if (options.tip_rounds > 0) blunt_tips(result, options);
+    result.narrow_strips = narrow_places(result.plan, options.slice.min_strip_mm);
   }
   clock.lap("narrow strips");
   result.card = card_view(result.maps.grid, result.plan);

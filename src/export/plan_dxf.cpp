@@ -70,6 +70,12 @@ std::string with_object_owners(const std::string& dxf) {
   return out;
 }
 
+// A plan Y as the file holds it: cutter beds and CAD pages start at the lower-left corner, so the
+// file does too (Inkscape's DXF import put the floor half below the page). Adding half the sheet
+// rounds a fold's Y by at most half an ulp of the sum (1.4e-14 mm on A4), far inside validate's
+// 1e-6 mm fold tolerance.
+double dxf_file_Y(const Sheet& sheet, double Y) { return Y + sheet.half_height_mm(); }
+
 // The plan as the DXF's sections write it.
 struct DxfDrawing {
   const Sheet& sheet;
@@ -241,11 +247,6 @@ std::string read_back(const std::string& path) {
 }
 
 }  // namespace
-
-// Cutter beds and CAD pages start at the lower-left corner, so the file does too (Inkscape's DXF
-// import put the floor half below the page). Adding half the sheet rounds a fold's Y by at most
-// half an ulp of the sum (1.4e-14 mm on A4), far inside validate's 1e-6 mm fold tolerance.
-double dxf_file_Y(const Sheet& sheet, double Y) { return Y + sheet.half_height_mm(); }
 
 std::vector<PlanPolyline> plan_dxf_lines(const Plan& plan) {
   const auto in_file = [&](const PlanPoint& p) { return std::pair{p.X, dxf_file_Y(plan.sheet, p.Y)}; };
