@@ -66,7 +66,9 @@ struct Chord {
 };
 
 /// The shortest chord of the face the rings bound through one of its vertices, along Y or along X,
-/// longer than zero and shorter than W, if any; adds the number of such chords to `narrow`.
+/// longer than zero and shorter than W, if any; adds the number of such chords to `narrow`. A chord
+/// is the face's stretch on the line just before it or just after it, each side on its own (the
+/// strip under a notch, whose corners are its only vertices, is one).
 std::optional<Chord> narrowest_chord(const std::vector<Ring>& rings, bool along_Y, const exact::FT& W, int& narrow);
 
 }  // namespace origamic::analysis
