@@ -166,6 +166,54 @@ TEST(Supports, RaysMeetFacesTheRasterPlanGainedSinceTheExactPlan) {
   for (const Candidate& c : before) EXPECT_EQ(c.target, kFloorFace);
 }
 
+// A support that folds onto a face less than W before that face's next fold beyond leaves a strip
+// between two parallel folds narrower than W (issue 23): the front V(47.1), reaching down, folds
+// onto an H(20) band at Y = -27.1; a V face below the band makes its next fold at 20 - d. Where the
+// band reaches 2.9 mm past the support's fold, the candidate says so; where it reaches 5.9 mm, or
+// ends on the floor (a cut: no second fold), it does not.
+TEST(Supports, ASupportLeavingItsTargetAStripUnderWBeforeItsNextFoldSaysSo) {
+  const test::FloatingBoxPlan box;
+  const RasterMaps& maps = box.maps;
+  const PixelGrid& grid = maps.grid;
+  const std::vector<std::int32_t> faces{box.front};
+  // The band from Y = `bottom_Y` to -20 across the box, and V(20 - bottom_Y) below it down to -45.
+  const auto down_from_front = [&](double bottom_Y, bool v_below) {
+    RasterPlan changed = box.raster_plan;
+    const auto h20 = static_cast<std::int32_t>(changed.faces.size());
+    changed.faces.push_back({Orientation::H, 20, 0, 0, false, false});
+    changed.faces.push_back({Orientation::V, 20 - bottom_Y, 0, 0, false, false});
+    for (int r = 0; r < changed.face.rows; ++r)
+      for (int c = 0; c < changed.face.cols; ++c) {
+        if (grid.X(c) < 60.2 || grid.X(c) > 150.7) continue;
+        if (grid.Y(r) > bottom_Y && grid.Y(r) < -20) changed.face(c, r) = h20;
+        if (v_below && grid.Y(r) > -45 && grid.Y(r) < bottom_Y) changed.face(c, r) = h20 + 1;
+      }
+    std::vector<Candidate> onto_band;
+    for (const Candidate& c : nearest(leaving(
+             support_candidates({maps, changed, box.exact_plan, {}, {}}, faces, SupportReach{}), box.front, false)))
+      if (c.c0 >= 60.2 * grid.px_per_mm && c.c1 <= 150.7 * grid.px_per_mm) {
+        EXPECT_EQ(c.target, h20);
+        onto_band.push_back(c);
+      }
+    EXPECT_GE(onto_band.size(), 20u) << "every block column across the band's 90 mm";
+    return onto_band;
+  };
+  for (const Candidate& c : down_from_front(-30, true)) EXPECT_TRUE(c.leaves_thin_strip) << c.c0;
+  for (const Candidate& c : down_from_front(-33, true)) EXPECT_FALSE(c.leaves_thin_strip) << c.c0;
+  for (const Candidate& c : down_from_front(-30, false)) EXPECT_FALSE(c.leaves_thin_strip) << c.c0;
+  // Its ear costs the thin strip cost more; the picture's part stays the candidate's own.
+  SupportOptions options;
+  Candidate c;
+  c.face = 2, c.target = 3, c.cost = 1.5;
+  c.near = {20, 47.1}, c.far = {10, 47.1};
+  const std::vector<std::uint8_t> stands = {1, 1, 0, 0};
+  EXPECT_EQ(support_edge(c, stands, options, 3).cost, 1.5);
+  c.leaves_thin_strip = true;
+  EXPECT_GT(options.thin_strip_cost_mm, 0);
+  EXPECT_EQ(support_edge(c, stands, options, 3).cost, 1.5 + options.thin_strip_cost_mm);
+  EXPECT_EQ(support_edge(c, stands, options, 3).picture, 1.5);
+}
+
 // A face whose every pixel has gone to a neighbour (a whole crumb joined to it) has no edge left to
 // hold: it gets no candidate, and the other faces of the round get theirs.
 TEST(Supports, AFaceWithNoPixelsLeftHasNoEdgeToHold) {
@@ -865,7 +913,7 @@ TEST(Supports, ThePlanKeptIsTheExactPlanOfTheSlicesKept) {
   DesignOptions options;
   options.placement.up = UpAxis::Z;
   options.tip_rounds = 0;
-  const DesignResult r = standing_design("prim_torus.stl", options);
+  const DesignResult r = standing_design("seedlike/sphere.stl", options);
   ASSERT_GT(r.supports.passes_undone, 0) << "a design with undone passes";
   const Plan fresh = build_plan(r.maps, r.raster_plan, DesignOptions{}.sheet, PlanOptions{});
   EXPECT_EQ(fresh.validity.status, r.plan.validity.status);

@@ -482,10 +482,34 @@ class CandidateFinder {
         s.cuts.push_back(x);
         if (!split_faces_) return s;
       }
+    // Onto its target it always folds; from f only where it leaves f's plane.
+    const int centre = (s.c0 + s.c1) / 2;
+    const bool folds_from_f = f != g && faces_[static_cast<std::size_t>(f)].orientation != s.orientation;
+    s.leaves_thin_strip =
+        thin_strip_beyond(centre, s.target_row, step, s.far.h - s.far.d, s.orientation) ||
+        (folds_from_f && thin_strip_beyond(centre, s.face_row, -step, s.near.h - s.near.d, s.orientation));
     const double length = (s.r1 - s.r0) * px_mm_;
     s.picture_mm = std::max(0.0, picture_.added_error(s.orientation, s.depth_mm, {s.c0, s.c1, s.r0, s.r1})) / (W_ * W_);
     s.cost = kCostPerLength * length + s.picture_mm;
     return s;
+  }
+
+  // Whether the face at (col, row), running on `step` by `step`, folds onto a face in the support's
+  // orientation `o` less than W from the support's fold at `fold_Y`: the strip between the two folds,
+  // measured on their lines, is too thin to fold.
+  bool thin_strip_beyond(int col, int row, int step, double fold_Y, Orientation o) const {
+    if (row < 0 || row >= face_.rows) return false;
+    const std::int32_t g = face_(col, row);
+    int r = row;
+    // A strip under W spans at most W's rows and the two it may share with its folds.
+    while (r >= 0 && r < face_.rows && face_(col, r) == g && (r - row) * step <= block_ + 1) r += step;
+    if (r < 0 || r >= face_.rows || g < 0) return false;
+    const std::int32_t x = face_(col, r);
+    if (x < 0 || x == g) return false;
+    const RasterFace &here = faces_[static_cast<std::size_t>(g)], &next = faces_[static_cast<std::size_t>(x)];
+    if (next.hole || next.orientation != o || here.orientation == o) return false;
+    const double next_fold_Y = o == Orientation::V ? here.depth_mm - next.depth_mm : next.depth_mm - here.depth_mm;
+    return std::abs(next_fold_Y - fold_Y) < W_ - kFoldLineTolerance_mm;
   }
 
   const ExactPlan& exact_plan_;
@@ -631,6 +655,7 @@ SupportEdge support_edge(const Candidate& c, const std::vector<std::uint8_t>& st
   for (const std::int32_t x : c.cuts) extra += (stands[static_cast<std::size_t>(x)] ? 10 : 1) * options.split_cost_mm;
   const double face_Y = c.near.h - c.near.d, target_Y = c.far.h - c.far.d;
   if (std::abs(target_Y - face_Y) < W - kFoldLineTolerance_mm) extra += options.short_support_cost_mm;
+  if (c.leaves_thin_strip) extra += options.thin_strip_cost_mm;
   return {c.face, c.target, face_Y, target_Y, c.cost + extra, c.cost, c.cuts};
 }
 

@@ -34,6 +34,9 @@ struct Candidate {
   double picture_mm = 0;           // the error it adds to the picture, per W x W of plan (part of its cost)
   std::vector<std::int32_t> cuts;  // the faces it cuts in two
   int taken = 0;                   // rows of `face` the support takes, on its edge
+  // Whether it leaves `face` or `target`, at the block column's centre, a strip under W between its
+  // fold and a parallel one beyond.
+  bool leaves_thin_strip = false;
 };
 
 // What the loop needs to know of a plan: each face's status and which of its sides are folded.
