@@ -39,12 +39,11 @@ struct SupportOptions {
   // that face's next fold beyond (a tread or riser between two parallel folds, issue 23: two
   // supports stacked on a slice from rounds apart left it 0.13 mm on prim_cone) costs this much
   // more. Over the 37 models at W = 2 / 3 / 5 mm: faces between two folds under W apart 1,188 / 631
-  // / 331 -> 915 / 495 / 261, those under 0.5 mm 254 / 117 / 48 -> 115 / 51 / 23; all places under
-  // W 7,968 / 4,726 / 2,437 -> 7,957 / 4,696 / 2,437; mean p95 2.20 / 1.96 / 1.99 -> 2.23 / 1.97 /
-  // 2.03 W. With the strip counted in pixel rows rather than between the folds' lines, costs of 1,
-  // 2, 4 and 8 mm gave 534, 566, 530 and 524 such faces at W = 3 mm, and 4,761, 4,772, 4,687 and
-  // 4,728 places; counted only under W / 2, 605 and 4,802.
-  double thin_strip_cost_mm = 4;
+  // / 331 -> 919 / 508 / 282, those under 0.5 mm 254 / 117 / 48 -> 135 / 54 / 28; all places under
+  // W 7,968 / 4,726 / 2,437 -> 7,867 / 4,731 / 2,426; mean p95 2.20 / 1.96 / 1.99 -> 2.21 / 1.95 /
+  // 2.04 W. At 4 mm: 915 / 495 / 261 such faces, but seedlike/sphere's supports took 26 rounds
+  // instead of 11 (15 at 1 mm), its design 1.0 -> 1.45 s.
+  double thin_strip_cost_mm = 1;
   // A face no support holds goes to a neighbour (or has its supports bounded by what that would
   // cost) only where the neighbour's plane adds at most this many W of error per pixel of the face,
   // on average; past it the face is held where that costs the picture no more than its hole, else
