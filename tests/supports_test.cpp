@@ -170,8 +170,8 @@ TEST(Supports, RaysMeetFacesTheRasterPlanGainedSinceTheExactPlan) {
 // between two parallel folds narrower than W (issue 23): the front V(47.1), reaching down, folds
 // onto an H(20) band at Y = -27.1; a V face below the band makes its next fold at 20 - d. Where the
 // band reaches 2.9 mm past the support's fold, the candidate says so; where it reaches 5.9 mm, or
-// ends on the floor (a cut: no second fold), it does not.
-TEST(Supports, ASupportLeavingItsTargetAStripUnderWBeforeItsNextFoldSaysSo) {
+// ends on the floor (a cut: no second fold), it does not. So on the face it holds.
+TEST(Supports, ASupportLeavingItsFacesAStripUnderWBeforeTheirNextFoldSaysSo) {
   const test::FloatingBoxPlan box;
   const RasterMaps& maps = box.maps;
   const PixelGrid& grid = maps.grid;
@@ -201,6 +201,27 @@ TEST(Supports, ASupportLeavingItsTargetAStripUnderWBeforeItsNextFoldSaysSo) {
   for (const Candidate& c : down_from_front(-30, true)) EXPECT_TRUE(c.leaves_thin_strip) << c.c0;
   for (const Candidate& c : down_from_front(-33, true)) EXPECT_FALSE(c.leaves_thin_strip) << c.c0;
   for (const Candidate& c : down_from_front(-30, false)) EXPECT_FALSE(c.leaves_thin_strip) << c.c0;
+  // On the side of the face it holds too, where it leaves that face's plane: with the top H(77.9)
+  // gone to the back plane, an H support from the front's top edge (Y = 30.8) reaches back to it;
+  // the front ends `strip` below, on an H face folding onto it there.
+  const auto up_from_front = [&](double strip) {
+    RasterPlan changed = box.raster_plan;
+    const auto below = static_cast<std::int32_t>(changed.faces.size());
+    changed.faces.push_back({Orientation::H, 77.9 - strip, 0, 0, false, false});
+    for (std::int32_t& f : changed.face.values)
+      if (f == box.top) f = kBackFace;
+    for (int r = 0; r < changed.face.rows; ++r)
+      for (int c = 0; c < changed.face.cols; ++c)
+        if (changed.face(c, r) == box.front && grid.Y(r) < 30.8 - strip) changed.face(c, r) = below;
+    std::vector<Candidate> back;
+    for (const Candidate& c : nearest(leaving(
+             support_candidates({maps, changed, box.exact_plan, {}, {}}, faces, SupportReach{}), box.front, true)))
+      if (c.target == kBackFace && c.orientation == Orientation::H) back.push_back(c);
+    EXPECT_GE(back.size(), 20u) << "every block column across the front's 90 mm";
+    return back;
+  };
+  for (const Candidate& c : up_from_front(2)) EXPECT_TRUE(c.leaves_thin_strip) << c.c0;
+  for (const Candidate& c : up_from_front(4)) EXPECT_FALSE(c.leaves_thin_strip) << c.c0;
   // Its ear costs the thin strip cost more; the picture's part stays the candidate's own.
   SupportOptions options;
   Candidate c;
