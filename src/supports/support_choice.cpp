@@ -498,12 +498,12 @@ class CandidateFinder {
   // orientation `o` less than W from the support's fold at `fold_Y`: the strip between the two folds,
   // measured on their lines, is too thin to fold.
   bool thin_strip_beyond(int col, int row, int step, double fold_Y, Orientation o) const {
-    if (row < 0 || row >= face_.rows) return false;
+    if (row < 0 || row >= face_.rows || face_(col, row) < 0) return false;
     const std::int32_t g = face_(col, row);
     int r = row;
     // A strip under W spans at most W's rows and the two it may share with its folds.
     while (r >= 0 && r < face_.rows && face_(col, r) == g && (r - row) * step <= block_ + 1) r += step;
-    if (r < 0 || r >= face_.rows || g < 0) return false;
+    if (r < 0 || r >= face_.rows) return false;
     const std::int32_t x = face_(col, r);
     if (x < 0 || x == g) return false;
     const RasterFace &here = faces_[static_cast<std::size_t>(g)], &next = faces_[static_cast<std::size_t>(x)];
