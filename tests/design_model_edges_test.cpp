@@ -10,31 +10,14 @@
 #include <numbers>
 #include <vector>
 
+#include "helpers.hpp"
 #include "origamic/design.hpp"
 
 namespace origamic {
 namespace {
 
 // OA points (x, h, d) as model points (x, y, z) read with up y, at scale 1 and offset 0.
-using Floor = std::vector<std::array<double, 2>>;  // (x, d), counter-clockwise seen from above
-
-// A prism over a floor polygon from h = 0 to `height`, wound outwards.
-TriangleMesh prism(const Floor& floor, double height) {
-  TriangleMesh mesh;
-  const auto n = static_cast<std::uint32_t>(floor.size());
-  for (const double h : {0.0, height})
-    for (const auto& [x, d] : floor) mesh.positions.emplace_back(x, h, d);
-  for (std::uint32_t i = 1; i + 1 < n; ++i) {
-    mesh.triangles.push_back({0, i + 1, i});          // bottom, facing down
-    mesh.triangles.push_back({n, n + i, n + i + 1});  // top, facing up
-  }
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const std::uint32_t j = (i + 1) % n;
-    mesh.triangles.push_back({i, j, n + j});
-    mesh.triangles.push_back({i, n + j, n + i});
-  }
-  return mesh;
-}
+using Floor = test::Floor;
 
 Plan design_in_place(const TriangleMesh& mesh) {
   DesignOptions options;
@@ -125,7 +108,7 @@ TEST(ModelEdges, TheBackEdgesOfABoxTurned30DegreesAreDrawnOnTheirLines) {
   Floor floor;
   for (const auto& [u, v] : {std::array{-30.0, -20.0}, {30.0, -20.0}, {30.0, 20.0}, {-30.0, 20.0}})
     floor.push_back({105 + c * u - s * v, 70 + s * u + c * v});
-  const Plan plan = design_in_place(prism(floor, height));
+  const Plan plan = design_in_place(test::prism(floor, 0, height));
   const std::vector<Segment> segments = drawn_segments(plan);
   EXPECT_LE(plan.off_model_edges_mm, 0.02);
   // The back corner (smallest d) and the edges leaving it.
@@ -151,7 +134,7 @@ TEST(ModelEdges, TheBackRimOfA96SidedDrumIsDrawnOnItsPolygon) {
     const double a = 2 * std::numbers::pi * k / sides;
     floor.push_back({105 + radius * std::cos(a), 70 + radius * std::sin(a)});
   }
-  const Plan plan = design_in_place(prism(floor, height));
+  const Plan plan = design_in_place(test::prism(floor, 0, height));
   const std::vector<Segment> segments = drawn_segments(plan);
   EdgeDrawing rim;
   for (int k = 0; k < sides; ++k) {

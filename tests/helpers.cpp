@@ -32,6 +32,23 @@ TriangleMesh box(const glm::dvec3& lo, const glm::dvec3& hi) {
   return mesh;
 }
 
+TriangleMesh prism(const Floor& floor, double h0, double h1) {
+  TriangleMesh mesh;
+  const auto n = static_cast<std::uint32_t>(floor.size());
+  for (const double h : {h0, h1})
+    for (const auto& [x, d] : floor) mesh.positions.emplace_back(x, h, d);
+  for (std::uint32_t i = 1; i + 1 < n; ++i) {
+    mesh.triangles.push_back({0, i + 1, i});          // bottom, facing down
+    mesh.triangles.push_back({n, n + i, n + i + 1});  // top, facing up
+  }
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t j = (i + 1) % n;
+    mesh.triangles.push_back({i, j, n + j});
+    mesh.triangles.push_back({i, n + j, n + i});
+  }
+  return mesh;
+}
+
 std::vector<PlanRegion> box_popup_regions(const Sheet& sheet, double x0, double x1, double h, double d) {
   const double W = sheet.width_mm, half = sheet.half_height_mm();
   std::vector<PlanRegion> regions(4);

@@ -2,6 +2,7 @@
 // Meshes made in code, mesh files written by hand (independently of OpenMesh), temporary folders.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -9,8 +10,8 @@
 #include "exact_plan.hpp"
 #include "origamic/mesh_io.hpp"
 #include "origamic/oa.hpp"
-#include "origamic/plan_regions.hpp"
 #include "origamic/plan.hpp"
+#include "origamic/plan_regions.hpp"
 
 namespace origamic::test {
 
@@ -24,6 +25,13 @@ std::string box_obj(const glm::dvec3& size, bool corner_normals, bool inward = f
 
 /// Both meshes in one (b's vertices after a's).
 TriangleMesh merged(const TriangleMesh& a, const TriangleMesh& b);
+
+/// A floor polygon of OA points (x, d), counter-clockwise seen from above.
+using Floor = std::vector<std::array<double, 2>>;
+
+/// A prism over a floor polygon from height h0 to h1, wound outwards: OA points (x, h, d) as model
+/// points (x, y, z), read with up y at scale 1 and offset 0.
+TriangleMesh prism(const Floor& floor, double h0, double h1);
 
 /// A UV sphere of the given segments around and rings from pole to pole.
 TriangleMesh sphere(const glm::dvec3& centre, double radius, int segments, int rings);

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include "origamic/raster.hpp"
 #include "origamic/slice.hpp"
 
@@ -64,6 +66,72 @@ TEST(RasterPlanEdits, AFoldMovesToThePixelEdgeNearestItsLine) {
   far.faces[2].depth_mm = 13;  // its line is now 3 mm above: 12 rows
   far = align_folds_to_lines(std::move(far), grid, 1.0);
   EXPECT_EQ(far.face.values, s.face.values);
+}
+
+// A V face between an H face above and the floor below, 16 rows tall (4 px a mm, Y = (20 - row) / 4
+// at the edge above row `row`): H(4) rows 0-11, V(2) rows 12-27 (folds at Y = 2 and -2), the floor
+// below.
+RasterPlan v_between_h_and_floor(const PixelGrid& grid) {
+  RasterPlan s;
+  s.face = Grid<std::int32_t>(grid.cols, grid.rows, kFloorFace);
+  s.faces = {{Orientation::V, 0}, {Orientation::H, 0}, {Orientation::H, 4}, {Orientation::V, 2}};
+  for (int c = 0; c < grid.cols; ++c) {
+    for (int r = 0; r < 12; ++r) s.face(c, r) = 2;
+    for (int r = 12; r < 28; ++r) s.face(c, r) = 3;
+  }
+  s.faces[1].pixels = 12 * grid.cols, s.faces[2].pixels = 12 * grid.cols, s.faces[3].pixels = 16 * grid.cols;
+  return s;
+}
+
+// A plane moved carries its folds: the V face half a millimetre forward meets the H face and the
+// floor 2 rows lower, giving the H face its top 2 rows and taking the floor's 2; its height stays.
+TEST(RasterPlanEdits, APlaneMovedTakesItsFoldsToItsNewLines) {
+  PixelGrid grid;
+  grid.cols = 3, grid.rows = 40, grid.px_per_mm = 4, grid.rows_above_fold = 20;
+  const RasterPlan s = v_between_h_and_floor(grid);
+  const std::optional<RasterPlan> moved = move_plane(s, grid, 3, 2.5, 0.3, 1);
+  ASSERT_TRUE(moved.has_value());
+  EXPECT_EQ(moved->faces[3].depth_mm, 2.5);
+  for (int c = 0; c < grid.cols; ++c)
+    for (int r = 0; r < grid.rows; ++r)
+      EXPECT_EQ(moved->face(c, r), r < 14 ? 2 : r < 30 ? 3 : kFloorFace) << c << ", " << r;
+  EXPECT_EQ(moved->faces[2].pixels, 14 * grid.cols);
+  EXPECT_EQ(moved->faces[3].pixels, 16 * grid.cols);
+  EXPECT_EQ(moved->faces[kFloorFace].pixels, 10 * grid.cols);
+  // Back to 2 mm, the same plan again.
+  const std::optional<RasterPlan> back = move_plane(*moved, grid, 3, 2, 0.3, 1);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->face.values, s.face.values);
+}
+
+// A fold moves only where the face giving rows keeps `min_run_px` of them (a tread no narrower), and
+// only where no face is parted; a boundary off its fold line is no fold and stays.
+TEST(RasterPlanEdits, APlaneMovesOnlyWhereTheFacesGivingRowsKeepTheirRunAndStayWhole) {
+  PixelGrid grid;
+  grid.cols = 3, grid.rows = 40, grid.px_per_mm = 4, grid.rows_above_fold = 20;
+  const RasterPlan s = v_between_h_and_floor(grid);
+  // Half a millimetre back, the V face's folds rise 2 rows: it takes rows 10-11 of the H face,
+  // which keeps 10, and gives rows 26-27 to the floor.
+  EXPECT_TRUE(move_plane(s, grid, 3, 1.5, 0.3, 10).has_value());   // the H face keeps 10 rows
+  EXPECT_FALSE(move_plane(s, grid, 3, 1.5, 0.3, 11).has_value());  // it would keep 10 of 11
+  // A boundary farther from its line than the tolerance is no fold: it stays.
+  RasterPlan off = s;
+  off.faces[2].depth_mm = 5;  // the H face's fold line 4 rows above its boundary
+  const std::optional<RasterPlan> moved = move_plane(off, grid, 3, 2.5, 0.3, 1);
+  ASSERT_TRUE(moved.has_value());
+  for (int c = 0; c < grid.cols; ++c) {
+    EXPECT_EQ(moved->face(c, 11), 2);
+    EXPECT_EQ(moved->face(c, 12), 3);
+    EXPECT_EQ(moved->face(c, 29), 3);  // the floor's fold did move
+  }
+  // The H face held together only by its rows 10-11 in the middle column: giving them to the V
+  // face parts it (its side columns start at row 10, the middle one's keep rows 8-9 alone).
+  RasterPlan bridge = s;
+  for (int r = 0; r < 10; ++r) bridge.face(0, r) = bridge.face(2, r) = kBackFace;
+  for (int r = 0; r < 8; ++r) bridge.face(1, r) = kBackFace;
+  for (int r = 12; r < 28; ++r) bridge.face(0, r) = bridge.face(2, r) = 2;
+  EXPECT_TRUE(move_plane(bridge, grid, 3, 2.5, 0.3, 1).has_value());  // forward, it gives the H face rows
+  EXPECT_FALSE(move_plane(bridge, grid, 3, 1.5, 0.3, 1).has_value());
 }
 
 }  // namespace

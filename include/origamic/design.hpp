@@ -38,6 +38,10 @@ struct DesignOptions {
   // On the 37 models at W = 3 mm: 4,628 places, 4,343 after 2 rounds, 4,278 after 3, 4,244 after 4
   // (each round costs res_dragon_full about 0.1 s).
   int tip_rounds = 3;
+  // Once supports hold every face, faces whose planes show the model far off (a round shaft's
+  // slices given one plane) move to the plane that shows it best, where the plan still stands
+  // (refit_planes, src/design/plane_refit.hpp); false leaves the plan as supported.
+  bool refit_planes = true;
   // Told as each stage begins, in words ("slicing"): a terminal shows the run's progress with it.
   std::function<void(std::string_view stage)> on_stage;
 };

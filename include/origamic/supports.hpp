@@ -88,6 +88,14 @@ struct JoinedFace {
   double joined_cost = 0, hole_cost = 0;
 };
 
+/// A face given the plane that shows the finished card's model best, once supports held every face
+/// (design.cpp: refit_planes).
+struct RefitPlane {
+  PlanPoint at;  // a pixel centre of it, in plan mm
+  Orientation orientation = Orientation::V;
+  double from_mm = 0, to_mm = 0;  // its depth d (V) or height h (H) before and after
+};
+
 /// Why supports alone did not make every face stand.
 enum class SupportStop : std::uint8_t {
   None,          // they did, or nothing needed them
@@ -122,6 +130,7 @@ struct SupportReport {
   int cut_out = 0;                        // faces cut out of the sheet as the last resort
   std::vector<CutOutFace> cut_out_faces;  // each, with its place and why
   std::vector<JoinedFace> joined_faces;   // faces given to a neighbour instead of cut out
+  std::vector<RefitPlane> planes_refit;   // faces moved to a plane that shows the model better
   std::vector<NarrowStrip> narrow;        // faces and supports narrower than W, with their place
 };
 
@@ -146,12 +155,21 @@ std::optional<SupportedPlan> add_supports_in_other_frame(const RasterMaps& maps,
                                                          const Sheet& sheet, const PlanOptions& plan_options,
                                                          const SupportOptions& options);
 
+/// The faces the raster plan's own folds (its V/H boundaries on their fold lines) leave floating,
+/// invalid or, unless allowed, dangling: the face graph the support rounds run on, in face order.
+/// Its verdict costs a few milliseconds where the exact plan's costs 50-700.
+std::vector<std::int32_t> faces_unheld_on_raster(const PixelGrid& grid, const RasterPlan& raster_plan,
+                                                 bool allow_dangling);
+
 /// Every face (holes aside) whose pixels span fewer than W (block_px) columns, in face order.
 std::vector<NarrowStrip> narrow_strips(const RasterPlan& raster_plan, const PixelGrid& grid);
 
 /// Why supports stopped, in words ("" for SupportStop::None): "12 faces still invalid: no progress in
 /// 3 rounds; 2 loose pieces of the back plane or the floor", as the report gives it.
 std::string stop_reason(const SupportReport& report);
+
+/// Whether a face of this status is not held: floating, invalid, or dangling unless allowed.
+bool needs_support(FaceStatus status, bool allow_dangling);
 
 /// The verdict: no floating or invalid face, and no dangling one unless they are allowed.
 bool plan_stands(const Validity& validity, bool allow_dangling);

@@ -13,6 +13,7 @@
 #include "number_text.hpp"
 #include "origamic/error.hpp"
 #include "origamic/plan_export.hpp"
+#include "plane_refit.hpp"
 #include "raster_plan_edits.hpp"
 
 namespace origamic {
@@ -96,11 +97,7 @@ bool model_faces_put_p95_over(const DesignResult& sliced, const Plan& plan, doub
 SupportedPlan supported_plan(const DesignResult& sliced, const DesignOptions& options) {
   const bool allow_dangling = options.supports.allow_dangling;
   const double W = options.slice.min_strip_mm;
-  // How a plan fares: whether it fails to stand, its p95 and its mean error, in W; less is better.
-  const auto fares = [&](const Plan& plan) {
-    const Likeness l = likeness(sliced.maps, card_view(sliced.maps.grid, plan), W);
-    return std::tuple{!plan_stands(plan, allow_dangling), l.p95_W, l.mean_W};
-  };
+  const auto fares = [&](const Plan& plan) { return plan_fares(sliced.maps, plan, W, allow_dangling); };
   const double bound_W = sliced.sliced_likeness.p95_W + kSupportsMayAddP95_W;
   const auto good = [&](const auto& fared) {
     const auto& [fails, p95, mean] = fared;
@@ -263,10 +260,14 @@ void design_loaded(LoadedMesh loaded, const std::filesystem::path& model_file, c
     clock.lap("plan");
   } else {
     SupportedPlan supported = supported_plan(result, options);
+    clock.lap("plan+supports");
+    if (options.refit_planes)
+      supported =
+          refit_planes(result.maps, std::move(supported), options.sheet, options.plan, options.supports.allow_dangling);
     result.raster_plan = std::move(supported.raster_plan);
     result.plan = std::move(supported.plan);
     result.supports = supported.report;
-    clock.lap("plan+supports");
+    clock.lap("planes refit");
   }
   // Seed §4.4: no strip narrower than W. Supports are chosen W wide and slices W deep, but what the
   // plan's folds and cuts leave between them is measured on the plan itself, exactly, both ways.

@@ -95,6 +95,16 @@ nlohmann::json joined_json(const std::vector<JoinedFace>& faces) {
   return list;
 }
 
+nlohmann::json refit_json(const std::vector<RefitPlane>& planes) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const RefitPlane& p : planes)
+    list.push_back({{"at_XY", {p.at.X, p.at.Y}},
+                    {"orientation", p.orientation == Orientation::V ? "V" : "H"},
+                    {"from_mm", p.from_mm},
+                    {"to_mm", p.to_mm}});
+  return list;
+}
+
 // The places the plan is narrower than W, from the exact measure of its lines.
 nlohmann::json narrow_places_json(const std::vector<PlanProblem>& narrow) {
   nlohmann::json list = nlohmann::json::array();
@@ -232,6 +242,7 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
         {"cut_out_share", result.supports.cut_out_share},
         {"cut_out_faces", cut_out_json(result.supports.cut_out_faces)},
         {"joined_to_neighbour", joined_json(result.supports.joined_faces)},
+        {"planes_refit", refit_json(result.supports.planes_refit)},
         {"narrow_strips", narrow_json(result.supports.narrow)},
         {"round_bound", result.supports.round_bound},
         {"orders", result.supports.orders},

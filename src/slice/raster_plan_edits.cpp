@@ -8,7 +8,9 @@
 #include <climits>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
+#include <tuple>
 #include <utility>
 
 #include "bands.hpp"
@@ -303,6 +305,64 @@ std::vector<int> align_sweep(RasterPlan& result, const FoldRows& folds) {
 }
 
 }  // namespace
+
+std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& grid, std::int32_t f, double depth_mm,
+                                     double tolerance_mm, int min_run_px) {
+  // The folds are found on the planes as they are, then moved to the new plane's lines: first each
+  // move is checked (most that fail, fail here), then the plan copied and the moves made.
+  const FoldRows old_folds{grid, tolerance_mm};
+  const auto new_row = [&](std::int32_t a, std::int32_t b) {  // FoldRows::row of a above b, f moved
+    const RasterFace &fa = plan.faces[static_cast<std::size_t>(a)], &fb = plan.faces[static_cast<std::size_t>(b)];
+    const double fold_Y = fold_line_Y(fa.orientation, a == f ? depth_mm : fa.depth_mm, b == f ? depth_mm : fb.depth_mm);
+    return static_cast<int>(std::lround(grid.rows_above_fold - 1 - fold_Y * grid.px_per_mm));
+  };
+  struct Rows {
+    int col, first, last;
+    std::int32_t taker, giver;
+  };
+  std::vector<Rows> given;
+  const Grid<std::int32_t>& face = plan.face;
+  for (int col = 0; col < face.cols; ++col)
+    for (int r = 0; r + 1 < face.rows; ++r) {
+      const std::int32_t a = face(col, r), b = face(col, r + 1);  // a above, b below
+      if ((a != f && b != f) || old_folds.row(plan, a, b, r) != r) continue;
+      const int t = new_row(a, b);
+      if (t == r) continue;
+      if (t < 0 || t + 1 >= face.rows) return std::nullopt;
+      // Rows r + 1 .. t go to a, or t + 1 .. r to b, as the fold moves down or up; no other face
+      // lies between, and the face that gives them keeps min_run_px rows beyond.
+      const auto [first, last, taker] = t > r ? std::tuple{r + 1, t, a} : std::tuple{t + 1, r, b};
+      const std::int32_t giver = taker == a ? b : a;
+      const int kept_row = taker == a ? t + 1 : t, away = taker == a ? 1 : -1;
+      for (int k = 0; k < min_run_px || k == 0; ++k) {
+        const int row = kept_row + away * k;
+        if (row < 0 || row >= face.rows || face(col, row) != giver) return std::nullopt;
+      }
+      for (int k = first; k <= last; ++k)
+        if (face(col, k) != giver) return std::nullopt;
+      given.push_back({col, first, last, taker, giver});
+    }
+  RasterPlan moved_planes = plan;
+  moved_planes.faces[static_cast<std::size_t>(f)].depth_mm = depth_mm;
+  std::vector<std::uint8_t> gave(plan.faces.size(), 0);
+  for (const auto& [col, first, last, taker, giver] : given) {
+    for (int k = first; k <= last; ++k) moved_planes.face(col, k) = taker;
+    moved_planes.faces[static_cast<std::size_t>(giver)].pixels -= last - first + 1;
+    moved_planes.faces[static_cast<std::size_t>(taker)].pixels += last - first + 1;
+    gave[static_cast<std::size_t>(giver)] = 1;
+  }
+  // A face that gave pixels and is now in two parts would be two pieces of paper, the one without
+  // the fold unheld.
+  const auto parts_per_face = [&](const Grid<std::int32_t>& map) {
+    std::vector<int> parts(plan.faces.size(), 0);
+    for (const std::int32_t g : parts_of(map, gave).face) ++parts[static_cast<std::size_t>(g)];
+    return parts;
+  };
+  const std::vector<int> before = parts_per_face(plan.face), after = parts_per_face(moved_planes.face);
+  for (std::size_t g = 0; g < before.size(); ++g)
+    if (after[g] > before[g]) return std::nullopt;
+  return moved_planes;
+}
 
 RasterPlan align_folds_to_lines(RasterPlan plan, const PixelGrid& grid, double tolerance_mm) {
   // A moved boundary can free another one in its column: sweep those columns again until nothing

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -46,6 +47,15 @@ SplitFaces split_disconnected_faces(RasterPlan raster_plan, const std::vector<st
 /// then moves it onto the line by under half a pixel and cannot cross a neighbouring boundary on
 /// the way. Pixel counts are kept up to date.
 RasterPlan align_folds_to_lines(RasterPlan raster_plan, const PixelGrid& grid, double tolerance_mm);
+
+/// Face f's plane moved to `depth_mm` (d of a V face, h of an H face) with its folds: wherever f
+/// and a face of the other orientation meet one above the other within `tolerance_mm` of their fold
+/// line, their boundary moves to the pixel edge nearest the new fold line, f taking the other's
+/// pixels or giving it its own. Nothing where a fold cannot move so: a face giving pixels would keep
+/// fewer than `min_run_px` rows (one at least) of its run in the column, or a third face lies between
+/// the old and the new line; or where the move leaves a face in more 4-connected parts than it was.
+std::optional<RasterPlan> move_plane(const RasterPlan& raster_plan, const PixelGrid& grid, std::int32_t f,
+                                     double depth_mm, double tolerance_mm, int min_run_px);
 
 /// The smaller side, in pixels, of the oriented bounding box (principal axes) of a pixel set.
 double oriented_box_min_side_px(const std::vector<std::pair<int, int>>& pixels);

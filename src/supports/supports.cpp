@@ -22,14 +22,11 @@
 #include "support_picture.hpp"
 
 namespace origamic {
-namespace {
 
 bool needs_support(FaceStatus status, bool allow_dangling) {
   return status == FaceStatus::Floating || status == FaceStatus::Invalid ||
          (status == FaceStatus::Dangling && !allow_dangling);
 }
-
-}  // namespace
 
 std::vector<NarrowStrip> narrow_strips(const RasterPlan& raster_plan, const PixelGrid& grid) {
   const std::size_t n = raster_plan.faces.size();
@@ -146,6 +143,15 @@ std::vector<std::int32_t> unsupported(const FaceVerdicts& standing, bool allow_d
     if (needs_support(standing.validity.status[f], allow_dangling)) faces.push_back(static_cast<std::int32_t>(f));
   return faces;
 }
+
+}  // namespace
+
+std::vector<std::int32_t> faces_unheld_on_raster(const PixelGrid& grid, const RasterPlan& raster_plan,
+                                                 bool allow_dangling) {
+  return unsupported(raster_verdicts(grid, raster_plan, aligned_fold_tolerance_mm(grid)), allow_dangling);
+}
+
+namespace {
 
 constexpr int kSplitRetryRounds = 8;
 // Each step of the last resort (cut_out_cheapest) costs a pass of rounds and an exact plan, and the

@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Issue 22: once supports hold every face, a face may show the model from a plane that no longer
+// suits it. Supports gave it its neighbours' pixels (a round shaft's slices, none of which a support
+// could hold alone, given to its front slice), or painted part of it over. Each such face takes the
+// plane that shows the finished card's model best, its folds moving with it (move_plane), where the
+// exact plan of the result still stands and shows the model better.
+#pragma once
+
+#include <tuple>
+
+#include "origamic/plan.hpp"
+#include "origamic/raster.hpp"
+#include "origamic/supports.hpp"
+
+namespace origamic {
+
+/// How a plan fares: whether it fails to stand, and the p95 and mean error of its card, in W; less
+/// is better, standing first.
+std::tuple<bool, double, double> plan_fares(const RasterMaps& maps, const Plan& plan, double W, bool allow_dangling);
+
+struct PlaneRefitOptions {
+  // A face whose own pixels show the model at most this many W off at their 95th percentile keeps
+  // its plane: the card's 95th percentile and mean hardly move with it, and trying each face costs.
+  double min_face_p95_W = 1;
+  // Exact plans built to confirm the planes found: one for all of them, then, while the plan does
+  // not stand, one without the faces moved that it leaves unheld.
+  int exact_builds = 3;
+};
+
+/// Each model face (not a support, a hole, the back plane or the floor) whose pixels show the model
+/// more than options.min_face_p95_W off at their 95th percentile, the farthest off first, moves to
+/// the plane among the 5th, 10th, ... 95th percentiles of its pixels' model depths that lowers the
+/// card's 95th percentile of error most, or else its mean by half a percent at least (both
+/// estimated on the raster plan), its folds with it (move_plane, no strip under W left beside them).
+/// The exact plan of the moves is kept where it stands and shows the model better than the plan as
+/// supported (the 95th percentile first, then the mean); the report lists them
+/// (SupportReport::planes_refit).
+SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, const Sheet& sheet,
+                           const PlanOptions& plan_options, bool allow_dangling, const PlaneRefitOptions& options = {});
+
+}  // namespace origamic

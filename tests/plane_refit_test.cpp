@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Planes refit once supports hold every face (issue 22, plane_refit.hpp): a face showing the model
+// from a plane off it moves onto the plane that shows it best, its folds with it, where the exact
+// plan still stands.
+#include "plane_refit.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+#include "helpers.hpp"
+#include "origamic/design.hpp"
+#include "origamic/likeness.hpp"
+#include "raster_plan_edits.hpp"
+
+namespace origamic {
+namespace {
+
+// A box's front, moved 4 mm behind the model (its folds with it), shows the model 8 mm off: the
+// refit moves it back onto the model, and its folds onto Y = h - d and -d again.
+TEST(PlaneRefit, ABoxFrontMovedBehindTheModelMovesBackOntoIt) {
+  const RayScene scene(test::box({40, 0, 0}, {150, 60, 40}));
+  const Sheet sheet;
+  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
+  const RasterPlan sliced = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  ASSERT_EQ(sliced.faces.size(), 4u);
+  const std::int32_t front = sliced.faces[2].orientation == Orientation::V ? 2 : 3;
+  const std::int32_t top = 5 - front;
+  ASSERT_NEAR(sliced.faces[front].depth_mm, 40, 1e-6);
+  const double tolerance = fold_snap_tolerance_mm(PlanOptions{}, sliced, maps.grid);
+  std::optional<RasterPlan> behind = move_plane(sliced, maps.grid, front, 36, tolerance, 1);
+  ASSERT_TRUE(behind.has_value());
+  SupportedPlan supported{*behind, build_plan(maps, *behind, sheet, PlanOptions{}), {}};
+  ASSERT_TRUE(plan_stands(supported.plan, false));
+  const double W = sliced.min_strip_mm;
+  EXPECT_NEAR(likeness(maps, card_view(maps.grid, supported.plan), W).p95_mm, 8, 0.01);
+
+  const SupportedPlan refit = refit_planes(maps, std::move(supported), sheet, PlanOptions{}, false);
+  ASSERT_EQ(refit.report.planes_refit.size(), 1u);
+  const RefitPlane& moved = refit.report.planes_refit.front();
+  EXPECT_EQ(moved.orientation, Orientation::V);
+  EXPECT_EQ(moved.from_mm, 36);
+  EXPECT_NEAR(moved.to_mm, 40, 1e-4);
+  EXPECT_EQ(refit.raster_plan.faces[front].depth_mm, moved.to_mm);
+  EXPECT_TRUE(plan_stands(refit.plan, false));
+  EXPECT_LT(likeness(maps, card_view(maps.grid, refit.plan), W).p95_mm, 0.05);
+  const double h = refit.raster_plan.faces[top].depth_mm;
+  int mountains = 0, valleys = 0;
+  for (const PlanPolyline& line : refit.plan.lines)
+    for (const PlanPoint& p : line.points) {
+      mountains += line.kind == LineKind::Mountain && std::abs(p.Y - (h - moved.to_mm)) < 1e-9;
+      valleys += line.kind == LineKind::Valley && std::abs(p.Y + moved.to_mm) < 1e-9;
+    }
+  EXPECT_GE(mountains, 2);  // the fold between the front and the top, both its ends
+  EXPECT_GE(valleys, 2);    // the fold between the floor and the front
+}
+
+// A round shaft under a box that overhangs it in front: the shaft's slices, which no support holds
+// but through the box, go to one plane; refit, it shows the shaft better, and the card stands.
+TEST(PlaneRefit, AShaftUnderAnOverhangShowsTheModelBetterRefit) {
+  constexpr int sides = 24;
+  test::Floor shaft;
+  for (int k = 0; k < sides; ++k) {
+    const double a = 2 * std::numbers::pi * k / sides;
+    shaft.push_back({105 + 12 * std::cos(a), 50 + 12 * std::sin(a)});
+  }
+  const TriangleMesh model =
+      test::merged(test::prism(shaft, 0, 60), test::prism({{70, 20}, {140, 20}, {140, 90}, {70, 90}}, 60, 90));
+  const auto designed = [&](bool refit) {
+    DesignOptions options;
+    options.placement.scale = 1;
+    options.placement.offset_mm = glm::dvec3(0.0);
+    options.refit_planes = refit;
+    return design(LoadedMesh{.mesh = model, .format = "obj"}, options);
+  };
+  const DesignResult supported = designed(false), refit = designed(true);
+  ASSERT_FALSE(refit.supports.planes_refit.empty());
+  EXPECT_TRUE(refit.plan.validity.ok());
+  EXPECT_LT(refit.likeness.p95_W, supported.likeness.p95_W - 0.1);
+  EXPECT_LE(refit.narrow_strips.size(), supported.narrow_strips.size());
+  // Each face refit is in its new plane in the exact plan.
+  for (const RefitPlane& moved : refit.supports.planes_refit) {
+    bool found = false;
+    for (const PlanRegion& region : refit.plan.regions)
+      found |= region.orientation == moved.orientation && std::abs(region.depth_mm - moved.to_mm) < 1e-9;
+    EXPECT_TRUE(found) << moved.from_mm << " -> " << moved.to_mm;
+  }
+}
+
+}  // namespace
+}  // namespace origamic
