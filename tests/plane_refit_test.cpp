@@ -41,6 +41,7 @@ TEST(PlaneRefit, ABoxFrontMovedBehindTheModelMovesBackOntoIt) {
   ASSERT_EQ(refit.report.planes_refit.size(), 1u);
   const RefitPlane& moved = refit.report.planes_refit.front();
   EXPECT_EQ(moved.orientation, Orientation::V);
+  EXPECT_FALSE(moved.support);
   EXPECT_EQ(moved.from_mm, 36);
   EXPECT_NEAR(moved.to_mm, 40, 1e-4);
   EXPECT_EQ(refit.raster_plan.faces[front].depth_mm, moved.to_mm);

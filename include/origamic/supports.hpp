@@ -93,6 +93,7 @@ struct JoinedFace {
 struct RefitPlane {
   PlanPoint at;  // a pixel centre of it, in plan mm
   Orientation orientation = Orientation::V;
+  bool support = false;           // a support, not a face of the model
   double from_mm = 0, to_mm = 0;  // its depth d (V) or height h (H) before and after
 };
 

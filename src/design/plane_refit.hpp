@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Issue 22: once supports hold every face, a face may show the model from a plane that no longer
 // suits it. Supports gave it its neighbours' pixels (a round shaft's slices, none of which a support
-// could hold alone, given to its front slice), or painted part of it over. Each such face takes the
-// plane that shows the finished card's model best, its folds moving with it (move_plane), where the
-// exact plan of the result still stands and shows the model better.
+// could hold alone, given to its front slice), or painted part of it over; a support itself lies in
+// the plane its first fold gave it, across the model. Each such face takes the plane that shows the
+// finished card's model best, its folds moving with it (move_plane), where the exact plan of the
+// result still stands and shows the model better.
 #pragma once
 
 #include <tuple>
@@ -27,11 +28,12 @@ struct PlaneRefitOptions {
   int exact_builds = 3;
 };
 
-/// Each model face (not a support, a hole, the back plane or the floor) whose pixels show the model
-/// more than options.min_face_p95_W off at their 95th percentile, the farthest off first, moves to
-/// the plane among the 5th, 10th, ... 95th percentiles of its pixels' model depths that lowers the
-/// card's 95th percentile of error most, or else its mean by half a percent at least (both
-/// estimated on the raster plan), its folds with it (move_plane, no strip under W left beside them).
+/// Each face (not a hole, the back plane or the floor) whose pixels show the model more than
+/// options.min_face_p95_W off at their 95th percentile, the farthest off first, moves to the plane
+/// among the 5th, 10th, ... 95th percentiles of its pixels' model depths that lowers the card's
+/// 95th percentile of error most, or else (a face of the model, not a support) its mean by half a
+/// percent at least, both estimated on the raster plan; its folds move with it (move_plane, no
+/// strip under W left beside them).
 /// The exact plan of the moves is kept where it stands and shows the model better than the plan as
 /// supported (the 95th percentile first, then the mean); the report lists them
 /// (SupportReport::planes_refit).

@@ -100,6 +100,7 @@ nlohmann::json refit_json(const std::vector<RefitPlane>& planes) {
   for (const RefitPlane& p : planes)
     list.push_back({{"at_XY", {p.at.X, p.at.Y}},
                     {"orientation", p.orientation == Orientation::V ? "V" : "H"},
+                    {"support", p.support},
                     {"from_mm", p.from_mm},
                     {"to_mm", p.to_mm}});
   return list;

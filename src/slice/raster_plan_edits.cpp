@@ -325,8 +325,12 @@ std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& gr
   for (int col = 0; col < face.cols; ++col)
     for (int r = 0; r + 1 < face.rows; ++r) {
       const std::int32_t a = face(col, r), b = face(col, r + 1);  // a above, b below
-      if ((a != f && b != f) || old_folds.row(plan, a, b, r) != r) continue;
-      const int t = new_row(a, b);
+      if (a != f && b != f) continue;
+      // A boundary the exact plan would snap onto its fold moves with it, as far off it as before
+      // (one that could not be aligned stays so: res_dragon_full's ends of a fold 5-7 px off it).
+      const int on_line = old_folds.row(plan, a, b, r);
+      if (on_line == -1) continue;
+      const int t = r + new_row(a, b) - on_line;
       if (t == r) continue;
       if (t < 0 || t + 1 >= face.rows) return std::nullopt;
       // Rows r + 1 .. t go to a, or t + 1 .. r to b, as the fold moves down or up; no other face
