@@ -130,7 +130,7 @@ constexpr double kMeanGain = 0.005;
 bool refittable(const RasterFace& face) { return !face.hole && face.pixels > 0; }
 
 // The plane of a face's model pixels' depths (d for a V face, h for an H face) that lowers the
-// card's 95th percentile of error most, then its mean, if any of their 5th, 10th, ... 95th
+// card's 95th percentile of error most, then its mean, if any of their 1st, 2nd, ... 99th
 // percentiles does; the card is left as it was.
 std::optional<double> best_plane(const RasterMaps& maps, const RasterFace& face, const std::vector<PixelAt>& pixels,
                                  RasterCard& card) {
@@ -167,7 +167,9 @@ std::optional<double> best_plane(const RasterMaps& maps, const RasterFace& face,
   };
   std::optional<std::pair<int, double>> best;
   std::optional<double> best_depth;
-  for (int percent = 5; percent <= 95; percent += 5) {
+  // Every percentile: in steps of 5 the chapel's door slot support (3.03 W) and the water tower's
+  // shaft (4.17 W) found no plane as good (1.94 W, 3.83 W; the 37 models 1.81 -> 1.77 W).
+  for (int percent = 1; percent <= 99; ++percent) {
     const double t = depths[depths.size() * static_cast<std::size_t>(percent) / 100];
     if (t <= 0) continue;  // the back plane's or the floor's
     if (const auto fared = fares_at(t); worth(fared) && (!best || fared < *best)) best = fared, best_depth = t;

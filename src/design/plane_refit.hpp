@@ -30,7 +30,7 @@ struct PlaneRefitOptions {
 
 /// Each face (not a hole, the back plane or the floor) whose pixels show the model more than
 /// options.min_face_p95_W off at their 95th percentile, the farthest off first, moves to the plane
-/// among the 5th, 10th, ... 95th percentiles of its pixels' model depths that lowers the card's
+/// among the 1st, 2nd, ... 99th percentiles of its pixels' model depths that lowers the card's
 /// 95th percentile of error most, or else (a face of the model, not a support) its mean by half a
 /// percent at least, both estimated on the raster plan; its folds move with it (move_plane, no
 /// strip under W left beside them).
