@@ -89,7 +89,7 @@ struct JoinedFace {
 };
 
 /// A face given the plane that shows the finished card's model best, once supports held every face
-/// (design.cpp: refit_planes).
+/// (refit_planes, src/design/plane_refit.hpp).
 struct RefitPlane {
   PlanPoint at;  // a pixel centre of it, in plan mm
   Orientation orientation = Orientation::V;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Edits of a raster plan's face map that slicing, the exact plan and the support loop share:
-// coplanar faces merged, faces in parts split, V/H boundaries moved onto their fold lines.
+// coplanar faces merged, faces in parts split, V/H boundaries moved onto their fold lines, a plane
+// moved with its folds.
 #pragma once
 
 #include <cstdint>
@@ -49,12 +50,12 @@ SplitFaces split_disconnected_faces(RasterPlan raster_plan, const std::vector<st
 RasterPlan align_folds_to_lines(RasterPlan raster_plan, const PixelGrid& grid, double tolerance_mm);
 
 /// Face f's plane moved to `depth_mm` (d of a V face, h of an H face) with its folds: wherever f
-/// and a face of the other orientation meet one above the other within `tolerance_mm` of their fold
-/// line, their boundary moves as the line does (to the pixel edge nearest the new line, where it
-/// lay on the pixel edge nearest the old one), f taking the other's pixels or giving it its own. Nothing where a fold
-/// cannot move so: a face giving pixels would keep fewer than `min_run_px` rows (one at least) of its run in the
-/// column, or a third face lies between the old and the new line; or where the move leaves a face in more 4-connected
-/// parts than it was.
+/// and a face of the other orientation meet one above the other within `tolerance_mm` of their
+/// fold line, their boundary moves as the line does (to the pixel edge nearest the new line, where
+/// it lay on the pixel edge nearest the old one), f taking the other's pixels or giving it its own.
+/// Nothing where a fold cannot move so: a face giving pixels would keep fewer than `min_run_px`
+/// rows (one at least) of its run in the column, or a third face lies between the old and the new
+/// line; or where the move leaves a face in more 4-connected parts than it was.
 std::optional<RasterPlan> move_plane(const RasterPlan& raster_plan, const PixelGrid& grid, std::int32_t f,
                                      double depth_mm, double tolerance_mm, int min_run_px);
 
