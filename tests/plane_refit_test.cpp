@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -47,15 +48,40 @@ TEST(PlaneRefit, ABoxFrontMovedBehindTheModelMovesBackOntoIt) {
   EXPECT_EQ(refit.raster_plan.faces[front].depth_mm, moved.to_mm);
   EXPECT_TRUE(plan_stands(refit.plan, false));
   EXPECT_LT(likeness(maps, card_view(maps.grid, refit.plan), W).p95_mm, 0.05);
+  // The point reported lies in the front.
+  const PixelGrid& grid = maps.grid;
+  const int col = static_cast<int>(moved.at.X * grid.px_per_mm);
+  const int row = static_cast<int>(std::lround(grid.rows_above_fold - 0.5 - moved.at.Y * grid.px_per_mm));
+  EXPECT_EQ(refit.raster_plan.face(col, row), front);
+  // Its folds on their lines, across the box's width (x 40-150): with the top at Y = h - d, with
+  // the floor at Y = -d.
   const double h = refit.raster_plan.faces[top].depth_mm;
-  int mountains = 0, valleys = 0;
-  for (const PlanPolyline& line : refit.plan.lines)
-    for (const PlanPoint& p : line.points) {
-      mountains += line.kind == LineKind::Mountain && std::abs(p.Y - (h - moved.to_mm)) < 1e-9;
-      valleys += line.kind == LineKind::Valley && std::abs(p.Y + moved.to_mm) < 1e-9;
-    }
-  EXPECT_GE(mountains, 2);  // the fold between the front and the top, both its ends
-  EXPECT_GE(valleys, 2);    // the fold between the floor and the front
+  const auto fold_span = [&](LineKind kind, double Y) {
+    double lo = 1e300, hi = -1e300;
+    for (const PlanPolyline& line : refit.plan.lines)
+      if (line.kind == kind)
+        for (const PlanPoint& p : line.points)
+          if (std::abs(p.Y - Y) < 1e-9) lo = std::min(lo, p.X), hi = std::max(hi, p.X);
+    return std::pair{lo, hi};
+  };
+  const auto [mountain_lo, mountain_hi] = fold_span(LineKind::Mountain, h - moved.to_mm);
+  const auto [valley_lo, valley_hi] = fold_span(LineKind::Valley, -moved.to_mm);
+  EXPECT_LE(mountain_lo, 40.5);
+  EXPECT_GE(mountain_hi, 149.5);
+  EXPECT_LE(valley_lo, 40.5);
+  EXPECT_GE(valley_hi, 149.5);
+}
+
+// A plan whose faces show the model as well as their planes can keeps them: the sliced box.
+TEST(PlaneRefit, APlanThatFitsTheModelIsLeftAsItIs) {
+  const RayScene scene(test::box({40, 0, 0}, {150, 60, 40}));
+  const Sheet sheet;
+  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
+  const RasterPlan sliced = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  SupportedPlan supported{sliced, build_plan(maps, sliced, sheet, PlanOptions{}), {}};
+  const SupportedPlan refit = refit_planes(maps, supported, sheet, PlanOptions{}, false);
+  EXPECT_TRUE(refit.report.planes_refit.empty());
+  EXPECT_EQ(refit.raster_plan.face.values, sliced.face.values);
 }
 
 // A round shaft under a box that overhangs it in front: the shaft's slices, which no support holds

@@ -102,6 +102,17 @@ TEST(RasterPlanEdits, APlaneMovedTakesItsFoldsToItsNewLines) {
   const std::optional<RasterPlan> back = move_plane(*moved, grid, 3, 2, 0.3, 1);
   ASSERT_TRUE(back.has_value());
   EXPECT_EQ(back->face.values, s.face.values);
+  EXPECT_EQ(back->faces[3].depth_mm, 2);
+  for (std::size_t f = 0; f < s.faces.size(); ++f) EXPECT_EQ(back->faces[f].pixels, s.faces[f].pixels) << f;
+  // The H face half a millimetre higher: its fold with the V face rises 2 rows, and the V face
+  // takes its rows 10-11.
+  const std::optional<RasterPlan> raised = move_plane(s, grid, 2, 4.5, 0.3, 1);
+  ASSERT_TRUE(raised.has_value());
+  for (int c = 0; c < grid.cols; ++c)
+    for (int r = 0; r < grid.rows; ++r)
+      EXPECT_EQ(raised->face(c, r), r < 10 ? 2 : r < 28 ? 3 : kFloorFace) << c << ", " << r;
+  // A fold that would leave the sheet: the V face 6 mm deep meets the floor 43 rows down.
+  EXPECT_FALSE(move_plane(s, grid, 3, 6, 0.3, 1).has_value());
 }
 
 // A fold moves only where the face giving rows keeps `min_run_px` of them (a tread no narrower), and

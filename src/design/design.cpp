@@ -99,10 +99,7 @@ SupportedPlan supported_plan(const DesignResult& sliced, const DesignOptions& op
   const double W = options.slice.min_strip_mm;
   const auto fares = [&](const Plan& plan) { return plan_fares(sliced.maps, plan, W, allow_dangling); };
   const double bound_W = sliced.sliced_likeness.p95_W + kSupportsMayAddP95_W;
-  const auto good = [&](const auto& fared) {
-    const auto& [fails, p95, mean] = fared;
-    return !fails && p95 <= bound_W;
-  };
+  const auto good = [&](const PlanFares& fared) { return !fared.fails && fared.p95_W <= bound_W; };
   const auto in_other_frame = [&](const SupportOptions& supports) {
     return add_supports_in_other_frame(sliced.maps, sliced.raster_plan, options.sheet, options.plan, supports);
   };

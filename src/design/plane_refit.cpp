@@ -2,11 +2,11 @@
 #include "plane_refit.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <optional>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -21,7 +21,7 @@ namespace {
 // A Fenwick tree counts the errors up to a bin in log time.
 class ErrorCounts {
  public:
-  explicit ErrorCounts(double W) : bin_mm_(W / 256), tree_(kBins + 1, 0) {}
+  explicit ErrorCounts(double W) : bin_mm_(W / 256), tree_(kBins + 1, 0) { assert(W > 0); }
 
   void add(double error_mm, int count) {
     sum_mm_ += count * error_mm;
@@ -63,7 +63,9 @@ class ErrorCounts {
 
  private:
   static constexpr int kBins = 1 << 14;
-  int bin(double error_mm) const { return std::min(kBins - 1, static_cast<int>(error_mm / bin_mm_)); }
+  int bin(double error_mm) const {
+    return static_cast<int>(std::min<double>(kBins - 1, error_mm / bin_mm_));  // clamped before the cast
+  }
   double bin_mm_;
   std::vector<std::int64_t> tree_;
   double sum_mm_ = 0;
@@ -221,7 +223,10 @@ std::vector<PlaneMove> find_planes(const RasterMaps& maps, RasterPlan raster_pla
   for (const auto& [_, f] : order)
     for (int turn = 0; turn < kTurns; ++turn) {
       std::vector<PixelAt>& own = pixels[static_cast<std::size_t>(f)];
-      std::erase_if(own, [&](PixelAt p) { return raster_plan.face(p.c, p.r) != f; });  // moves before took some
+      // Moves before took some of its pixels, or gave some back that it had (listed twice then).
+      std::erase_if(own, [&](PixelAt p) { return raster_plan.face(p.c, p.r) != f; });
+      std::ranges::sort(own, {}, [](PixelAt p) { return std::pair{p.r, p.c}; });
+      own.erase(std::ranges::unique(own, {}, [](PixelAt p) { return std::pair{p.r, p.c}; }).begin(), own.end());
       if (own.empty()) break;
       const RasterFace& face = raster_plan.faces[static_cast<std::size_t>(f)];
       const std::optional<double> depth = best_plane(maps, face, own, card);
@@ -229,16 +234,31 @@ std::vector<PlaneMove> find_planes(const RasterMaps& maps, RasterPlan raster_pla
       std::optional<RasterPlan> moved =
           move_plane(raster_plan, maps.grid, f, *depth, fold_tolerance_mm, raster_plan.block_px);
       if (!moved || faces_unheld_on_raster(maps.grid, *moved, allow_dangling).size() > unheld) break;
-      moves.push_back({f, {maps.grid.X(own.front().c), maps.grid.Y(own.front().r)}, face.depth_mm, *depth});
-      // The pixels that changed face, and the face's own, show their new plane.
+      // The pixels that changed face, and the face's own, show their new plane; with its folds
+      // moved, the card must still fare better, or the move is undone.
+      const std::pair<int, double> before = card.counts().fares();
+      std::vector<PixelAt> changed;
       const auto [first_col, last_col] = columns[static_cast<std::size_t>(f)];
       for (int r = 0; r < maps.grid.rows; ++r)
         for (int c = first_col; c <= last_col; ++c)
           if (const std::int32_t now = moved->face(c, r); now != raster_plan.face(c, r) || now == f) {
-            if (now != raster_plan.face(c, r) && now >= 0 && maps.kind(c, r) == HitKind::Model)
-              pixels[static_cast<std::size_t>(now)].push_back({c, r});
+            changed.push_back({c, r});
             card.update(*moved, c, r);
           }
+      if (!(card.counts().fares() < before)) {
+        for (const auto [c, r] : changed) card.update(raster_plan, c, r);
+        break;
+      }
+      PixelAt at = own.front();
+      for (const auto [c, r] : changed) {
+        const std::int32_t now = moved->face(c, r);
+        if (now != raster_plan.face(c, r) && now >= 0 && maps.kind(c, r) == HitKind::Model)
+          pixels[static_cast<std::size_t>(now)].push_back({c, r});
+      }
+      if (const auto still = std::ranges::find_if(own, [&](PixelAt p) { return moved->face(p.c, p.r) == f; });
+          still != own.end())
+        at = *still;  // a pixel the face keeps (its first may have gone with a fold)
+      moves.push_back({f, {maps.grid.X(at.c), maps.grid.Y(at.r)}, face.depth_mm, *depth});
       raster_plan = std::move(*moved);
     }
   return moves;
@@ -246,7 +266,7 @@ std::vector<PlaneMove> find_planes(const RasterMaps& maps, RasterPlan raster_pla
 
 }  // namespace
 
-std::tuple<bool, double, double> plan_fares(const RasterMaps& maps, const Plan& plan, double W, bool allow_dangling) {
+PlanFares plan_fares(const RasterMaps& maps, const Plan& plan, double W, bool allow_dangling) {
   const Likeness l = likeness(maps, card_view(maps.grid, plan), W);
   return {!plan_stands(plan, allow_dangling), l.p95_W, l.mean_W};
 }
@@ -270,7 +290,7 @@ SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, cons
         raster_plan = std::move(*moved), made.push_back(move);
     Plan plan = build_plan(maps, raster_plan, sheet, plan_options);
     const auto fared = fares(plan);
-    if (fared < before) {
+    if (!fared.fails && fared < before) {
       supported.raster_plan = std::move(raster_plan);
       supported.plan = std::move(plan);
       SupportReport& report = supported.report;
@@ -279,6 +299,7 @@ SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, cons
       for (std::size_t i = 0; i < made.size(); ++i) {
         if (i > 0 && made[i].face == made[i - 1].face) {  // the same face's next turn
           report.planes_refit.back().to_mm = made[i].to_mm;
+          report.planes_refit.back().at = made[i].at;
           continue;
         }
         const RasterFace& face = supported.raster_plan.faces[static_cast<std::size_t>(made[i].face)];
@@ -293,7 +314,7 @@ SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, cons
     const auto unheld = [&](std::int32_t f) {
       return needs_support(plan.faces[static_cast<std::size_t>(f)].status, allow_dangling);
     };
-    if (!std::get<0>(fared)) break;
+    if (!fared.fails) break;
     std::vector<PlaneMove> kept;
     for (std::size_t i = 0; i < made.size(); ++i) {
       const bool last_of_face = i + 1 == made.size() || made[i + 1].face != made[i].face;

@@ -7,8 +7,6 @@
 // result still stands and shows the model better.
 #pragma once
 
-#include <tuple>
-
 #include "origamic/plan.hpp"
 #include "origamic/raster.hpp"
 #include "origamic/supports.hpp"
@@ -17,7 +15,12 @@ namespace origamic {
 
 /// How a plan fares: whether it fails to stand, and the p95 and mean error of its card, in W; less
 /// is better, standing first.
-std::tuple<bool, double, double> plan_fares(const RasterMaps& maps, const Plan& plan, double W, bool allow_dangling);
+struct PlanFares {
+  bool fails = false;
+  double p95_W = 0, mean_W = 0;
+  auto operator<=>(const PlanFares&) const = default;
+};
+PlanFares plan_fares(const RasterMaps& maps, const Plan& plan, double W, bool allow_dangling);
 
 struct PlaneRefitOptions {
   // A face whose own pixels show the model at most this many W off at their 95th percentile keeps
@@ -36,7 +39,7 @@ struct PlaneRefitOptions {
 /// strip under W left beside them).
 /// The exact plan of the moves is kept where it stands and shows the model better than the plan as
 /// supported (the 95th percentile first, then the mean); the report lists them
-/// (SupportReport::planes_refit).
+/// (SupportReport::planes_refit). \pre W (the raster plan's min_strip_mm) > 0.
 SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, const Sheet& sheet,
                            const PlanOptions& plan_options, bool allow_dangling, const PlaneRefitOptions& options = {});
 

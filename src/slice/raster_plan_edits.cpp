@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <climits>
 #include <cmath>
 #include <map>
@@ -250,6 +251,11 @@ struct FoldRows {
     const double fold_Y = fold_line_Y(fa.orientation, fa.depth_mm, fb.depth_mm);
     const double edge_Y = grid.Y(r) - 0.5 / grid.px_per_mm;
     if (!(std::abs(edge_Y - fold_Y) <= tolerance_mm)) return -1;
+    return row_above(fold_Y);
+  }
+
+  // The row above the pixel edge nearest the line Y = fold_Y.
+  int row_above(double fold_Y) const {
     return static_cast<int>(std::lround(grid.rows_above_fold - 1 - fold_Y * grid.px_per_mm));
   }
 };
@@ -308,13 +314,14 @@ std::vector<int> align_sweep(RasterPlan& result, const FoldRows& folds) {
 
 std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& grid, std::int32_t f, double depth_mm,
                                      double tolerance_mm, int min_run_px) {
+  assert(f > kFloorFace && static_cast<std::size_t>(f) < plan.faces.size() && !plan.faces[f].hole);
   // The folds are found on the planes as they are, then moved to the new plane's lines: first each
   // move is checked (most that fail, fail here), then the plan copied and the moves made.
   const FoldRows old_folds{grid, tolerance_mm};
   const auto new_row = [&](std::int32_t a, std::int32_t b) {  // FoldRows::row of a above b, f moved
     const RasterFace &fa = plan.faces[static_cast<std::size_t>(a)], &fb = plan.faces[static_cast<std::size_t>(b)];
-    const double fold_Y = fold_line_Y(fa.orientation, a == f ? depth_mm : fa.depth_mm, b == f ? depth_mm : fb.depth_mm);
-    return static_cast<int>(std::lround(grid.rows_above_fold - 1 - fold_Y * grid.px_per_mm));
+    return old_folds.row_above(
+        fold_line_Y(fa.orientation, a == f ? depth_mm : fa.depth_mm, b == f ? depth_mm : fb.depth_mm));
   };
   struct Rows {
     int col, first, last;

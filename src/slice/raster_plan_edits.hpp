@@ -51,11 +51,13 @@ RasterPlan align_folds_to_lines(RasterPlan raster_plan, const PixelGrid& grid, d
 
 /// Face f's plane moved to `depth_mm` (d of a V face, h of an H face) with its folds: wherever f
 /// and a face of the other orientation meet one above the other within `tolerance_mm` of their
-/// fold line, their boundary moves as the line does (to the pixel edge nearest the new line, where
-/// it lay on the pixel edge nearest the old one), f taking the other's pixels or giving it its own.
+/// fold line, their boundary moves as the line does (to the pixel edge nearest the new line where
+/// it lay on the one nearest the old, as many rows off it where it lay off it), f taking the
+/// other's pixels or giving it its own.
 /// Nothing where a fold cannot move so: a face giving pixels would keep fewer than `min_run_px`
 /// rows (one at least) of its run in the column, or a third face lies between the old and the new
-/// line; or where the move leaves a face in more 4-connected parts than it was.
+/// line, or the new line lies off the sheet; or where the move leaves a face in more 4-connected
+/// parts than it was. \pre f is a face of the plan, not the back plane, the floor or a hole.
 std::optional<RasterPlan> move_plane(const RasterPlan& raster_plan, const PixelGrid& grid, std::int32_t f,
                                      double depth_mm, double tolerance_mm, int min_run_px);
 
