@@ -508,8 +508,7 @@ class CandidateFinder {
     if (x < 0 || x == g) return false;
     const RasterFace &here = faces_[static_cast<std::size_t>(g)], &next = faces_[static_cast<std::size_t>(x)];
     if (next.hole || next.orientation != o || here.orientation == o) return false;
-    const double next_fold_Y = o == Orientation::V ? here.depth_mm - next.depth_mm : next.depth_mm - here.depth_mm;
-    return std::abs(next_fold_Y - fold_Y) < W_ - kFoldLineTolerance_mm;
+    return std::abs(fold_line_Y(here.orientation, here.depth_mm, next.depth_mm) - fold_Y) < W_ - kFoldLineTolerance_mm;
   }
 
   const ExactPlan& exact_plan_;
