@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Internal: the exact geometry shared by the plan analysis's two translation units (plan_analysis.cpp
-// runs the analysis, plan_analysis_geometry.cpp holds this): the plan's lines collected onto the
-// sheet, faces as rings, chords narrower than W, and the numbers and points of the messages. Define
+// Internal: the exact geometry shared by the plan analysis's translation units (plan_analysis.cpp
+// runs the analysis, tip_repair.cpp parts tips off and runs it again, plan_analysis_geometry.cpp
+// holds this): the plan's lines collected onto the sheet, faces as rings, chords narrower than W,
+// the numbers and points of the messages, and the analysis's state (Analyzer). Define
 // CGAL_HAS_NO_THREADS before including it (see exact_kernel.hpp).
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -70,5 +73,88 @@ struct Chord {
 /// is the face's stretch on the line just before it or just after it, each side on its own (the
 /// strip under a notch, whose corners are its only vertices, is one).
 std::optional<Chord> narrowest_chord(const std::vector<Ring>& rings, bool along_Y, const exact::FT& W, int& narrow);
+
+// ---------------------------------------------------------------------------------------------
+// The analysis (plan_analysis.cpp), which the tip repair (tip_repair.cpp) runs round after round.
+
+using Face = exact::Arrangement::Face_const_handle;
+using Halfedge = exact::Arrangement::Halfedge_const_handle;
+
+// A face's plane, once the folds from the back plane and the floor reach it.
+struct Place {
+  bool placed = false;
+  Orientation orientation = Orientation::V;
+  exact::FT depth = 0;
+};
+
+// A fold edge between two regions (lower and upper), on its line Y, from X_lo to X_hi.
+struct FoldEdge {
+  std::int32_t lower, upper;
+  exact::FT Y, X_lo, X_hi;
+  LineKind kind;
+};
+
+// The arrangement of a plan's lines and its analysis, step by step (run).
+struct Analyzer {
+  const AnalysisOptions& options;
+  exact::FT tolerance, W;
+  exact::Arrangement arr;  // each segment's data: its index in `kind`
+  std::vector<LineKind> kind;
+  std::vector<Face> faces;
+  std::vector<std::vector<Ring>> rings;
+  std::vector<Place> place;
+  std::vector<std::uint8_t> cut_out;  // per region: every side on the CUTOUT layer
+  std::vector<FoldEdge> folds;
+  std::vector<std::vector<std::size_t>> folds_of;
+  std::vector<std::array<std::optional<Chord>, 2>> narrowest;  // per region, along Y and along X (check_strips)
+  PlanAnalysis result;
+
+  explicit Analyzer(const AnalysisOptions& o) : options(o), tolerance(o.tolerance_mm), W(o.min_strip_mm) {}
+
+  void add(PlanProblem problem) { result.problems.push_back(std::move(problem)); }
+
+  void run(const std::vector<PlanPolyline>& lines);
+
+  void make_regions(const Input& in);
+
+  // Each edge inside the sheet: a cut, a fold between two faces, or a problem.
+  void classify_edges();
+
+  // Edges with one face on both sides, grouped into connected pieces; each piece is one problem.
+  void report_inside(const std::vector<Halfedge>& edges, PlanProblemKind k);
+
+  // BFS over the folds from the back plane V(0) and the floor H(0): crossing a fold on Y from V(d)
+  // gives H(Y + d), from H(h) gives V(h - Y).
+  void place_faces();
+
+  // Every fold against the faces it joins: one V and one H face, on their line Y = h - d, mountain
+  // when the V face is below it. Consecutive edges with the same problem are reported together.
+  void check_folds();
+
+  // A V(d) face holds plan points Y at height Y + d >= 0, an H(h) face at depth h - Y >= 0.
+  void check_card();
+
+  void validate_graph();
+
+  // Two folds of region r, one below it and one above, less than W apart where they overlap along
+  // X with nothing of the region's boundary between them: the strip of paper between them can be
+  // neither cut nor folded (issue 23). The nearest such pair, at a place where the region spans
+  // from one to the other: the middle of their overlap, else of a stretch of it between the
+  // region's vertices.
+  struct FoldPair {
+    exact::FT X, lo, hi;
+  };
+  std::optional<FoldPair> nearest_fold_pair(std::size_t r) const;
+  // An X in (X_lo, X_hi) where no side of region r meets the open vertical segment from Y lo to Y
+  // hi: the middle of the interval, or of a stretch of it between the region's vertices there.
+  std::optional<exact::FT> open_between(std::size_t r, const exact::FT& X_lo, const exact::FT& X_hi,
+                                        const exact::FT& lo, const exact::FT& hi) const;
+  // Whether a side of region r meets the open vertical segment at X from Y lo to Y hi.
+  bool crosses_between(std::size_t r, const exact::FT& X, const exact::FT& lo, const exact::FT& hi) const;
+
+  void check_strips();
+
+  void finish();
+};
 
 }  // namespace origamic::analysis

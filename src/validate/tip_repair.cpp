@@ -1,0 +1,518 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Issue 23: the tips of faces narrower than W parted off on the exact arrangement of a plan's lines
+// (blunt_narrow_tips, plan_analysis.hpp), round after round, each round's lines analysed again
+// (plan_analysis.cpp). One exact run at a time: see exact_runs.hpp.
+#define CGAL_HAS_NO_THREADS 1
+
+#include <CGAL/Arr_batched_point_location.h>
+#include <CGAL/Arr_observer.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "exact_kernel.hpp"
+#include "exact_runs.hpp"
+#include "origamic/plan_analysis.hpp"
+#include "plan_analysis_geometry.hpp"
+
+namespace origamic {
+namespace {
+
+using analysis::Analyzer;
+using analysis::Chord;
+using analysis::Face;
+using analysis::Halfedge;
+using analysis::num;
+using analysis::Place;
+using analysis::Ring;
+using analysis::ring_area;
+using analysis::rings_of;
+using exact::Arrangement;
+using exact::FT;
+using exact::nearest_double;
+using exact::Point;
+
+// ---------------------------------------------------------------------------------------------
+// Tips parted off (blunt_narrow_tips).
+
+// A face's boundary edges in (u, v): u across a chord, v along it.
+struct UvEdge {
+  FT u0, v0, u1, v1;  // u0 < u1
+  FT v_at(const FT& u) const { return v0 + (v1 - v0) * (u - u0) / (u1 - u0); }
+};
+
+// The stretches inside the face on the line at u (no vertex there): each between two edges.
+struct Stretch {
+  const UvEdge* lo;
+  const UvEdge* hi;
+};
+std::vector<Stretch> stretches_at(const std::vector<UvEdge>& edges, const FT& u) {
+  std::vector<std::pair<FT, const UvEdge*>> crossings;
+  for (const UvEdge& e : edges)
+    if (e.u0 < u && u < e.u1) crossings.emplace_back(e.v_at(u), &e);
+  std::sort(crossings.begin(), crossings.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<Stretch> out;
+  for (std::size_t k = 0; k + 1 < crossings.size(); k += 2)
+    out.push_back({crossings[k].second, crossings[k + 1].second});
+  return out;
+}
+
+// The bounded face of the arrangement each point lies in (none on an edge or a vertex), located all
+// at once by a sweep.
+std::vector<std::optional<Face>> faces_at(const Arrangement& arr, const std::vector<Point>& points) {
+  std::vector<std::pair<Point, CGAL::Arr_point_location_result<Arrangement>::Type>> found;
+  CGAL::locate(arr, points.begin(), points.end(), std::back_inserter(found));
+  const auto before = [](const Point& a, const Point& b) { return CGAL::compare_xy(a, b) == CGAL::SMALLER; };
+  std::map<Point, Face, decltype(before)> face_of(before);
+  for (const auto& [p, where] : found)
+    if (const Face* f = boost::get<Face>(&where); f && !(*f)->is_unbounded()) face_of.emplace(p, *f);
+  std::vector<std::optional<Face>> out;
+  for (const Point& p : points) {
+    const auto it = face_of.find(p);
+    out.push_back(it == face_of.end() ? std::nullopt : std::optional<Face>(it->second));
+  }
+  return out;
+}
+
+// Closer than this a new cut's line and a vertex's are one in a file (its Y rounded from the sheet's
+// lower edge, about 1e-14 mm): far below any cutter, far above the rounding.
+constexpr double kHair_mm = 1e-9;
+// A new cut's line goes no nearer another vertex's line of its face than this, a hundredth of a
+// millimetre (below any cutter's kerf), or onto it: on the 37 models at W = 3 mm the places
+// narrower than it went 41 -> 23 (37 before any tip), and the places narrower than W 4,256 ->
+// 4,278, tips that would have parted such a sliver staying.
+constexpr double kSliver_mm = 0.01;
+
+// A tip of a face: where the cut across it goes (at u, from v_lo to v_hi) and a point inside it.
+struct Tip {
+  std::size_t region;
+  bool along_Y;
+  FT u, v_lo, v_hi;
+  FT inside_u, inside_v;
+};
+
+// Walks across the chord of a face narrower than W: one way the face must end within `reach`, the
+// other it must widen to `wide`; the tip is cut where it does, or on a vertex line of the face
+// within kSliver_mm of there where the face is still W wide.
+std::optional<Tip> tip_of(const std::vector<Ring>& rings, std::size_t region, bool along_Y, const Chord& chord,
+                          const FT& W, const FT& wide, const FT& reach) {
+  std::vector<UvEdge> edges;
+  std::vector<FT> us;
+  for (const Ring& ring : rings)
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Point &p = ring[i], &q = ring[(i + 1) % ring.size()];
+      const FT pu = along_Y ? p.x() : p.y(), pv = along_Y ? p.y() : p.x();
+      const FT qu = along_Y ? q.x() : q.y(), qv = along_Y ? q.y() : q.x();
+      us.push_back(pu);
+      if (pu != qu) edges.push_back(pu < qu ? UvEdge{pu, pv, qu, qv} : UvEdge{qu, qv, pu, pv});
+    }
+  std::sort(us.begin(), us.end());
+  us.erase(std::unique(us.begin(), us.end()), us.end());
+  const auto at = static_cast<std::ptrdiff_t>(std::lower_bound(us.begin(), us.end(), chord.at) - us.begin());
+  enum class End { Gone, Wide, Step, Fork, Far };
+  struct Walk {
+    End end = End::Far;
+    FT u;           // where it widens to `wide`
+    FT v_lo, v_hi;  // a Step's stretch
+    const UvEdge* lo = nullptr;
+    const UvEdge* hi = nullptr;
+    std::optional<std::pair<FT, FT>> first_inside;  // a point inside the first stretch walked
+  };
+  const auto walk = [&](int step) {
+    Walk w;
+    FT lo = chord.lo, hi = chord.hi;
+    for (std::ptrdiff_t k = at; k + step >= 0 && k + step < static_cast<std::ptrdiff_t>(us.size()); k += step) {
+      const FT &u0 = us[static_cast<std::size_t>(k)], &u1 = us[static_cast<std::size_t>(k + step)];
+      if (CGAL::abs(u0 - chord.at) > reach) return w;
+      const FT mid = (u0 + u1) / 2;
+      std::optional<Stretch> next;
+      for (const Stretch& s : stretches_at(edges, mid))
+        if (s.lo->v_at(u0) <= hi && lo <= s.hi->v_at(u0)) {
+          if (next) return w.end = End::Fork, w;
+          next = s;
+        }
+      if (!next) return w.end = End::Gone, w;
+      if (!w.first_inside) w.first_inside = {mid, (next->lo->v_at(mid) + next->hi->v_at(mid)) / 2};
+      const FT w0 = next->hi->v_at(u0) - next->lo->v_at(u0), w1 = next->hi->v_at(u1) - next->lo->v_at(u1);
+      if (w0 >= wide) {  // it widens at a step of its sides: the tip ends there, as wide as it was
+        w.end = End::Step, w.u = u0, w.v_lo = lo, w.v_hi = hi;
+        return w;
+      }
+      if (w1 >= wide) {
+        w.end = End::Wide, w.lo = next->lo, w.hi = next->hi;
+        w.u = u0 + (u1 - u0) * (wide - w0) / (w1 - w0);
+        return w;
+      }
+      lo = next->lo->v_at(u1), hi = next->hi->v_at(u1);
+    }
+    // Past the face's last vertex: it ends there, which must be within reach too.
+    w.end = CGAL::abs(us[static_cast<std::size_t>(step > 0 ? us.size() - 1 : 0)] - chord.at) <= reach ? End::Gone
+                                                                                                      : End::Far;
+    return w;
+  };
+  const Walk down = walk(-1), up = walk(1);
+  const auto widens = [](const Walk& w) { return w.end == End::Wide || w.end == End::Step; };
+  const bool cut_up = down.end == End::Gone && widens(up);
+  const bool cut_down = up.end == End::Gone && widens(down);
+  if (!cut_up && !cut_down) return std::nullopt;
+  const Walk& wide_side = cut_up ? up : down;
+  const Walk& tip_side = cut_up ? down : up;
+  if (CGAL::abs(wide_side.u - chord.at) > reach) return std::nullopt;
+  if (wide_side.end == End::Step) {
+    if (wide_side.u == chord.at) return std::nullopt;  // the chord itself ends at the step
+    const auto& inside = tip_side.first_inside ? tip_side.first_inside : wide_side.first_inside;
+    if (!inside) return std::nullopt;
+    return Tip{region, along_Y, wide_side.u, wide_side.v_lo, wide_side.v_hi, inside->first, inside->second};
+  }
+  // The cut at a double, so that its ends on the face's sides are where the lines are drawn. Within
+  // kSliver_mm of another vertex's line it would part a sliver that thin off the face (capitol: a
+  // cut 0.00018 mm beside another): it goes on that line, past it or short of it while the face is
+  // W wide there, or nowhere.
+  FT u = nearest_double(wide_side.u);
+  const auto line_near = [&](const FT& x, const FT& skip) {  // the nearest vertex line within kSliver_mm
+    std::optional<FT> found;
+    const auto next = std::lower_bound(us.begin(), us.end(), x);
+    for (const auto it : {next, next == us.begin() ? next : next - 1})
+      if (it != us.end() && *it != x && *it != skip && CGAL::abs(*it - x) < FT(kSliver_mm) &&
+          (!found || CGAL::abs(*it - x) < CGAL::abs(*found - x)))
+        found = *it;
+    return found;
+  };
+  if (const std::optional<FT> line = line_near(u, u)) {
+    const FT from = u;
+    u = *line;
+    if (line_near(u, from)) return std::nullopt;  // two lines that near: a sliver either way
+  }
+  if ((u - chord.at) * (wide_side.u - chord.at) <= 0 || (cut_up ? u < wide_side.lo->u0 : u > wide_side.lo->u1) ||
+      u < CGAL::max(wide_side.lo->u0, wide_side.hi->u0) || u > CGAL::min(wide_side.lo->u1, wide_side.hi->u1))
+    return std::nullopt;
+  // Short of where the face is `wide`, it must still be W wide.
+  if ((u - wide_side.u) * (wide_side.u - chord.at) < 0 && !(wide_side.hi->v_at(u) - wide_side.lo->v_at(u) >= W))
+    return std::nullopt;
+  Tip tip{region, along_Y, u, wide_side.lo->v_at(u), wide_side.hi->v_at(u), 0, 0};
+  const auto& inside = tip_side.first_inside ? tip_side.first_inside : wide_side.first_inside;
+  if (!inside) return std::nullopt;
+  // The wide side's first point may lie past the cut: then the tip is the stretch before it.
+  if (!tip_side.first_inside && (inside->first - u) * (chord.at - u) <= 0) return std::nullopt;
+  tip.inside_u = inside->first, tip.inside_v = inside->second;
+  return tip;
+}
+
+// How many points of the lines a file's rounding of Y (from the sheet's lower edge, `low`) makes
+// one with another: the design's own plans have a few (res_bunny: 1), which its reader takes as
+// drawn.
+std::size_t points_merged_in_files(const std::vector<PlanPolyline>& lines, double low) {
+  std::set<std::pair<double, double>> exact, filed;
+  for (const PlanPolyline& line : lines)
+    for (const PlanPoint& p : line.points) exact.emplace(p.X, p.Y), filed.emplace(p.X, (p.Y - low) + low);
+  return exact.size() - filed.size();
+}
+
+struct TipCutter {
+  Analyzer& a;
+  const TipRepairOptions& options;
+
+  struct Cut {
+    std::vector<PlanPolyline> lines;
+    int tips = 0;
+  };
+  Cut run() {
+    Cut out;
+    if (a.narrowest.empty()) return out;  // no strip widths measured: nothing to part
+    const FT W(options.min_strip_mm), wide = W + FT(options.margin_mm), reach(options.max_tip_mm);
+    std::vector<Tip> tips;
+    std::vector<bool> has_tip(a.faces.size(), false);  // one tip a face a round: along Y first
+    for (std::size_t r = 0; r < a.faces.size(); ++r) {
+      if (a.cut_out[r] || !a.place[r].placed) continue;
+      for (const bool along_Y : {true, false}) {
+        if (has_tip[r]) break;
+        const std::optional<Chord>& chord = a.narrowest[r][along_Y ? 0 : 1];  // the analysis's, at this W
+        if (!chord) continue;
+        if (std::optional<Tip> tip = tip_of(a.rings[r], r, along_Y, *chord, W, wide, reach))
+          tips.push_back(*tip), has_tip[r] = true;
+      }
+    }
+    // Each cut goes in; the face it parts keeps its label on both sides until the tip's is given.
+    struct KeepLabels : CGAL::Arr_observer<Arrangement> {
+      using CGAL::Arr_observer<Arrangement>::Arr_observer;
+      void after_split_face(Arrangement::Face_handle f, Arrangement::Face_handle new_f, bool) override {
+        new_f->set_data(f->data());
+      }
+    } keep_labels(a.arr);
+    const auto first_new = static_cast<std::int32_t>(a.kind.size());
+    // A cut ending a hair from a point of another line would meet it in a file: that tip stays.
+    std::vector<std::pair<double, double>> points;
+    for (auto v = a.arr.vertices_begin(); v != a.arr.vertices_end(); ++v)
+      points.emplace_back(exact::approx_x(v->point()), exact::approx_y(v->point()));
+    std::ranges::sort(points);
+    const auto near_a_point = [&](const Point& p) {
+      const double x = exact::approx_x(p), y = exact::approx_y(p);
+      for (auto it =
+               std::ranges::lower_bound(points, std::pair{x - kHair_mm, -std::numeric_limits<double>::infinity()});
+           it != points.end() && it->first <= x + kHair_mm; ++it)
+        if (std::abs(it->second - y) <= kHair_mm && (it->first != x || it->second != y)) return true;
+      return false;
+    };
+    std::erase_if(tips, [&](const Tip& tip) {
+      return near_a_point(tip.along_Y ? Point(tip.u, tip.v_lo) : Point(tip.v_lo, tip.u)) ||
+             near_a_point(tip.along_Y ? Point(tip.u, tip.v_hi) : Point(tip.v_hi, tip.u));
+    });
+    for (const Tip& tip : tips) {
+      const Point p = tip.along_Y ? Point(tip.u, tip.v_lo) : Point(tip.v_lo, tip.u);
+      const Point q = tip.along_Y ? Point(tip.u, tip.v_hi) : Point(tip.v_hi, tip.u);
+      a.kind.push_back(LineKind::Cut);
+      CGAL::insert(
+          a.arr, exact::Traits::Curve_2(exact::Kernel::Segment_2(p, q), static_cast<std::int32_t>(a.kind.size() - 1)));
+    }
+    keep_labels.detach();
+    // Fold edges per pair of faces: a tip whose sides hold all of its face's folds with a
+    // neighbour stays, or that neighbour would come loose.
+    const auto is_fold = [&](Halfedge he) {
+      for (const std::int32_t d : he->curve().data()) {
+        const LineKind k = a.kind[static_cast<std::size_t>(d)];
+        if (k == LineKind::Mountain || k == LineKind::Valley) return true;
+      }
+      return false;
+    };
+    std::map<std::pair<std::int32_t, std::int32_t>, int> folds_between;
+    for (auto e = a.arr.edges_begin(); e != a.arr.edges_end(); ++e) {
+      const Halfedge he = e;
+      if (he->face()->is_unbounded() || he->twin()->face()->is_unbounded() || !is_fold(he)) continue;
+      ++folds_between[{he->face()->data(), he->twin()->face()->data()}];
+      ++folds_between[{he->twin()->face()->data(), he->face()->data()}];
+    }
+    // Each tip's face goes to its neighbour whose plane is nearest the face's own there.
+    std::vector<Point> insides;
+    for (const Tip& tip : tips)
+      insides.push_back(tip.along_Y ? Point(tip.inside_u, tip.inside_v) : Point(tip.inside_v, tip.inside_u));
+    const std::vector<std::optional<Face>> tip_faces = faces_at(a.arr, insides);
+    // Which tips may go, decided on the labels as they are before any goes.
+    std::vector<bool> may_go(tips.size(), false);
+    std::set<Arrangement::Face_const_handle> seen;
+    for (std::size_t i = 0; i < tips.size(); ++i) {
+      const std::optional<Face>& f = tip_faces[i];
+      if (!f || (*f)->data() != static_cast<std::int32_t>(tips[i].region) || !seen.insert(*f).second) continue;
+      // The cut must have parted a tip off, not left the face whole: a tip is at most its reach
+      // long and `wide` across.
+      double area = 0;
+      for (const Ring& ring : rings_of(*f)) area += ring_area(ring);
+      if (!(area <= options.max_tip_mm * CGAL::to_double(wide)) || !(2 * area <= a.result.area_mm2[tips[i].region]))
+        continue;
+      std::map<std::int32_t, int> tip_folds;
+      for (auto ccb = (*f)->outer_ccbs_begin(); ccb != (*f)->outer_ccbs_end(); ++ccb) {
+        auto he = *ccb;
+        do
+          if (!he->twin()->face()->is_unbounded() && is_fold(he)) ++tip_folds[he->twin()->face()->data()];
+        while (++he != *ccb);
+      }
+      may_go[i] = std::ranges::none_of(tip_folds, [&](const auto& g) {
+        return g.second == folds_between[{static_cast<std::int32_t>(tips[i].region), g.first}];
+      });
+    }
+    std::set<Arrangement::Face_const_handle> changed;
+    std::vector<std::pair<Arrangement::Face_const_handle, std::int32_t>> given;  // tip, its own face
+    for (std::size_t i = 0; i < tips.size(); ++i) {
+      if (!may_go[i]) continue;
+      const Tip& tip = tips[i];
+      const Point& inside = insides[i];
+      const std::optional<Face>& f = tip_faces[i];
+      const Place& own = a.place[tip.region];
+      const double Y = CGAL::to_double(inside.y());
+      const double key = key_of_plane(own.orientation, CGAL::to_double(own.depth), Y);
+      // A neighbour's plane must keep the tip on the card: a V(d) face's points at height Y + d >= 0,
+      // an H(h) face's at depth h - Y >= 0. (Given regardless, a tip poked through the back plane
+      // or the floor in 27 rounds over the 37 models at W = 3 mm, and each such round was refused.)
+      FT lowest = (*f)->outer_ccb()->source()->point().y(), highest = lowest;
+      for (auto ccb = (*f)->outer_ccbs_begin(); ccb != (*f)->outer_ccbs_end(); ++ccb) {
+        auto he = *ccb;
+        do {
+          const FT& y = he->target()->point().y();
+          lowest = CGAL::min(lowest, y), highest = CGAL::max(highest, y);
+        } while (++he != *ccb);
+      }
+      const auto keeps_on_card = [&](const Place& p) {
+        return !CGAL::is_negative(p.orientation == Orientation::V ? lowest + p.depth : p.depth - highest);
+      };
+      std::int32_t best = -1;
+      double best_gap = std::numeric_limits<double>::infinity();
+      for (auto ccb = (*f)->outer_ccbs_begin(); ccb != (*f)->outer_ccbs_end(); ++ccb) {
+        auto he = *ccb;
+        do {
+          const Arrangement::Face_const_handle other = he->twin()->face();
+          const std::int32_t n = other->data();
+          if (!other->is_unbounded() && n >= 0 && n != static_cast<std::int32_t>(tip.region) &&
+              !a.cut_out[static_cast<std::size_t>(n)] && a.place[static_cast<std::size_t>(n)].placed &&
+              keeps_on_card(a.place[static_cast<std::size_t>(n)])) {
+            const Place& theirs = a.place[static_cast<std::size_t>(n)];
+            const double gap = std::abs(key_of_plane(theirs.orientation, CGAL::to_double(theirs.depth), Y) - key);
+            if (gap < best_gap) best_gap = gap, best = n;
+          }
+        } while (++he != *ccb);
+      }
+      if (best < 0) continue;
+      a.arr.non_const_handle(*f)->set_data(best);
+      changed.insert(*f);
+      given.emplace_back(*f, static_cast<std::int32_t>(tip.region));
+    }
+    // A tip given to a face whose own tip went elsewhere may touch no other part of it: it goes back.
+    for (bool again = true; again;) {
+      again = false;
+      for (auto& [t, from] : given) {
+        if (t->data() == from) continue;
+        bool joined = false;
+        for (auto ccb = t->outer_ccbs_begin(); ccb != t->outer_ccbs_end() && !joined; ++ccb) {
+          auto he = *ccb;
+          do {
+            const Face other = he->twin()->face();
+            joined = joined || (other->data() == t->data() && !changed.contains(other));
+          } while (++he != *ccb && !joined);
+        }
+        if (!joined) a.arr.non_const_handle(t)->set_data(from), again = true;
+      }
+    }
+    for (const auto& [t, from] : given)
+      if (t->data() != from)
+        ++out.tips;
+      else
+        changed.erase(t);  // back as it was: its lines are drawn as they were
+    out.lines = lines_of(changed, first_new);
+    return out;
+  }
+
+  // The arrangement's lines: unchanged edges as they were drawn, those beside a changed face (or
+  // new) by the faces either side.
+  std::vector<PlanPolyline> lines_of(const std::set<Arrangement::Face_const_handle>& changed, std::int32_t first_new) {
+    struct Segment {
+      PlanPoint p, q;
+      LineKind kind;
+    };
+    std::vector<Segment> segments;
+    const auto point = [&](const Point& p) {
+      return PlanPoint{nearest_double(p.x()), nearest_double(p.y() + a.result.main_fold_Y)};
+    };
+    const auto same = [](PlanPoint p, PlanPoint q) { return p.X == q.X && p.Y == q.Y; };
+    for (auto e = a.arr.edges_begin(); e != a.arr.edges_end(); ++e) {
+      Halfedge he = e;
+      if (he->direction() != CGAL::ARR_LEFT_TO_RIGHT) he = he->twin();
+      const Face up = he->face(), down = he->twin()->face();
+      bool fresh = changed.contains(up) || changed.contains(down);
+      for (const std::int32_t d : he->curve().data()) fresh = fresh || d >= first_new;
+      const PlanPoint p = point(he->source()->point()), q = point(he->target()->point());
+      if (!fresh || up->is_unbounded() || down->is_unbounded()) {
+        // Each kind once: the sheet's outline is there twice (the plan's and the one collect adds).
+        std::set<LineKind> kinds;
+        for (const std::int32_t d : he->curve().data())
+          if (d < first_new) kinds.insert(a.kind[static_cast<std::size_t>(d)]);
+        if (!same(p, q))
+          for (const LineKind k : kinds) segments.push_back({p, q, k});
+        continue;
+      }
+      if (up->data() == down->data()) continue;
+      const Place &above = a.place[static_cast<std::size_t>(up->data())],
+                  &below = a.place[static_cast<std::size_t>(down->data())];
+      LineKind k = a.cut_out[static_cast<std::size_t>(up->data())] || a.cut_out[static_cast<std::size_t>(down->data())]
+                       ? LineKind::CutOut
+                       : LineKind::Cut;
+      if (k == LineKind::Cut && above.placed && below.placed && above.orientation != below.orientation &&
+          he->source()->point().y() == he->target()->point().y() &&
+          CGAL::abs(he->source()->point().y() - fold_line_Y(below.orientation, below.depth, above.depth)) <=
+              tolerance())
+        k = below.orientation == Orientation::V ? LineKind::Mountain : LineKind::Valley;
+      if (!same(p, q)) segments.push_back({p, q, k});
+    }
+    // Segments of one kind joined end to end where no other of that kind meets them.
+    std::map<std::pair<double, double>, std::vector<std::size_t>> at;
+    const auto key = [](PlanPoint p) { return std::pair{p.X, p.Y}; };
+    std::map<std::tuple<int, double, double>, int> degree;
+    for (const Segment& s : segments)
+      ++degree[{static_cast<int>(s.kind), s.p.X, s.p.Y}], ++degree[{static_cast<int>(s.kind), s.q.X, s.q.Y}];
+    for (std::size_t i = 0; i < segments.size(); ++i)
+      at[key(segments[i].p)].push_back(i), at[key(segments[i].q)].push_back(i);
+    std::vector<bool> used(segments.size(), false);
+    std::vector<PlanPolyline> lines;
+    const auto through = [&](PlanPoint p, LineKind k) { return degree[{static_cast<int>(k), p.X, p.Y}] == 2; };
+    const auto extend = [&](PlanPolyline& line) {
+      for (;;) {
+        const PlanPoint end = line.points.back();
+        if (!through(end, line.kind)) return;
+        std::optional<std::size_t> next;
+        for (const std::size_t j : at[key(end)])
+          if (!used[j] && segments[j].kind == line.kind) next = j;
+        if (!next) return;
+        used[*next] = true;
+        const Segment& s = segments[*next];
+        line.points.push_back(key(s.p) == key(end) ? s.q : s.p);
+      }
+    };
+    for (const bool loops : {false, true})
+      for (std::size_t i = 0; i < segments.size(); ++i) {
+        if (used[i]) continue;
+        const Segment& s = segments[i];
+        if (!loops && through(s.p, s.kind) && through(s.q, s.kind)) continue;  // inside a chain: start at its end
+        used[i] = true;
+        PlanPolyline line{s.kind, {s.p, s.q}};
+        if (!loops && through(s.p, s.kind)) std::swap(line.points[0], line.points[1]);
+        extend(line);
+        lines.push_back(std::move(line));
+      }
+    return lines;
+  }
+
+  FT tolerance() const { return a.tolerance; }
+};
+
+}  // namespace
+
+TipRepair blunt_narrow_tips(const std::vector<PlanPolyline>& lines, const TipRepairOptions& options,
+                            const TipRoundCheck& keep) {
+  const AnalysisOptions analysis{.min_strip_mm = options.min_strip_mm};
+  const auto lock = exact_run_lock();
+  const auto narrow = [](const PlanAnalysis& a) {
+    return std::ranges::count_if(a.problems,
+                                 [](const PlanProblem& p) { return p.kind == PlanProblemKind::NarrowStrip; });
+  };
+  const auto stands = [](const PlanAnalysis& a) {
+    return std::ranges::none_of(
+        a.problems, [](const PlanProblem& p) { return is_error(p.kind) && p.kind != PlanProblemKind::NarrowStrip; });
+  };
+  TipRepair out{lines, {}, {}, 0, 0};
+  // Each round's analysis is the next one's start.
+  auto current = std::make_unique<Analyzer>(analysis);
+  current->run(lines);
+  for (const PlanRegion& region : current->result.regions) out.origin.push_back(region.inside);
+  for (int round = 0; round < options.rounds && narrow(current->result) > 0; ++round) {
+    TipCutter::Cut cut = TipCutter{*current, options}.run();
+    const double low = current->result.sheet.min_Y + current->result.main_fold_Y;  // the drawing's frame
+    if (cut.tips == 0 || points_merged_in_files(cut.lines, low) > points_merged_in_files(out.lines, low)) break;
+    auto next = std::make_unique<Analyzer>(analysis);
+    next->run(cut.lines);
+    if (!stands(next->result) || narrow(next->result) >= narrow(current->result) ||
+        (keep && !keep(cut.lines, next->result)))
+      break;
+    // Each new region comes from the region of the cut arrangement its inside point lies in.
+    std::vector<Point> insides;
+    for (const PlanRegion& region : next->result.regions) insides.emplace_back(region.inside.X, region.inside.Y);
+    const std::vector<std::optional<Face>> found = faces_at(current->arr, insides);
+    std::vector<PlanPoint> origin;
+    for (std::size_t i = 0; i < found.size(); ++i)
+      origin.push_back(found[i] && (*found[i])->data() >= 0 ? out.origin[static_cast<std::size_t>((*found[i])->data())]
+                                                            : next->result.regions[i].inside);
+    out.origin = std::move(origin);
+    out.lines = std::move(cut.lines);
+    out.tips += cut.tips;
+    ++out.rounds;
+    current = std::move(next);
+  }
+  out.analysis = std::move(current->result);
+  return out;
+}
+
+}  // namespace origamic
