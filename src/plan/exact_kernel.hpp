@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Internal: the exact kernel shared by the translation units that build arrangements (exact_plan*.cpp
-// through exact_plan_state.hpp; plan_analysis.cpp, with plan_analysis_geometry.cpp), and the one
-// conversion of an exact number to the double written out.
+// through exact_plan_state.hpp; plan_analysis.cpp and tip_repair.cpp, with plan_analysis_geometry.cpp),
+// and the one conversion of an exact number to the double written out.
 #pragma once
 
 // Exact numbers are never shared between threads; without this, every lazily evaluated number pays
