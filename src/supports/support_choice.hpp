@@ -50,6 +50,14 @@ struct FaceVerdicts {
 /// run of one pair once, in row order.
 std::vector<FoldEdge> raster_folds(const PixelGrid& grid, const RasterPlan& raster_plan, double tolerance);
 
+/// The face graph read from the raster plan's folds (the upper face first). Rebuilding the exact
+/// plan costs 50-700 ms; this costs a few, so rounds run on it and the exact plan only confirms (and
+/// overrides) its verdict.
+FaceVerdicts raster_verdicts(const PixelGrid& grid, const RasterPlan& raster_plan, double tolerance);
+
+/// The faces (the back plane and the floor aside) whose verdict says they need a support.
+std::vector<std::int32_t> unsupported(const FaceVerdicts& verdicts, bool allow_dangling);
+
 /// The exact plan's word on each face, as the rounds read it.
 FaceVerdicts verdicts_of(const Plan& plan);
 
