@@ -12,6 +12,7 @@
 #include "origamic/design.hpp"
 #include "origamic/error.hpp"
 #include "origamic/fold_style.hpp"
+#include "origamic/plan_analysis.hpp"
 #include "origamic/plan_dxf_reader.hpp"
 
 namespace origamic::cli {
