@@ -17,8 +17,8 @@
 // the fold between V(d) and H(h) lies on Y = h - d.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
-
 #include <glm/vec3.hpp>
 
 namespace origamic {
@@ -62,6 +62,13 @@ Depth fold_line_Y(Orientation a_is, const Depth& depth_a, const Depth& depth_b) 
 /// there, an H face at height h holds d = h - Y (depth_mm is d of a V face, h of an H face).
 inline double key_of_plane(Orientation orientation, double depth_mm, double Y) {
   return orientation == Orientation::V ? Y + 2 * depth_mm : 2 * depth_mm - Y;
+}
+
+/// The key the 45-degree view sees at plan height Y of a face in this plane: the plane's, or
+/// through a hole (a face cut out) the plane the card would be there: the back plane above the main
+/// fold, the floor below, |Y| either way.
+inline double shown_key(Orientation orientation, double depth_mm, bool hole, double Y) {
+  return hole ? std::abs(Y) : key_of_plane(orientation, depth_mm, Y);
 }
 
 /// Whether a face's plane is on the card at plan height Y: a V face at depth d above the floor's

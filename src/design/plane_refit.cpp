@@ -83,8 +83,7 @@ class RasterCard {
 
   // The error of pixel (c, r) shown by a face's plane, as likeness() measures it.
   double error(const RasterFace& face, int c, int r) const {
-    const double Y = maps_.grid.Y(r);
-    const double key = face.hole ? std::abs(Y) : key_of_plane(face.orientation, face.depth_mm, Y);
+    const double key = shown_key(face.orientation, face.depth_mm, face.hole, maps_.grid.Y(r));
     return std::abs(key - (maps_.h_mm(c, r) + maps_.d_mm(c, r)));
   }
 
@@ -94,7 +93,8 @@ class RasterCard {
     double& e = error_(c, r);
     if (e >= 0) counts_.add(e, -1);
     const std::int32_t f = raster_plan.face(c, r);
-    e = f < 0 ? std::abs(maps_.grid.Y(r)) : error(raster_plan.faces[static_cast<std::size_t>(f)], c, r);
+    e = f < 0 ? std::abs(shown_key(Orientation::V, 0, true, maps_.grid.Y(r)) - (maps_.h_mm(c, r) + maps_.d_mm(c, r)))
+              : error(raster_plan.faces[static_cast<std::size_t>(f)], c, r);
     counts_.add(e, 1);
   }
 

@@ -16,9 +16,6 @@ CardSurface surface_of(Orientation orientation, double depth_mm, bool support) {
   return support ? CardSurface::Support : CardSurface::Model;
 }
 
-// Through a hole one sees the plane the card would be: the back plane above the fold, the floor below.
-double hole_key(double Y) { return std::abs(Y); }
-
 CardView empty_view(const PixelGrid& grid) {
   return {Grid<double>(grid.cols, grid.rows, 0.0), Grid<CardSurface>(grid.cols, grid.rows, CardSurface::Outside)};
 }
@@ -35,7 +32,7 @@ CardView card_view(const PixelGrid& grid, const Grid<std::int32_t>& face, const 
       const RasterFace& rf = faces[static_cast<std::size_t>(f)];
       const CardSurface surface = rf.hole ? CardSurface::Hole : surface_of(rf.orientation, rf.depth_mm, rf.support);
       card.surface(col, row) = surface;
-      card.key_mm(col, row) = rf.hole ? hole_key(Y) : key_of_plane(rf.orientation, rf.depth_mm, Y);
+      card.key_mm(col, row) = shown_key(rf.orientation, rf.depth_mm, rf.hole, Y);
     }
   });
   return card;
@@ -72,7 +69,7 @@ CardView card_view(const PixelGrid& grid, std::span<const PlanRegion> regions, c
       const double x1 = crossings[k + 1].second;
       assert(crossings[k + 1].first == row);
       const double Y = grid.Y(row);
-      const double key = hole ? hole_key(Y) : key_of_plane(region.orientation, region.depth_mm, Y);
+      const double key = shown_key(region.orientation, region.depth_mm, hole, Y);
       // Centres X = (col + 0.5) / px in [x0, x1).
       const int c0 = std::max(0, static_cast<int>(std::ceil(x0 * px - 0.5)));
       const int c1 = std::min(grid.cols, static_cast<int>(std::ceil(x1 * px - 0.5)));
@@ -99,8 +96,9 @@ Grid<double> error_map(const RasterMaps& maps, const CardView& card) {
     for (int col = 0; col < maps.grid.cols; ++col) {
       if (maps.kind(col, row) != HitKind::Model) continue;
       const double model_key = maps.h_mm(col, row) + maps.d_mm(col, row);
-      const double card_key =
-          card.surface(col, row) == CardSurface::Outside ? hole_key(maps.grid.Y(row)) : card.key_mm(col, row);
+      const double card_key = card.surface(col, row) == CardSurface::Outside
+                                  ? shown_key(Orientation::V, 0, true, maps.grid.Y(row))
+                                  : card.key_mm(col, row);
       error(col, row) = std::abs(card_key - model_key);
     }
   });

@@ -56,7 +56,7 @@ SupportPicture::SupportPicture(const RasterMaps& maps, const RasterPlan& raster_
   model_key_ = Grid<float>(c_end - c0_, r_end - r0_, std::numeric_limits<float>::quiet_NaN());
   error_ = Grid<float>(c_end - c0_, r_end - r0_, 0.0f);
   const auto key_of = [&](const RasterFace& face, double Y) {
-    return face.hole ? std::abs(Y) : key_of_plane(face.orientation, face.depth_mm, Y);
+    return shown_key(face.orientation, face.depth_mm, face.hole, Y);
   };
   tbb::parallel_for(r0_, r_end, [&](int row) {
     const double Y = grid_.Y(row);
