@@ -219,7 +219,8 @@ std::vector<PlaneMove> find_planes(const RasterMaps& maps, RasterPlan raster_pla
   }
   std::ranges::sort(order);
   std::vector<PlaneMove> moves;
-  const std::size_t unheld = faces_unheld_on_raster(maps.grid, raster_plan, allow_dangling).size();
+  // In face order, as each verdict lists them: a move may leave none unheld that was held.
+  const std::vector<std::int32_t> unheld = faces_unheld_on_raster(maps.grid, raster_plan, allow_dangling);
   for (const auto& [_, f] : order)
     for (int turn = 0; turn < kTurns; ++turn) {
       std::vector<PixelAt>& own = pixels[static_cast<std::size_t>(f)];
@@ -233,7 +234,7 @@ std::vector<PlaneMove> find_planes(const RasterMaps& maps, RasterPlan raster_pla
       if (!depth) break;
       std::optional<RasterPlan> moved =
           move_plane(raster_plan, maps.grid, f, *depth, fold_tolerance_mm, raster_plan.block_px);
-      if (!moved || faces_unheld_on_raster(maps.grid, *moved, allow_dangling).size() > unheld) break;
+      if (!moved || !std::ranges::includes(unheld, faces_unheld_on_raster(maps.grid, *moved, allow_dangling))) break;
       // The pixels that changed face, and the face's own, show their new plane; with its folds
       // moved, the card must still fare better, or the move is undone.
       const std::pair<int, double> before = card.counts().fares();
