@@ -262,6 +262,33 @@ TEST(Slice, ThinPiecesInOnePlaneAgainstAModelFaceAreFilledFromIt) {
   EXPECT_GE(p.raster_plan.removed_thin, 20);
 }
 
+// Two slices of one curved surface that touch lie W apart or more: the face a support folds between
+// them is then no strip narrower than W (issue 23). A slice at its pixels' mean depth alone came
+// nearer: on a sphere the pixels of a level crowd to its near side where the surface turns away.
+TEST(Slice, TouchingSlicesOfASphereLieAtLeastWApart) {
+  for (const double W : {3.0, 5.0}) {
+    SCOPED_TRACE(W);
+    const Planned p = plan_of_oa_mesh(test::sphere({105, 50, 50}, 44, 96, 48), W);
+    const Grid<std::int32_t>& face = p.raster_plan.face;
+    const std::vector<RasterFace>& faces = p.raster_plan.faces;
+    std::set<std::pair<std::int32_t, std::int32_t>> touching;
+    for (int row = 0; row + 1 < face.rows; ++row)
+      for (int col = 0; col + 1 < face.cols; ++col)
+        for (const std::int32_t g : {face(col + 1, row), face(col, row + 1)}) {
+          const std::int32_t f = face(col, row);
+          if (f >= 2 && g >= 2 && f != g) touching.emplace(std::min(f, g), std::max(f, g));
+        }
+    int same_orientation = 0;
+    for (const auto& [f, g] : touching) {
+      const RasterFace &a = faces[static_cast<std::size_t>(f)], &b = faces[static_cast<std::size_t>(g)];
+      if (a.hole || b.hole || a.orientation != b.orientation) continue;
+      ++same_orientation;
+      EXPECT_GE(std::abs(a.depth_mm - b.depth_mm), W) << "faces " << f << " and " << g;
+    }
+    EXPECT_GE(same_orientation, 10);
+  }
+}
+
 TEST(Slice, SameInputGivesByteIdenticalFaceMaps) {
   const TriangleMesh shape = test::sphere({105, 40, 40}, 38, 96, 48);
   const Planned a = plan_of_oa_mesh(shape), b = plan_of_oa_mesh(shape);

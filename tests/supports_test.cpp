@@ -935,7 +935,7 @@ TEST(Supports, ThePlanKeptIsTheExactPlanOfTheSlicesKept) {
   DesignOptions options;
   options.placement.up = UpAxis::Z;
   options.tip_rounds = 0;
-  const DesignResult r = standing_design("prim_torus.stl", options);
+  const DesignResult r = standing_design("prim_genus3_torus.off", options);
   ASSERT_GT(r.supports.passes_undone, 0) << "a design with undone passes";
   const Plan fresh = build_plan(r.maps, r.raster_plan, DesignOptions{}.sheet, PlanOptions{});
   EXPECT_EQ(fresh.validity.status, r.plan.validity.status);

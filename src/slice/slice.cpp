@@ -136,6 +136,7 @@ std::vector<Subsegment> level_subsegments(const RasterMaps& maps, const Segmenta
     // Mean as base + mean offset, so equal depths give exactly that depth.
     const double base = depth_at(i0);
     double offset_sum = 0;
+    bool nearer_level = false, farther_level = false;  // a pixel of the level before (after) touched
     for (std::size_t head = 0; head < run.size(); ++head) {
       const std::size_t i = run[head];
       offset_sum += depth_at(i) - base;
@@ -144,13 +145,27 @@ std::vector<Subsegment> level_subsegments(const RasterMaps& maps, const Segmenta
       for (const auto& [dc, dr] : kFourNeighbours) {
         if (!level.contains(col + dc, row + dr)) continue;
         const std::size_t j = level.index(col + dc, row + dr);
+        if (level.values[j] >= 0 && part(j) == k) {
+          nearer_level = nearer_level || level.values[j] == l - 1;
+          farther_level = farther_level || level.values[j] == l + 1;
+        }
         if (subsegment.values[j] >= 0 || level.values[j] != l || part(j) != k) continue;
         subsegment.values[j] = id;
         run.push_back(j);
       }
     }
-    subsegments.push_back({seg.segment.values[i0], base + offset_sum / static_cast<double>(run.size()),
-                           part_of[i0] ? Orientation::H : Orientation::V});
+    // At its pixels' mean depth, unless that lies nearer than W to a level it touches: a support
+    // folds a strip between the two as wide as their depths differ (issue 23), and on a curved
+    // surface a level's pixels crowd to one side of it (on a sphere where the surface turns away).
+    // Kept to the middle step - W of its level on that side, as the other is on its side, the two
+    // lie W apart at least. Over the 37 models at W = 2 / 3 / 5 mm: faces between two folds under W
+    // apart 913 / 505 / 272 -> 659 / 348 / 205; all places under W 7,846 / 4,734 / 2,429 -> 7,879 /
+    // 4,730 / 2,440; mean p95 2.06 / 1.78 / 1.97 -> 2.05 / 1.79 / 1.90 W, all standing.
+    double depth = base + offset_sum / static_cast<double>(run.size());
+    const double centre = nearest[k] + (l + 0.5) * step[k], slack = (step[k] - W) / 2;
+    if (nearer_level) depth = std::max(depth, centre - slack);
+    if (farther_level) depth = std::min(depth, centre + slack);
+    subsegments.push_back({seg.segment.values[i0], depth, part_of[i0] ? Orientation::H : Orientation::V});
     pixels.push_back(static_cast<double>(run.size()));
   }
   return merge_thin_subsegments(seg.segment, W * maps.grid.px_per_mm, {std::move(subsegments), std::move(pixels)},

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <limits>
 #include <numeric>
+#include <tuple>
 
 #include "four_neighbours.hpp"
 #include "raster_plan_edits.hpp"
@@ -27,7 +28,9 @@ bool is_thin(const std::vector<std::pair<int, int>>& pixels_of, double min_side_
   return !pixels_of.empty() && oriented_box_min_side_px(pixels_of) < min_side_px;
 }
 
-// Each thin subsegment's neighbour nearest in depth (ties: the lower id), into[k], or k itself.
+// Each thin subsegment's neighbour nearest in depth (ties: the larger, then the lower id: two levels
+// kept W apart from it are as near, and ids follow the scan, which a mirror image reverses), into[k],
+// or k itself.
 // Pairs merge, the thinnest first, each subsegment in at most one pair per pass: a run of slivers
 // becomes steps about W wide, not one wide step. `id_at` names the subsegment at a pixel.
 template <typename IdAt>
@@ -57,7 +60,9 @@ std::vector<std::int32_t> thin_pairs(const SubsegmentSet& set, const Grid<std::i
         if (j < 0 || static_cast<std::size_t>(j) == k || paired[static_cast<std::size_t>(j)] ||
             segment(col + dc, row + dr) != subsegments[k].segment)
           continue;
-        if (best < 0 || gap(j) < gap(best) || (gap(j) == gap(best) && j < best)) best = j;
+        if (best < 0 || std::tuple(gap(j), -set.pixels[static_cast<std::size_t>(j)], j) <
+                            std::tuple(gap(best), -set.pixels[static_cast<std::size_t>(best)], best))
+          best = j;
       }
     if (best < 0) continue;
     into[k] = best, paired[k] = paired[static_cast<std::size_t>(best)] = 1;
