@@ -2,11 +2,13 @@
 #include "support_ears.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <queue>
 #include <tuple>
+#include <unordered_map>
 #include <utility>
 
 #include "origamic/plan.hpp"
@@ -26,6 +28,7 @@ struct Label {
   std::int64_t prev;     // the label before, -1 at the source
   std::int64_t support;  // the support edge it came by, -1 for a fold
   bool cutting = false;  // some support on the path cuts a face in two
+  std::uint32_t state = 0;  // of (face, Y)
 };
 
 }  // namespace
@@ -64,34 +67,47 @@ EarSearch::Choice EarSearch::cheapest(const std::vector<std::uint8_t>& standing,
 class EarSearch::Paths {
  public:
   Paths(const EarSearch& graph, const std::vector<std::uint8_t>& open, const std::vector<std::uint8_t>& usable)
-      : graph_(graph), open_(open), usable_(usable), states_of_(graph.arcs_.size()) {}
+      : graph_(graph),
+        open_(open),
+        usable_(usable),
+        states_of_(graph.arcs_.size()),
+        first_arc_(graph.arcs_.size() + 1) {
+    for (std::size_t u = 0; u < graph.arcs_.size(); ++u) first_arc_[u + 1] = first_arc_[u] + graph.arcs_[u].size();
+    arc_state_.assign(first_arc_.back(), kNoState);
+  }
 
   void run(const std::vector<std::uint8_t>& standing) {
     for (std::size_t u = 0; u < graph_.arcs_.size(); ++u) {
       if (!standing[u]) continue;
-      for (const Arc& arc : graph_.arcs_[u])
+      for (std::size_t a = 0; a < graph_.arcs_[u].size(); ++a) {
+        const Arc& arc = graph_.arcs_[u][a];
         if (open_[static_cast<std::size_t>(arc.to)] && allowed(arc) && !breaks(-1, arc))
           push({arc.cost, arc.picture, arc.to, arc.there_Y, static_cast<std::int32_t>(u), -1, arc.support,
-                !cuts_of(arc.support).empty()});
+                !cuts_of(arc.support).empty(), state_entered(u, a)});
+      }
     }
     while (!queue_.empty()) {
       const std::int64_t id = queue_.top().second;
       queue_.pop();
       const Label label = labels_[static_cast<std::size_t>(id)];
-      State& st = state_of(label.face, label.Y);
+      State& st = states_[label.state];
       if (st.settled >= 2 || (st.best[0] != id && st.best[1] != id)) continue;  // superseded
       if (st.settled == 1 && st.best[0] == id) continue;
       if (st.best[st.settled] != id) std::swap(st.best[0], st.best[1]);  // the popped one is the next settled
       ++st.settled;
-      for (const Arc& arc : graph_.arcs_[static_cast<std::size_t>(label.face)]) {
+      const auto u = static_cast<std::size_t>(label.face);
+      for (std::size_t a = 0; a < graph_.arcs_[u].size(); ++a) {
+        const Arc& arc = graph_.arcs_[u][a];
         if (!allowed(arc) || same_line(arc.here_Y, label.Y)) continue;  // a face held on one line swings
+        const std::uint32_t entered = state_entered(u, a);
+        if (states_[entered].settled == 2) continue;  // its two labels are final
         // Straight back is no path; longer cycles cost more than their way round, and an ear found
         // through one is passed over below.
         const bool back = label.prev >= 0 && labels_[static_cast<std::size_t>(label.prev)].face == arc.to;
         if (!open_[static_cast<std::size_t>(arc.to)] || back || breaks(id, arc)) continue;
         const bool cutting = label.cutting || !cuts_of(arc.support).empty();
         push({label.dist + arc.cost, label.picture + arc.picture, arc.to, arc.there_Y, label.source, id, arc.support,
-              cutting});
+              cutting, entered});
       }
     }
   }
@@ -152,22 +168,36 @@ class EarSearch::Paths {
   };
 
   // States by face and line, the line to the fold tolerance (two lines a rounding apart may fall on
-  // either side of a step and make two states: harmless, the hinge rule compares the lines). A face
-  // is entered on a few lines: its states are found by a walk along them, not a hash.
+  // either side of a step and make two states: harmless, the hinge rule compares the lines). Found by
+  // a hash: a face that many candidate supports reach is entered on hundreds of lines (the first
+  // round of seedlike/torus: 54 faces, 13,684 arcs), where a walk along them took 35-75 ms a search.
   State& state_of(std::int32_t face, double Y) {
     const auto step = static_cast<std::int64_t>(std::llround(Y / kFoldLineTolerance_mm));
-    std::vector<std::uint32_t>& of_face = states_of_[static_cast<std::size_t>(face)];
-    for (const std::uint32_t k : of_face)
-      if (states_[k].step == step) return states_[k];
-    of_face.push_back(static_cast<std::uint32_t>(states_.size()));
+    // Lines lie within the sheet, some 10^9 tolerances from the main fold: 42 bits hold them.
+    const std::uint64_t key =
+        static_cast<std::uint64_t>(face) << 42 ^ static_cast<std::uint64_t>(step + (std::int64_t{1} << 41));
+    const auto [it, fresh] = state_at_.try_emplace(key, static_cast<std::uint32_t>(states_.size()));
+    if (!fresh) return states_[it->second];
+    states_of_[static_cast<std::size_t>(face)].push_back(it->second);
     return states_.emplace_back(State{Y, step});
   }
 
   bool allowed(const Arc& arc) const { return arc.support < 0 || usable_[static_cast<std::size_t>(arc.support)]; }
 
+  // The state arc a of face u enters, looked up once: a search follows each arc once per label
+  // settled at u (the first round of seedlike/torus: 2.2 million times, its 13,684 arcs).
+  std::uint32_t state_entered(std::size_t u, std::size_t a) {
+    std::uint32_t& state = arc_state_[first_arc_[u] + a];
+    if (state == kNoState) {
+      const Arc& arc = graph_.arcs_[u][a];
+      state = static_cast<std::uint32_t>(&state_of(arc.to, arc.there_Y) - states_.data());
+    }
+    return state;
+  }
+
   // Keeps the label if it is among its state's two cheapest of different sources, and queues it.
   void push(const Label& label) {
-    State& st = state_of(label.face, label.Y);
+    State& st = states_[label.state];
     std::int64_t* best = st.best;
     const auto id = static_cast<std::int64_t>(labels_.size());
     const auto dist_of = [&](std::int64_t k) { return labels_[static_cast<std::size_t>(k)].dist; };
@@ -220,6 +250,10 @@ class EarSearch::Paths {
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue_;
   std::vector<State> states_;
   std::vector<std::vector<std::uint32_t>> states_of_;  // per face
+  std::unordered_map<std::uint64_t, std::uint32_t> state_at_;  // by face and line step
+  static constexpr std::uint32_t kNoState = UINT32_MAX;
+  std::vector<std::size_t> first_arc_;    // per face, the index of its first arc among all
+  std::vector<std::uint32_t> arc_state_;  // per arc, the state it enters, kNoState until looked up
 };
 
 namespace {
