@@ -145,7 +145,7 @@ TEST(DesignInvariants, AModelMovedAlongTheFoldByWholePixelsGivesTheMovedPlan) {
 // off those it can, keeping the plan standing and its picture, and reports the rest as its DXF
 // will read back.
 TEST(DesignTips, TipsNarrowerThanWArePartedOffAndThePlanStillStands) {
-  const TriangleMesh ball = test::sphere({0, 0, 0}, 1, 64, 32);
+  const TriangleMesh ball = test::sphere({0, 0, 0}, 1, 96, 48);
   DesignOptions options;
   options.tip_rounds = 0;
   const DesignResult as_supported = design(LoadedMesh{.mesh = ball, .format = "obj"}, options);

@@ -198,7 +198,10 @@ TEST(Supports, ASupportLeavingItsFacesAStripUnderWBeforeTheirNextFoldSaysSo) {
     EXPECT_GE(onto_band.size(), 20u) << "every block column across the band's 90 mm";
     return onto_band;
   };
-  for (const Candidate& c : down_from_front(-30, true)) EXPECT_TRUE(c.leaves_thin_strip) << c.c0;
+  for (const Candidate& c : down_from_front(-30, true)) {
+    EXPECT_TRUE(c.leaves_thin_strip) << c.c0;
+    EXPECT_NEAR(c.thin_strip_mm, c.far.h - c.far.d - -30, 1e-9) << c.c0;  // from the support's fold to the band's
+  }
   for (const Candidate& c : down_from_front(-33, true)) EXPECT_FALSE(c.leaves_thin_strip) << c.c0;
   for (const Candidate& c : down_from_front(-30, false)) EXPECT_FALSE(c.leaves_thin_strip) << c.c0;
   // On the side of the face it holds too, where it leaves that face's plane: with the top H(77.9)
@@ -220,7 +223,12 @@ TEST(Supports, ASupportLeavingItsFacesAStripUnderWBeforeTheirNextFoldSaysSo) {
     EXPECT_GE(back.size(), 20u) << "every block column across the front's 90 mm";
     return back;
   };
-  for (const Candidate& c : up_from_front(2)) EXPECT_TRUE(c.leaves_thin_strip) << c.c0;
+  for (const Candidate& c : up_from_front(2)) {
+    EXPECT_TRUE(c.leaves_thin_strip) << c.c0;
+    // From the support's fold on the front's top edge down to the front's fold onto H(75.9).
+    EXPECT_NEAR(c.thin_strip_mm, c.near.h - c.near.d - (75.9 - 47.1), 1e-9) << c.c0;
+    EXPECT_NEAR(c.thin_strip_mm, 2, 0.5 / grid.px_per_mm) << c.c0;  // that edge on the pixel lattice
+  }
   for (const Candidate& c : up_from_front(4)) EXPECT_FALSE(c.leaves_thin_strip) << c.c0;
   // Its ear costs the thin strip cost more; the picture's part stays the candidate's own.
   SupportOptions options;
@@ -229,9 +237,14 @@ TEST(Supports, ASupportLeavingItsFacesAStripUnderWBeforeTheirNextFoldSaysSo) {
   c.near = {20, 47.1}, c.far = {10, 47.1};
   const std::vector<std::uint8_t> stands = {1, 1, 0, 0};
   EXPECT_EQ(support_edge(c, stands, options, 3).cost, 1.5);
-  c.leaves_thin_strip = true;
+  c.leaves_thin_strip = true, c.thin_strip_mm = 0.6;
   EXPECT_GT(options.thin_strip_cost_mm, 0);
   EXPECT_EQ(support_edge(c, stands, options, 3).cost, 1.5 + options.thin_strip_cost_mm);
+  EXPECT_EQ(support_edge(c, stands, options, 3).picture, 1.5);
+  // Under W / 6, a face no one can fold, the sliver cost more again.
+  c.thin_strip_mm = 0.4;
+  EXPECT_GT(options.sliver_strip_cost_mm, 0);
+  EXPECT_EQ(support_edge(c, stands, options, 3).cost, 1.5 + options.thin_strip_cost_mm + options.sliver_strip_cost_mm);
   EXPECT_EQ(support_edge(c, stands, options, 3).picture, 1.5);
 }
 

@@ -9,6 +9,7 @@
 #include <climits>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <span>
 #include <unordered_map>
 #include <utility>
@@ -487,9 +488,14 @@ class CandidateFinder::Search {
     // Onto its target it always folds; from f only where it leaves f's plane.
     const int centre = (s.c0 + s.c1) / 2;
     const bool folds_from_f = f != g && faces_[static_cast<std::size_t>(f)].orientation != s.orientation;
-    s.leaves_thin_strip =
-        thin_strip_beyond(centre, s.target_row, step, s.far.h - s.far.d, s.orientation) ||
-        (folds_from_f && thin_strip_beyond(centre, s.face_row, -step, s.near.h - s.near.d, s.orientation));
+    {
+      const double far = thin_strip_beyond(centre, s.target_row, step, s.far.h - s.far.d, s.orientation);
+      const double near = folds_from_f
+                              ? thin_strip_beyond(centre, s.face_row, -step, s.near.h - s.near.d, s.orientation)
+                              : std::numeric_limits<double>::infinity();
+      s.thin_strip_mm = std::min(far, near);
+      s.leaves_thin_strip = std::isfinite(s.thin_strip_mm);
+    }
     const double length = (s.r1 - s.r0) * px_mm_;
     s.picture_mm = std::max(0.0, picture_.added_error(s.orientation, s.depth_mm, {s.c0, s.c1, s.r0, s.r1})) / (W_ * W_);
     s.cost = kCostPerLength * length + s.picture_mm;
@@ -498,19 +504,21 @@ class CandidateFinder::Search {
 
   // Whether the face at (col, row), running on `step` by `step`, folds onto a face in the support's
   // orientation `o` less than W from the support's fold at `fold_Y`: the strip between the two folds,
-  // measured on their lines, is too thin to fold.
-  bool thin_strip_beyond(int col, int row, int step, double fold_Y, Orientation o) const {
-    if (row < 0 || row >= face_.rows || face_(col, row) < 0) return false;
+  // measured on their lines, is too thin to fold. Its width if so, else infinity.
+  double thin_strip_beyond(int col, int row, int step, double fold_Y, Orientation o) const {
+    const double none = std::numeric_limits<double>::infinity();
+    if (row < 0 || row >= face_.rows || face_(col, row) < 0) return none;
     const std::int32_t g = face_(col, row);
     int r = row;
     // A strip under W spans at most W's rows and the two it may share with its folds.
     while (r >= 0 && r < face_.rows && face_(col, r) == g && (r - row) * step <= block_ + 1) r += step;
-    if (r < 0 || r >= face_.rows) return false;
+    if (r < 0 || r >= face_.rows) return none;
     const std::int32_t x = face_(col, r);
-    if (x < 0 || x == g) return false;
+    if (x < 0 || x == g) return none;
     const RasterFace &here = faces_[static_cast<std::size_t>(g)], &next = faces_[static_cast<std::size_t>(x)];
-    if (next.hole || next.orientation != o || here.orientation == o) return false;
-    return std::abs(fold_line_Y(here.orientation, here.depth_mm, next.depth_mm) - fold_Y) < W_ - kFoldLineTolerance_mm;
+    if (next.hole || next.orientation != o || here.orientation == o) return none;
+    const double strip = std::abs(fold_line_Y(here.orientation, here.depth_mm, next.depth_mm) - fold_Y);
+    return strip < W_ - kFoldLineTolerance_mm ? strip : none;
   }
 
   const ExactPlan& exact_plan_;
