@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <tuple>
@@ -200,9 +201,12 @@ TEST(Supports, ASupportLeavingItsFacesAStripUnderWBeforeTheirNextFoldSaysSo) {
   };
   for (const Candidate& c : down_from_front(-30, true)) {
     EXPECT_TRUE(c.leaves_thin_strip) << c.c0;
-    EXPECT_NEAR(c.thin_strip_mm, c.far.h - c.far.d - -30, 1e-9) << c.c0;  // from the support's fold to the band's
+    EXPECT_NEAR(c.thin_strip_mm, c.far.h - c.far.d + 30, 1e-9) << c.c0;  // from the support's fold to the band's
   }
-  for (const Candidate& c : down_from_front(-33, true)) EXPECT_FALSE(c.leaves_thin_strip) << c.c0;
+  for (const Candidate& c : down_from_front(-33, true)) {
+    EXPECT_FALSE(c.leaves_thin_strip) << c.c0;
+    EXPECT_EQ(c.thin_strip_mm, std::numeric_limits<double>::infinity()) << c.c0;
+  }
   for (const Candidate& c : down_from_front(-30, false)) EXPECT_FALSE(c.leaves_thin_strip) << c.c0;
   // On the side of the face it holds too, where it leaves that face's plane: with the top H(77.9)
   // gone to the back plane, an H support from the front's top edge (Y = 30.8) reaches back to it;

@@ -489,11 +489,11 @@ class CandidateFinder::Search {
     const int centre = (s.c0 + s.c1) / 2;
     const bool folds_from_f = f != g && faces_[static_cast<std::size_t>(f)].orientation != s.orientation;
     {
-      const double far = thin_strip_beyond(centre, s.target_row, step, s.far.h - s.far.d, s.orientation);
-      const double near = folds_from_f
-                              ? thin_strip_beyond(centre, s.face_row, -step, s.near.h - s.near.d, s.orientation)
-                              : std::numeric_limits<double>::infinity();
-      s.thin_strip_mm = std::min(far, near);
+      const double beyond_target = thin_strip_beyond(centre, s.target_row, step, s.far.h - s.far.d, s.orientation);
+      const double beyond_face = folds_from_f
+                                     ? thin_strip_beyond(centre, s.face_row, -step, s.near.h - s.near.d, s.orientation)
+                                     : std::numeric_limits<double>::infinity();
+      s.thin_strip_mm = std::min(beyond_target, beyond_face);
       s.leaves_thin_strip = std::isfinite(s.thin_strip_mm);
     }
     const double length = (s.r1 - s.r0) * px_mm_;

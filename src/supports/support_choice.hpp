@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -37,7 +38,7 @@ struct Candidate {
   // Whether it leaves `face` or `target`, at the block column's centre, a strip under W between its
   // fold and a parallel one beyond.
   bool leaves_thin_strip = false;
-  double thin_strip_mm = 0;  // the narrowest such strip, where it leaves one
+  double thin_strip_mm = std::numeric_limits<double>::infinity();  // the narrowest such strip
 };
 
 // What the loop needs to know of a plan: each face's status and which of its sides are folded.

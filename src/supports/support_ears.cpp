@@ -2,7 +2,7 @@
 #include "support_ears.hpp"
 
 #include <algorithm>
-#include <climits>
+#include <cassert>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -90,11 +90,13 @@ class EarSearch::Paths {
       const std::int64_t id = queue_.top().second;
       queue_.pop();
       const Label label = labels_[static_cast<std::size_t>(id)];
-      State& st = states_[label.state];
-      if (st.settled >= 2 || (st.best[0] != id && st.best[1] != id)) continue;  // superseded
-      if (st.settled == 1 && st.best[0] == id) continue;
-      if (st.best[st.settled] != id) std::swap(st.best[0], st.best[1]);  // the popped one is the next settled
-      ++st.settled;
+      {
+        State& st = states_[label.state];  // before the arcs below add states and move them
+        if (st.settled >= 2 || (st.best[0] != id && st.best[1] != id)) continue;  // superseded
+        if (st.settled == 1 && st.best[0] == id) continue;
+        if (st.best[st.settled] != id) std::swap(st.best[0], st.best[1]);  // the popped one is the next settled
+        ++st.settled;
+      }
       const auto u = static_cast<std::size_t>(label.face);
       for (std::size_t a = 0; a < graph_.arcs_[u].size(); ++a) {
         const Arc& arc = graph_.arcs_[u][a];
@@ -171,15 +173,18 @@ class EarSearch::Paths {
   // either side of a step and make two states: harmless, the hinge rule compares the lines). Found by
   // a hash: a face that many candidate supports reach is entered on hundreds of lines (the first
   // round of seedlike/torus: 54 faces, 13,684 arcs), where a walk along them took 35-75 ms a search.
-  State& state_of(std::int32_t face, double Y) {
+  std::uint32_t state_of(std::int32_t face, double Y) {
     const auto step = static_cast<std::int64_t>(std::llround(Y / kFoldLineTolerance_mm));
     // Lines lie within the sheet, some 10^9 tolerances from the main fold: 42 bits hold them.
+    assert(0 <= face && face < (1 << 22) && std::abs(step) < (std::int64_t{1} << 41));
     const std::uint64_t key =
         static_cast<std::uint64_t>(face) << 42 ^ static_cast<std::uint64_t>(step + (std::int64_t{1} << 41));
     const auto [it, fresh] = state_at_.try_emplace(key, static_cast<std::uint32_t>(states_.size()));
-    if (!fresh) return states_[it->second];
-    states_of_[static_cast<std::size_t>(face)].push_back(it->second);
-    return states_.emplace_back(State{Y, step});
+    if (fresh) {
+      states_of_[static_cast<std::size_t>(face)].push_back(it->second);
+      states_.push_back(State{Y, step});
+    }
+    return it->second;
   }
 
   bool allowed(const Arc& arc) const { return arc.support < 0 || usable_[static_cast<std::size_t>(arc.support)]; }
@@ -190,7 +195,7 @@ class EarSearch::Paths {
     std::uint32_t& state = arc_state_[first_arc_[u] + a];
     if (state == kNoState) {
       const Arc& arc = graph_.arcs_[u][a];
-      state = static_cast<std::uint32_t>(&state_of(arc.to, arc.there_Y) - states_.data());
+      state = state_of(arc.to, arc.there_Y);
     }
     return state;
   }
@@ -251,7 +256,7 @@ class EarSearch::Paths {
   std::vector<State> states_;
   std::vector<std::vector<std::uint32_t>> states_of_;  // per face
   std::unordered_map<std::uint64_t, std::uint32_t> state_at_;  // by face and line step
-  static constexpr std::uint32_t kNoState = UINT32_MAX;
+  static constexpr std::uint32_t kNoState = std::numeric_limits<std::uint32_t>::max();
   std::vector<std::size_t> first_arc_;    // per face, the index of its first arc among all
   std::vector<std::uint32_t> arc_state_;  // per arc, the state it enters, kNoState until looked up
 };
