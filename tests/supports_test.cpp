@@ -200,14 +200,14 @@ TEST(Supports, ASupportLeavingItsFacesAStripUnderWBeforeTheirNextFoldSaysSo) {
     return onto_band;
   };
   for (const Candidate& c : down_from_front(-30, true)) {
-    EXPECT_TRUE(c.leaves_thin_strip) << c.c0;
+    EXPECT_TRUE(c.leaves_thin_strip()) << c.c0;
     EXPECT_NEAR(c.thin_strip_mm, c.far.h - c.far.d + 30, 1e-9) << c.c0;  // from the support's fold to the band's
   }
   for (const Candidate& c : down_from_front(-33, true)) {
-    EXPECT_FALSE(c.leaves_thin_strip) << c.c0;
+    EXPECT_FALSE(c.leaves_thin_strip()) << c.c0;
     EXPECT_EQ(c.thin_strip_mm, std::numeric_limits<double>::infinity()) << c.c0;
   }
-  for (const Candidate& c : down_from_front(-30, false)) EXPECT_FALSE(c.leaves_thin_strip) << c.c0;
+  for (const Candidate& c : down_from_front(-30, false)) EXPECT_FALSE(c.leaves_thin_strip()) << c.c0;
   // On the side of the face it holds too, where it leaves that face's plane: with the top H(77.9)
   // gone to the back plane, an H support from the front's top edge (Y = 30.8) reaches back to it;
   // the front ends `strip` below, on an H face folding onto it there.
@@ -228,12 +228,12 @@ TEST(Supports, ASupportLeavingItsFacesAStripUnderWBeforeTheirNextFoldSaysSo) {
     return back;
   };
   for (const Candidate& c : up_from_front(2)) {
-    EXPECT_TRUE(c.leaves_thin_strip) << c.c0;
+    EXPECT_TRUE(c.leaves_thin_strip()) << c.c0;
     // From the support's fold on the front's top edge down to the front's fold onto H(75.9).
     EXPECT_NEAR(c.thin_strip_mm, c.near.h - c.near.d - (75.9 - 47.1), 1e-9) << c.c0;
     EXPECT_NEAR(c.thin_strip_mm, 2, 0.5 / grid.px_per_mm) << c.c0;  // that edge on the pixel lattice
   }
-  for (const Candidate& c : up_from_front(4)) EXPECT_FALSE(c.leaves_thin_strip) << c.c0;
+  for (const Candidate& c : up_from_front(4)) EXPECT_FALSE(c.leaves_thin_strip()) << c.c0;
   // Its ear costs the thin strip cost more; the picture's part stays the candidate's own.
   SupportOptions options;
   Candidate c;
@@ -241,7 +241,7 @@ TEST(Supports, ASupportLeavingItsFacesAStripUnderWBeforeTheirNextFoldSaysSo) {
   c.near = {20, 47.1}, c.far = {10, 47.1};
   const std::vector<std::uint8_t> stands = {1, 1, 0, 0};
   EXPECT_EQ(support_edge(c, stands, options, 3).cost, 1.5);
-  c.leaves_thin_strip = true, c.thin_strip_mm = 0.6;
+  c.thin_strip_mm = 0.6;
   EXPECT_GT(options.thin_strip_cost_mm, 0);
   EXPECT_EQ(support_edge(c, stands, options, 3).cost, 1.5 + options.thin_strip_cost_mm);
   EXPECT_EQ(support_edge(c, stands, options, 3).picture, 1.5);

@@ -494,7 +494,6 @@ class CandidateFinder::Search {
                                      ? thin_strip_beyond(centre, s.face_row, -step, s.near.h - s.near.d, s.orientation)
                                      : std::numeric_limits<double>::infinity();
       s.thin_strip_mm = std::min(beyond_target, beyond_face);
-      s.leaves_thin_strip = std::isfinite(s.thin_strip_mm);
     }
     const double length = (s.r1 - s.r0) * px_mm_;
     s.picture_mm = std::max(0.0, picture_.added_error(s.orientation, s.depth_mm, {s.c0, s.c1, s.r0, s.r1})) / (W_ * W_);

@@ -116,7 +116,7 @@ SupportEdge support_edge(const Candidate& c, const std::vector<std::uint8_t>& st
   for (const std::int32_t x : c.cuts) extra += (stands[static_cast<std::size_t>(x)] ? 10 : 1) * options.split_cost_mm;
   const double face_Y = c.near.h - c.near.d, target_Y = c.far.h - c.far.d;
   if (std::abs(target_Y - face_Y) < W - kFoldLineTolerance_mm) extra += options.short_support_cost_mm;
-  if (c.leaves_thin_strip) extra += options.thin_strip_cost_mm;
+  if (c.leaves_thin_strip()) extra += options.thin_strip_cost_mm;
   // A sixth of W: 0.5 mm at the default W = 3 mm, where a strip between two folds is a sliver.
   if (c.thin_strip_mm < W / 6) extra += options.sliver_strip_cost_mm;
   return {c.face, c.target, face_Y, target_Y, c.cost + extra, c.cost, c.cuts};

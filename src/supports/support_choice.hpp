@@ -35,10 +35,10 @@ struct Candidate {
   double picture_mm = 0;           // the error it adds to the picture, per W x W of plan (part of its cost)
   std::vector<std::int32_t> cuts;  // the faces it cuts in two
   int taken = 0;                   // rows of `face` the support takes, on its edge
-  // Whether it leaves `face` or `target`, at the block column's centre, a strip under W between its
-  // fold and a parallel one beyond.
-  bool leaves_thin_strip = false;
-  double thin_strip_mm = std::numeric_limits<double>::infinity();  // the narrowest such strip
+  // The strip under W it leaves `face` or `target`, at the block column's centre, between its fold
+  // and a parallel one beyond: the narrowest such, infinite where it leaves none.
+  double thin_strip_mm = std::numeric_limits<double>::infinity();
+  bool leaves_thin_strip() const { return thin_strip_mm != std::numeric_limits<double>::infinity(); }
 };
 
 // What the loop needs to know of a plan: each face's status and which of its sides are folded.
