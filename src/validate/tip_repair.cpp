@@ -219,14 +219,21 @@ std::size_t points_merged_in_files(const std::vector<PlanPolyline>& lines, doubl
 struct TipCutter {
   Analyzer& a;
   const TipRepairOptions& options;
+  TipCutter(Analyzer& analyzer, const TipRepairOptions& o) : a(analyzer), options(o) {}
 
-  struct Cut {
-    std::vector<PlanPolyline> lines;
-    int tips = 0;
+  // The tips' faces as labelled in the round: each with the face it comes from, and that face's
+  // label or the neighbour's it was given to.
+  struct Given {
+    Arrangement::Face_const_handle tip;
+    std::int32_t from;
   };
-  Cut run() {
-    Cut out;
-    if (a.narrowest.empty()) return out;  // no strip widths measured: nothing to part
+  std::vector<Given> given;
+  std::int32_t first_new = 0;
+
+  // Cuts the round's tips into the arrangement and gives each to a neighbour (see `settle`).
+  void run() {
+    first_new = static_cast<std::int32_t>(a.kind.size());
+    if (a.narrowest.empty()) return;  // no strip widths measured: nothing to part
     const FT W(options.min_strip_mm), wide = W + FT(options.margin_mm), reach(options.max_tip_mm);
     std::vector<Tip> tips;
     std::vector<bool> has_tip(a.faces.size(), false);  // one tip a face a round: along Y first
@@ -247,7 +254,6 @@ struct TipCutter {
         new_f->set_data(f->data());
       }
     } keep_labels(a.arr);
-    const auto first_new = static_cast<std::int32_t>(a.kind.size());
     // A cut ending a hair from a point of another line would meet it in a file: that tip stays.
     std::vector<std::pair<double, double>> points;
     for (auto v = a.arr.vertices_begin(); v != a.arr.vertices_end(); ++v)
@@ -317,8 +323,6 @@ struct TipCutter {
         return g.second == folds_between[{static_cast<std::int32_t>(tips[i].region), g.first}];
       });
     }
-    std::set<Arrangement::Face_const_handle> changed;
-    std::vector<std::pair<Arrangement::Face_const_handle, std::int32_t>> given;  // tip, its own face
     for (std::size_t i = 0; i < tips.size(); ++i) {
       if (!may_go[i]) continue;
       const Tip& tip = tips[i];
@@ -359,10 +363,35 @@ struct TipCutter {
       }
       if (best < 0) continue;
       a.arr.non_const_handle(*f)->set_data(best);
-      changed.insert(*f);
-      given.emplace_back(*f, static_cast<std::int32_t>(tip.region));
+      given.push_back({*f, static_cast<std::int32_t>(tip.region)});
     }
-    // A tip given to a face whose own tip went elsewhere may touch no other part of it: it goes back.
+    settle();
+  }
+
+  // The tips given away from or to the faces `held` go back to their own.
+  void take_back(const std::set<std::int32_t>& held) {
+    for (const auto& [t, from] : given)
+      if (held.contains(from) || held.contains(t->data())) a.arr.non_const_handle(t)->set_data(from);
+    settle();
+  }
+
+  int tips() const {
+    return static_cast<int>(std::ranges::count_if(given, [](const Given& g) { return g.tip->data() != g.from; }));
+  }
+
+  // The lines as the tips are given: those of a tip back with its own face drawn as they were.
+  std::vector<PlanPolyline> lines() {
+    std::set<Arrangement::Face_const_handle> changed;
+    for (const auto& [t, from] : given)
+      if (t->data() != from) changed.insert(t);
+    return lines_of(changed);
+  }
+
+ private:
+  // A tip given to a face whose own tip went elsewhere may touch no other part of it: it goes back.
+  void settle() {
+    std::set<Arrangement::Face_const_handle> tips;
+    for (const Given& g : given) tips.insert(g.tip);
     for (bool again = true; again;) {
       again = false;
       for (auto& [t, from] : given) {
@@ -372,24 +401,17 @@ struct TipCutter {
           auto he = *ccb;
           do {
             const Face other = he->twin()->face();
-            joined = joined || (other->data() == t->data() && !changed.contains(other));
+            joined = joined || (other->data() == t->data() && !tips.contains(other));
           } while (++he != *ccb && !joined);
         }
         if (!joined) a.arr.non_const_handle(t)->set_data(from), again = true;
       }
     }
-    for (const auto& [t, from] : given)
-      if (t->data() != from)
-        ++out.tips;
-      else
-        changed.erase(t);  // back as it was: its lines are drawn as they were
-    out.lines = lines_of(changed, first_new);
-    return out;
   }
 
   // The arrangement's lines: unchanged edges as they were drawn, those beside a changed face (or
   // new) by the faces either side.
-  std::vector<PlanPolyline> lines_of(const std::set<Arrangement::Face_const_handle>& changed, std::int32_t first_new) {
+  std::vector<PlanPolyline> lines_of(const std::set<Arrangement::Face_const_handle>& changed) {
     struct Segment {
       PlanPoint p, q;
       LineKind kind;
@@ -469,6 +491,21 @@ struct TipCutter {
   FT tolerance() const { return a.tolerance; }
 };
 
+// The faces of `before` with more narrow places after a round of tips (`after`, each of its regions
+// lying in the face `from` names of the cut arrangement, labelled as in `before`).
+std::set<std::int32_t> narrow_places_grew(const PlanAnalysis& before, const PlanAnalysis& after,
+                                          const std::vector<std::int32_t>& from) {
+  std::map<std::int32_t, int> change;
+  for (const PlanProblem& p : before.problems)
+    if (p.kind == PlanProblemKind::NarrowStrip && p.region >= 0) --change[p.region];
+  for (const PlanProblem& p : after.problems)
+    if (p.kind == PlanProblemKind::NarrowStrip && p.region >= 0) ++change[from[static_cast<std::size_t>(p.region)]];
+  std::set<std::int32_t> grew;
+  for (const auto& [face, n] : change)
+    if (n > 0) grew.insert(face);
+  return grew;
+}
+
 }  // namespace
 
 TipRepair blunt_narrow_tips(const std::vector<PlanPolyline>& lines, const TipRepairOptions& options,
@@ -488,28 +525,51 @@ TipRepair blunt_narrow_tips(const std::vector<PlanPolyline>& lines, const TipRep
   auto current = std::make_unique<Analyzer>(analysis);
   current->run(lines);
   for (const PlanRegion& region : current->result.regions) out.origin.push_back(region.inside);
+  // A round's tips as kept: the lines, their analysis, per region of it the face of the cut
+  // arrangement it lies in; none where the round is refused.
+  struct Kept {
+    std::vector<PlanPolyline> lines;
+    std::unique_ptr<Analyzer> analyzer;
+    std::vector<std::int32_t> from;
+    int tips = 0;
+  };
+  const auto keep_round = [&](TipCutter& cutter, const std::vector<PlanPolyline>& before) -> std::optional<Kept> {
+    const PlanAnalysis& was = cutter.a.result;
+    const double low = was.sheet.min_Y + was.main_fold_Y;  // the drawing's frame
+    for (int attempt = 0;; ++attempt) {
+      Kept kept{cutter.lines(), std::make_unique<Analyzer>(analysis), {}, cutter.tips()};
+      if (kept.tips == 0 || points_merged_in_files(kept.lines, low) > points_merged_in_files(before, low))
+        return std::nullopt;
+      kept.analyzer->run(kept.lines);
+      const PlanAnalysis& now = kept.analyzer->result;
+      if (!stands(now)) return std::nullopt;
+      std::vector<Point> insides;
+      for (const PlanRegion& region : now.regions) insides.emplace_back(region.inside.X, region.inside.Y);
+      for (const std::optional<Face>& f : faces_at(cutter.a.arr, insides)) kept.from.push_back(f ? (*f)->data() : -1);
+      if (narrow(now) < narrow(was) && (!keep || keep(kept.lines, now))) return kept;
+      // Refused: the tips from or to the faces that now have more places than before go back, and
+      // the rest are tried again.
+      const std::set<std::int32_t> grew = narrow_places_grew(was, now, kept.from);
+      if (attempt == options.retries || grew.empty()) return std::nullopt;
+      cutter.take_back(grew);
+      if (cutter.tips() == kept.tips) return std::nullopt;
+    }
+  };
   for (int round = 0; round < options.rounds && narrow(current->result) > 0; ++round) {
-    TipCutter::Cut cut = TipCutter{*current, options}.run();
-    const double low = current->result.sheet.min_Y + current->result.main_fold_Y;  // the drawing's frame
-    if (cut.tips == 0 || points_merged_in_files(cut.lines, low) > points_merged_in_files(out.lines, low)) break;
-    auto next = std::make_unique<Analyzer>(analysis);
-    next->run(cut.lines);
-    if (!stands(next->result) || narrow(next->result) >= narrow(current->result) ||
-        (keep && !keep(cut.lines, next->result)))
-      break;
+    TipCutter cutter{*current, options};
+    cutter.run();
+    std::optional<Kept> kept = keep_round(cutter, out.lines);
+    if (!kept) break;
     // Each new region comes from the region of the cut arrangement its inside point lies in.
-    std::vector<Point> insides;
-    for (const PlanRegion& region : next->result.regions) insides.emplace_back(region.inside.X, region.inside.Y);
-    const std::vector<std::optional<Face>> found = faces_at(current->arr, insides);
     std::vector<PlanPoint> origin;
-    for (std::size_t i = 0; i < found.size(); ++i)
-      origin.push_back(found[i] && (*found[i])->data() >= 0 ? out.origin[static_cast<std::size_t>((*found[i])->data())]
-                                                            : next->result.regions[i].inside);
+    for (std::size_t i = 0; i < kept->from.size(); ++i)
+      origin.push_back(kept->from[i] >= 0 ? out.origin[static_cast<std::size_t>(kept->from[i])]
+                                          : kept->analyzer->result.regions[i].inside);
     out.origin = std::move(origin);
-    out.lines = std::move(cut.lines);
-    out.tips += cut.tips;
+    out.lines = std::move(kept->lines);
+    out.tips += kept->tips;
     ++out.rounds;
-    current = std::move(next);
+    current = std::move(kept->analyzer);
   }
   out.analysis = std::move(current->result);
   return out;
