@@ -252,6 +252,38 @@ TEST(Supports, ASupportLeavingItsFacesAStripUnderWBeforeTheirNextFoldSaysSo) {
   EXPECT_EQ(support_edge(c, stands, options, 3).picture, 1.5);
 }
 
+// A support whose block column reaches past the end of the face it holds over the back plane or
+// the floor is drawn only as far as the face's side, narrower than W: it says so and costs more.
+TEST(Supports, ASupportReachingPastItsFacesEndOverTheBackPlaneSaysSoAndCostsMore) {
+  const test::FloatingBoxPlan box;
+  int lo = INT_MAX, hi = -1;  // the front's columns
+  for (int r = 0; r < box.raster_plan.face.rows; ++r)
+    for (int c = 0; c < box.raster_plan.face.cols; ++c)
+      if (box.raster_plan.face(c, r) == box.front) lo = std::min(lo, c), hi = std::max(hi, c);
+  ASSERT_GE(hi + 1 - lo, box.raster_plan.block_px);
+  ASSERT_TRUE(lo % box.raster_plan.block_px != 0) << "a block column of the lattice sticks out at the left end";
+  int past = 0, inside = 0;
+  for (const Candidate& c :
+       support_candidates({box.maps, box.raster_plan, box.exact_plan, {}, {}}, {box.front}, SupportReach{})) {
+    if (c.face != box.front) continue;
+    const bool sticks_out = c.c0 < lo || c.c1 > hi + 1;
+    EXPECT_EQ(c.past_end, sticks_out) << c.c0 << " " << c.c1;
+    ++(sticks_out ? past : inside);
+  }
+  EXPECT_GT(past, 0);
+  EXPECT_GE(inside, 20) << "every block column across the front's 90 mm";
+  // Its edge costs the past-end cost more; the picture's part stays the candidate's own.
+  SupportOptions options;
+  Candidate c;
+  c.face = 2, c.target = 3, c.cost = 1.5;
+  c.near = {20, 47.1}, c.far = {10, 47.1};
+  const std::vector<std::uint8_t> stands = {1, 1, 0, 0};
+  c.past_end = true;
+  EXPECT_GT(options.past_end_cost_mm, 0);
+  EXPECT_EQ(support_edge(c, stands, options, 3).cost, 1.5 + options.past_end_cost_mm);
+  EXPECT_EQ(support_edge(c, stands, options, 3).picture, 1.5);
+}
+
 // A face whose every pixel has gone to a neighbour (a whole crumb joined to it) has no edge left to
 // hold: it gets no candidate, and the other faces of the round get theirs.
 TEST(Supports, AFaceWithNoPixelsLeftHasNoEdgeToHold) {

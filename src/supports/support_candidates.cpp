@@ -167,6 +167,7 @@ class CandidateFinder::Search {
       double extra_cost;
     };
     std::vector<Start> starts;
+    const bool wide = hi + 1 - lo >= block_;  // a block fits between f's ends
     for (int c0 = std::max(0, lo) / block_ * block_; c0 <= hi && c0 + block_ <= face_.cols; c0 += block_)
       starts.push_back({c0, c0 + block_, 0});
     for (const int c0 : {lo, hi + 1 - block_})
@@ -187,6 +188,12 @@ class CandidateFinder::Search {
       const int centre = (c0 + c1) / 2;
       const int edge = up ? first_row(f, centre) : last_row(f, centre);
       if (edge < 0) continue;
+      // A block column reaching past f's end over the back plane or the floor there (not over
+      // another face of the model).
+      bool past_end = wide && (c0 < lo || c1 > hi + 1);
+      for (int c = c0; c < c1 && past_end; ++c)
+        if (c < lo || c > hi)
+          past_end = face_(c, edge) == kNoFace || face_(c, edge) == kBackFace || face_(c, edge) == kFloorFace;
       // The support may also start inside f, taking its first rows: between two thin slices the
       // fold onto the next one then lands inside it rather than beyond it, and neither is cut.
       const int inward = up ? 1 : -1;
@@ -212,6 +219,7 @@ class CandidateFinder::Search {
         for (Candidate& c : walk(start, column, memo)) {
           c.taken = taken;
           c.cost += extra_cost;
+          c.past_end = past_end;
           cuts_nothing |= c.cuts.empty();
           candidates.push_back(c);
         }

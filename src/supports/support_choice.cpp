@@ -119,6 +119,7 @@ SupportEdge support_edge(const Candidate& c, const std::vector<std::uint8_t>& st
   if (c.leaves_thin_strip()) extra += options.thin_strip_cost_mm;
   // A sixth of W: 0.5 mm at the default W = 3 mm, where a strip between two folds is a sliver.
   if (c.thin_strip_mm < W / 6) extra += options.sliver_strip_cost_mm;
+  if (c.past_end) extra += options.past_end_cost_mm;
   return {c.face, c.target, face_Y, target_Y, c.cost + extra, c.cost, c.cuts};
 }
 

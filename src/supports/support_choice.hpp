@@ -39,6 +39,9 @@ struct Candidate {
   // and a parallel one beyond: the narrowest such, infinite where it leaves none.
   double thin_strip_mm = std::numeric_limits<double>::infinity();
   bool leaves_thin_strip() const { return thin_strip_mm != std::numeric_limits<double>::infinity(); }
+  // Its block column reaches past the end of the face it holds (one at least W wide) over the back
+  // plane or the floor: the support is drawn only as far as that face's side, narrower than W.
+  bool past_end = false;
 };
 
 // What the loop needs to know of a plan: each face's status and which of its sides are folded.
