@@ -10,6 +10,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <tuple>
 #include <utility>
 
@@ -262,22 +263,26 @@ TEST(Supports, ASupportReachingPastItsFacesEndOverTheBackPlaneSaysSoAndCostsMore
       if (box.raster_plan.face(c, r) == box.front) lo = std::min(lo, c), hi = std::max(hi, c);
   ASSERT_GE(hi + 1 - lo, box.raster_plan.block_px);
   ASSERT_TRUE(lo % box.raster_plan.block_px != 0) << "a block column of the lattice sticks out at the left end";
-  int past = 0, inside = 0;
+  // The lattice's block at the left end sticks out 1 px over the back plane (above the front) and
+  // the floor (below it); the others, and the one flush with the left end, lie on the front.
+  std::set<int> past, on_face;
   for (const Candidate& c :
        support_candidates({box.maps, box.raster_plan, box.exact_plan, {}, {}}, {box.front}, SupportReach{})) {
     if (c.face != box.front) continue;
-    const bool sticks_out = c.c0 < lo || c.c1 > hi + 1;
-    EXPECT_EQ(c.past_end, sticks_out) << c.c0 << " " << c.c1;
-    ++(sticks_out ? past : inside);
+    EXPECT_EQ(c.c1 - c.c0, box.raster_plan.block_px);
+    EXPECT_EQ(c.past_end, c.c0 < lo || c.c1 > hi + 1) << c.c0 << " " << c.c1;
+    (c.past_end ? past : on_face).insert(c.c0);
   }
-  EXPECT_GT(past, 0);
-  EXPECT_GE(inside, 20) << "every block column across the front's 90 mm";
+  EXPECT_EQ(past, std::set<int>{lo / box.raster_plan.block_px * box.raster_plan.block_px});
+  EXPECT_GE(on_face.size(), 30u) << "the block columns across the front's 90 mm, and the two flush with its ends";
+  EXPECT_TRUE(on_face.contains(lo));
   // Its edge costs the past-end cost more; the picture's part stays the candidate's own.
   SupportOptions options;
   Candidate c;
   c.face = 2, c.target = 3, c.cost = 1.5;
   c.near = {20, 47.1}, c.far = {10, 47.1};
   const std::vector<std::uint8_t> stands = {1, 1, 0, 0};
+  EXPECT_EQ(support_edge(c, stands, options, 3).cost, 1.5);
   c.past_end = true;
   EXPECT_GT(options.past_end_cost_mm, 0);
   EXPECT_EQ(support_edge(c, stands, options, 3).cost, 1.5 + options.past_end_cost_mm);

@@ -189,8 +189,8 @@ class CandidateFinder::Search {
       const int edge = up ? first_row(f, centre) : last_row(f, centre);
       if (edge < 0) continue;
       // A block column reaching past f's end over the back plane or the floor there (not over
-      // another face of the model).
-      bool past_end = wide && (c0 < lo || c1 > hi + 1);
+      // another face of the model), less than a block of it over f (a corner's holds a block).
+      bool past_end = wide && std::min(c1, hi + 1) - std::max(c0, lo) < block_;
       for (int c = c0; c < c1 && past_end; ++c)
         if (c < lo || c > hi)
           past_end = face_(c, edge) == kNoFace || face_(c, edge) == kBackFace || face_(c, edge) == kFloorFace;

@@ -8,6 +8,7 @@
 #include <CGAL/Arr_observer.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -216,34 +217,28 @@ std::size_t points_merged_in_files(const std::vector<PlanPolyline>& lines, doubl
   return exact.size() - filed.size();
 }
 
-struct TipCutter {
-  Analyzer& a;
-  const TipRepairOptions& options;
-  TipCutter(Analyzer& analyzer, const TipRepairOptions& o) : a(analyzer), options(o) {}
+// One round of tips on an analysed plan's arrangement: `run` cuts them in and gives each to a
+// neighbour, `take_back` returns some, `lines` draws the plan as they are given.
+class TipCutter {
+ public:
+  TipCutter(Analyzer& analyzer, const TipRepairOptions& options)
+      : a_(analyzer), options_(options), first_new_(static_cast<std::int32_t>(analyzer.kind.size())) {}
 
-  // The tips' faces as labelled in the round: each with the face it comes from, and that face's
-  // label or the neighbour's it was given to.
-  struct Given {
-    Arrangement::Face_const_handle tip;
-    std::int32_t from;
-  };
-  std::vector<Given> given;
-  std::int32_t first_new = 0;
+  const Analyzer& analyzer() const { return a_; }
 
   // Cuts the round's tips into the arrangement and gives each to a neighbour (see `settle`).
   void run() {
-    first_new = static_cast<std::int32_t>(a.kind.size());
-    if (a.narrowest.empty()) return;  // no strip widths measured: nothing to part
-    const FT W(options.min_strip_mm), wide = W + FT(options.margin_mm), reach(options.max_tip_mm);
+    if (a_.narrowest.empty()) return;  // no strip widths measured: nothing to part
+    const FT W(options_.min_strip_mm), wide = W + FT(options_.margin_mm), reach(options_.max_tip_mm);
     std::vector<Tip> tips;
-    std::vector<bool> has_tip(a.faces.size(), false);  // one tip a face a round: along Y first
-    for (std::size_t r = 0; r < a.faces.size(); ++r) {
-      if (a.cut_out[r] || !a.place[r].placed) continue;
+    std::vector<bool> has_tip(a_.faces.size(), false);  // one tip a face a round: along Y first
+    for (std::size_t r = 0; r < a_.faces.size(); ++r) {
+      if (a_.cut_out[r] || !a_.place[r].placed) continue;
       for (const bool along_Y : {true, false}) {
         if (has_tip[r]) break;
-        const std::optional<Chord>& chord = a.narrowest[r][along_Y ? 0 : 1];  // the analysis's, at this W
+        const std::optional<Chord>& chord = a_.narrowest[r][along_Y ? 0 : 1];  // the analysis's, at this W
         if (!chord) continue;
-        if (std::optional<Tip> tip = tip_of(a.rings[r], r, along_Y, *chord, W, wide, reach))
+        if (std::optional<Tip> tip = tip_of(a_.rings[r], r, along_Y, *chord, W, wide, reach))
           tips.push_back(*tip), has_tip[r] = true;
       }
     }
@@ -253,10 +248,10 @@ struct TipCutter {
       void after_split_face(Arrangement::Face_handle f, Arrangement::Face_handle new_f, bool) override {
         new_f->set_data(f->data());
       }
-    } keep_labels(a.arr);
+    } keep_labels(a_.arr);
     // A cut ending a hair from a point of another line would meet it in a file: that tip stays.
     std::vector<std::pair<double, double>> points;
-    for (auto v = a.arr.vertices_begin(); v != a.arr.vertices_end(); ++v)
+    for (auto v = a_.arr.vertices_begin(); v != a_.arr.vertices_end(); ++v)
       points.emplace_back(exact::approx_x(v->point()), exact::approx_y(v->point()));
     std::ranges::sort(points);
     const auto near_a_point = [&](const Point& p) {
@@ -274,22 +269,22 @@ struct TipCutter {
     for (const Tip& tip : tips) {
       const Point p = tip.along_Y ? Point(tip.u, tip.v_lo) : Point(tip.v_lo, tip.u);
       const Point q = tip.along_Y ? Point(tip.u, tip.v_hi) : Point(tip.v_hi, tip.u);
-      a.kind.push_back(LineKind::Cut);
-      CGAL::insert(
-          a.arr, exact::Traits::Curve_2(exact::Kernel::Segment_2(p, q), static_cast<std::int32_t>(a.kind.size() - 1)));
+      a_.kind.push_back(LineKind::Cut);
+      CGAL::insert(a_.arr, exact::Traits::Curve_2(exact::Kernel::Segment_2(p, q),
+                                                  static_cast<std::int32_t>(a_.kind.size() - 1)));
     }
     keep_labels.detach();
     // Fold edges per pair of faces: a tip whose sides hold all of its face's folds with a
     // neighbour stays, or that neighbour would come loose.
     const auto is_fold = [&](Halfedge he) {
       for (const std::int32_t d : he->curve().data()) {
-        const LineKind k = a.kind[static_cast<std::size_t>(d)];
+        const LineKind k = a_.kind[static_cast<std::size_t>(d)];
         if (k == LineKind::Mountain || k == LineKind::Valley) return true;
       }
       return false;
     };
     std::map<std::pair<std::int32_t, std::int32_t>, int> folds_between;
-    for (auto e = a.arr.edges_begin(); e != a.arr.edges_end(); ++e) {
+    for (auto e = a_.arr.edges_begin(); e != a_.arr.edges_end(); ++e) {
       const Halfedge he = e;
       if (he->face()->is_unbounded() || he->twin()->face()->is_unbounded() || !is_fold(he)) continue;
       ++folds_between[{he->face()->data(), he->twin()->face()->data()}];
@@ -299,7 +294,7 @@ struct TipCutter {
     std::vector<Point> insides;
     for (const Tip& tip : tips)
       insides.push_back(tip.along_Y ? Point(tip.inside_u, tip.inside_v) : Point(tip.inside_v, tip.inside_u));
-    const std::vector<std::optional<Face>> tip_faces = faces_at(a.arr, insides);
+    const std::vector<std::optional<Face>> tip_faces = faces_at(a_.arr, insides);
     // Which tips may go, decided on the labels as they are before any goes.
     std::vector<bool> may_go(tips.size(), false);
     std::set<Arrangement::Face_const_handle> seen;
@@ -310,7 +305,7 @@ struct TipCutter {
       // long and `wide` across.
       double area = 0;
       for (const Ring& ring : rings_of(*f)) area += ring_area(ring);
-      if (!(area <= options.max_tip_mm * CGAL::to_double(wide)) || !(2 * area <= a.result.area_mm2[tips[i].region]))
+      if (!(area <= options_.max_tip_mm * CGAL::to_double(wide)) || !(2 * area <= a_.result.area_mm2[tips[i].region]))
         continue;
       std::map<std::int32_t, int> tip_folds;
       for (auto ccb = (*f)->outer_ccbs_begin(); ccb != (*f)->outer_ccbs_end(); ++ccb) {
@@ -328,7 +323,7 @@ struct TipCutter {
       const Tip& tip = tips[i];
       const Point& inside = insides[i];
       const std::optional<Face>& f = tip_faces[i];
-      const Place& own = a.place[tip.region];
+      const Place& own = a_.place[tip.region];
       const double Y = CGAL::to_double(inside.y());
       const double key = key_of_plane(own.orientation, CGAL::to_double(own.depth), Y);
       // A neighbour's plane must keep the tip on the card: a V(d) face's points at height Y + d >= 0,
@@ -353,48 +348,59 @@ struct TipCutter {
           const Arrangement::Face_const_handle other = he->twin()->face();
           const std::int32_t n = other->data();
           if (!other->is_unbounded() && n >= 0 && n != static_cast<std::int32_t>(tip.region) &&
-              !a.cut_out[static_cast<std::size_t>(n)] && a.place[static_cast<std::size_t>(n)].placed &&
-              keeps_on_card(a.place[static_cast<std::size_t>(n)])) {
-            const Place& theirs = a.place[static_cast<std::size_t>(n)];
+              !a_.cut_out[static_cast<std::size_t>(n)] && a_.place[static_cast<std::size_t>(n)].placed &&
+              keeps_on_card(a_.place[static_cast<std::size_t>(n)])) {
+            const Place& theirs = a_.place[static_cast<std::size_t>(n)];
             const double gap = std::abs(key_of_plane(theirs.orientation, CGAL::to_double(theirs.depth), Y) - key);
             if (gap < best_gap) best_gap = gap, best = n;
           }
         } while (++he != *ccb);
       }
       if (best < 0) continue;
-      a.arr.non_const_handle(*f)->set_data(best);
-      given.push_back({*f, static_cast<std::int32_t>(tip.region)});
+      a_.arr.non_const_handle(*f)->set_data(best);
+      given_.push_back({*f, static_cast<std::int32_t>(tip.region)});
     }
     settle();
   }
 
   // The tips given away from or to the faces `held` go back to their own.
   void take_back(const std::set<std::int32_t>& held) {
-    for (const auto& [t, from] : given)
-      if (held.contains(from) || held.contains(t->data())) a.arr.non_const_handle(t)->set_data(from);
+    for (const auto& [t, from] : given_)
+      if (held.contains(from) || held.contains(t->data())) a_.arr.non_const_handle(t)->set_data(from);
     settle();
   }
 
   int tips() const {
-    return static_cast<int>(std::ranges::count_if(given, [](const Given& g) { return g.tip->data() != g.from; }));
+    return static_cast<int>(std::ranges::count_if(given_, [](const Given& g) { return g.tip->data() != g.from; }));
   }
 
   // The lines as the tips are given: those of a tip back with its own face drawn as they were.
   std::vector<PlanPolyline> lines() {
     std::set<Arrangement::Face_const_handle> changed;
-    for (const auto& [t, from] : given)
+    for (const auto& [t, from] : given_)
       if (t->data() != from) changed.insert(t);
     return lines_of(changed);
   }
 
  private:
+  // The tips' faces as labelled in the round: each with the face it comes from, and that face's
+  // label or the neighbour's it was given to.
+  struct Given {
+    Arrangement::Face_const_handle tip;
+    std::int32_t from;
+  };
+  Analyzer& a_;
+  const TipRepairOptions& options_;
+  std::vector<Given> given_;
+  std::int32_t first_new_;  // the index of the round's first cut among the arrangement's lines
+
   // A tip given to a face whose own tip went elsewhere may touch no other part of it: it goes back.
   void settle() {
     std::set<Arrangement::Face_const_handle> tips;
-    for (const Given& g : given) tips.insert(g.tip);
+    for (const Given& g : given_) tips.insert(g.tip);
     for (bool again = true; again;) {
       again = false;
-      for (auto& [t, from] : given) {
+      for (auto& [t, from] : given_) {
         if (t->data() == from) continue;
         bool joined = false;
         for (auto ccb = t->outer_ccbs_begin(); ccb != t->outer_ccbs_end() && !joined; ++ccb) {
@@ -404,7 +410,7 @@ struct TipCutter {
             joined = joined || (other->data() == t->data() && !tips.contains(other));
           } while (++he != *ccb && !joined);
         }
-        if (!joined) a.arr.non_const_handle(t)->set_data(from), again = true;
+        if (!joined) a_.arr.non_const_handle(t)->set_data(from), again = true;
       }
     }
   }
@@ -418,31 +424,32 @@ struct TipCutter {
     };
     std::vector<Segment> segments;
     const auto point = [&](const Point& p) {
-      return PlanPoint{nearest_double(p.x()), nearest_double(p.y() + a.result.main_fold_Y)};
+      return PlanPoint{nearest_double(p.x()), nearest_double(p.y() + a_.result.main_fold_Y)};
     };
     const auto same = [](PlanPoint p, PlanPoint q) { return p.X == q.X && p.Y == q.Y; };
-    for (auto e = a.arr.edges_begin(); e != a.arr.edges_end(); ++e) {
+    for (auto e = a_.arr.edges_begin(); e != a_.arr.edges_end(); ++e) {
       Halfedge he = e;
       if (he->direction() != CGAL::ARR_LEFT_TO_RIGHT) he = he->twin();
       const Face up = he->face(), down = he->twin()->face();
       bool fresh = changed.contains(up) || changed.contains(down);
-      for (const std::int32_t d : he->curve().data()) fresh = fresh || d >= first_new;
+      for (const std::int32_t d : he->curve().data()) fresh = fresh || d >= first_new_;
       const PlanPoint p = point(he->source()->point()), q = point(he->target()->point());
       if (!fresh || up->is_unbounded() || down->is_unbounded()) {
         // Each kind once: the sheet's outline is there twice (the plan's and the one collect adds).
         std::set<LineKind> kinds;
         for (const std::int32_t d : he->curve().data())
-          if (d < first_new) kinds.insert(a.kind[static_cast<std::size_t>(d)]);
+          if (d < first_new_) kinds.insert(a_.kind[static_cast<std::size_t>(d)]);
         if (!same(p, q))
           for (const LineKind k : kinds) segments.push_back({p, q, k});
         continue;
       }
       if (up->data() == down->data()) continue;
-      const Place &above = a.place[static_cast<std::size_t>(up->data())],
-                  &below = a.place[static_cast<std::size_t>(down->data())];
-      LineKind k = a.cut_out[static_cast<std::size_t>(up->data())] || a.cut_out[static_cast<std::size_t>(down->data())]
-                       ? LineKind::CutOut
-                       : LineKind::Cut;
+      const Place &above = a_.place[static_cast<std::size_t>(up->data())],
+                  &below = a_.place[static_cast<std::size_t>(down->data())];
+      LineKind k =
+          a_.cut_out[static_cast<std::size_t>(up->data())] || a_.cut_out[static_cast<std::size_t>(down->data())]
+              ? LineKind::CutOut
+              : LineKind::Cut;
       if (k == LineKind::Cut && above.placed && below.placed && above.orientation != below.orientation &&
           he->source()->point().y() == he->target()->point().y() &&
           CGAL::abs(he->source()->point().y() - fold_line_Y(below.orientation, below.depth, above.depth)) <=
@@ -488,18 +495,21 @@ struct TipCutter {
     return lines;
   }
 
-  FT tolerance() const { return a.tolerance; }
+  FT tolerance() const { return a_.tolerance; }
 };
 
 // The faces of `before` with more narrow places after a round of tips (`after`, each of its regions
-// lying in the face `from` names of the cut arrangement, labelled as in `before`).
+// lying in the face `cut_face` names of the cut arrangement, labelled as in `before`; -1 for none).
 std::set<std::int32_t> narrow_places_grew(const PlanAnalysis& before, const PlanAnalysis& after,
-                                          const std::vector<std::int32_t>& from) {
+                                          const std::vector<std::int32_t>& cut_face) {
   std::map<std::int32_t, int> change;
   for (const PlanProblem& p : before.problems)
     if (p.kind == PlanProblemKind::NarrowStrip && p.region >= 0) --change[p.region];
   for (const PlanProblem& p : after.problems)
-    if (p.kind == PlanProblemKind::NarrowStrip && p.region >= 0) ++change[from[static_cast<std::size_t>(p.region)]];
+    if (p.kind == PlanProblemKind::NarrowStrip && p.region >= 0) {
+      assert(static_cast<std::size_t>(p.region) < cut_face.size());
+      if (const std::int32_t face = cut_face[static_cast<std::size_t>(p.region)]; face >= 0) ++change[face];
+    }
   std::set<std::int32_t> grew;
   for (const auto& [face, n] : change)
     if (n > 0) grew.insert(face);
@@ -530,12 +540,20 @@ TipRepair blunt_narrow_tips(const std::vector<PlanPolyline>& lines, const TipRep
   struct Kept {
     std::vector<PlanPolyline> lines;
     std::unique_ptr<Analyzer> analyzer;
-    std::vector<std::int32_t> from;
+    std::vector<std::int32_t> cut_face;
     int tips = 0;
   };
   const auto keep_round = [&](TipCutter& cutter, const std::vector<PlanPolyline>& before) -> std::optional<Kept> {
-    const PlanAnalysis& was = cutter.a.result;
+    const PlanAnalysis& was = cutter.analyzer().result;
     const double low = was.sheet.min_Y + was.main_fold_Y;  // the drawing's frame
+    const auto cut_faces = [&](const PlanAnalysis& now) {
+      std::vector<Point> insides;
+      for (const PlanRegion& region : now.regions) insides.emplace_back(region.inside.X, region.inside.Y);
+      std::vector<std::int32_t> faces;
+      for (const std::optional<Face>& f : faces_at(cutter.analyzer().arr, insides))
+        faces.push_back(f ? (*f)->data() : -1);
+      return faces;
+    };
     for (int attempt = 0;; ++attempt) {
       Kept kept{cutter.lines(), std::make_unique<Analyzer>(analysis), {}, cutter.tips()};
       if (kept.tips == 0 || points_merged_in_files(kept.lines, low) > points_merged_in_files(before, low))
@@ -543,28 +561,31 @@ TipRepair blunt_narrow_tips(const std::vector<PlanPolyline>& lines, const TipRep
       kept.analyzer->run(kept.lines);
       const PlanAnalysis& now = kept.analyzer->result;
       if (!stands(now)) return std::nullopt;
-      std::vector<Point> insides;
-      for (const PlanRegion& region : now.regions) insides.emplace_back(region.inside.X, region.inside.Y);
-      for (const std::optional<Face>& f : faces_at(cutter.a.arr, insides)) kept.from.push_back(f ? (*f)->data() : -1);
-      if (narrow(now) < narrow(was) && (!keep || keep(kept.lines, now))) return kept;
+      const bool better = narrow(now) < narrow(was) && (!keep || keep(kept.lines, now));
+      if (!better && attempt >= options.retries) return std::nullopt;
+      kept.cut_face = cut_faces(now);
+      if (better) return kept;
       // Refused: the tips from or to the faces that now have more places than before go back, and
       // the rest are tried again.
-      const std::set<std::int32_t> grew = narrow_places_grew(was, now, kept.from);
-      if (attempt == options.retries || grew.empty()) return std::nullopt;
+      const std::set<std::int32_t> grew = narrow_places_grew(was, now, kept.cut_face);
+      if (grew.empty()) return std::nullopt;
       cutter.take_back(grew);
       if (cutter.tips() == kept.tips) return std::nullopt;
     }
   };
   for (int round = 0; round < options.rounds && narrow(current->result) > 0; ++round) {
-    TipCutter cutter{*current, options};
-    cutter.run();
-    std::optional<Kept> kept = keep_round(cutter, out.lines);
+    std::optional<Kept> kept;
+    {
+      TipCutter cutter(*current, options);  // it cuts `current`'s arrangement: gone with it below
+      cutter.run();
+      kept = keep_round(cutter, out.lines);
+    }
     if (!kept) break;
     // Each new region comes from the region of the cut arrangement its inside point lies in.
     std::vector<PlanPoint> origin;
-    for (std::size_t i = 0; i < kept->from.size(); ++i)
-      origin.push_back(kept->from[i] >= 0 ? out.origin[static_cast<std::size_t>(kept->from[i])]
-                                          : kept->analyzer->result.regions[i].inside);
+    for (std::size_t i = 0; i < kept->cut_face.size(); ++i)
+      origin.push_back(kept->cut_face[i] >= 0 ? out.origin[static_cast<std::size_t>(kept->cut_face[i])]
+                                              : kept->analyzer->result.regions[i].inside);
     out.origin = std::move(origin);
     out.lines = std::move(kept->lines);
     out.tips += kept->tips;
