@@ -53,7 +53,7 @@ struct SupportOptions {
   // A support whose block column reaches past the end of the face it holds, over the back plane or
   // the floor, is drawn only as far as the face's side, narrower than W (seedlike/wedge: 22 of its
   // 23 places under W): it costs this much more. Over the 37 models at W = 3 mm, places under W
-  // 4,504 -> 4,394, mean p95 1.782 -> 1.778 W (4 mm: 4,400, 1.775 W; 12 mm: 4,399, 1.787 W; 30 mm:
+  // 4,504 -> 4,393, mean p95 1.782 -> 1.778 W (4 mm: 4,400, 1.775 W; 12 mm: 4,399, 1.787 W; 30 mm:
   // 4,413, 1.812 W; never taken where a block fits inside the face: 4,266, 1.892 W).
   double past_end_cost_mm = 8;
   // A face no support holds goes to a neighbour (or has its supports bounded by what that would
