@@ -173,6 +173,15 @@ TEST(Supports, RaysMeetFacesTheRasterPlanGainedSinceTheExactPlan) {
 // onto an H(20) band at Y = -27.1; a V face below the band makes its next fold at 20 - d. Where the
 // band reaches 2.9 mm past the support's fold, the candidate says so; where it reaches 5.9 mm, or
 // ends on the floor (a cut: no second fold), it does not. So on the face it holds.
+// A support from face 2 to face 3, 10 mm long (Y = -27.1 to -37.1), that costs the picture 1.5 and
+// cuts no face: the costs support_edge adds to it are its own.
+Candidate priced_candidate() {
+  Candidate c;
+  c.face = 2, c.target = 3, c.cost = 1.5;
+  c.near = {20, 47.1}, c.far = {10, 47.1};
+  return c;
+}
+
 TEST(Supports, ASupportLeavingItsFacesAStripUnderWBeforeTheirNextFoldSaysSo) {
   const test::FloatingBoxPlan box;
   const RasterMaps& maps = box.maps;
@@ -237,9 +246,7 @@ TEST(Supports, ASupportLeavingItsFacesAStripUnderWBeforeTheirNextFoldSaysSo) {
   for (const Candidate& c : up_from_front(4)) EXPECT_FALSE(c.leaves_thin_strip()) << c.c0;
   // Its ear costs the thin strip cost more; the picture's part stays the candidate's own.
   SupportOptions options;
-  Candidate c;
-  c.face = 2, c.target = 3, c.cost = 1.5;
-  c.near = {20, 47.1}, c.far = {10, 47.1};
+  Candidate c = priced_candidate();
   const std::vector<std::uint8_t> stands = {1, 1, 0, 0};
   EXPECT_EQ(support_edge(c, stands, options, 3).cost, 1.5);
   c.thin_strip_mm = 0.6;
@@ -278,9 +285,7 @@ TEST(Supports, ASupportReachingPastItsFacesEndOverTheBackPlaneSaysSoAndCostsMore
   EXPECT_TRUE(on_face.contains(lo));
   // Its edge costs the past-end cost more; the picture's part stays the candidate's own.
   SupportOptions options;
-  Candidate c;
-  c.face = 2, c.target = 3, c.cost = 1.5;
-  c.near = {20, 47.1}, c.far = {10, 47.1};
+  Candidate c = priced_candidate();
   const std::vector<std::uint8_t> stands = {1, 1, 0, 0};
   EXPECT_EQ(support_edge(c, stands, options, 3).cost, 1.5);
   c.past_end = true;
