@@ -101,8 +101,8 @@ void add_joined_folds(std::vector<FoldPiece> pieces, Input& in) {
       if (sp == sq && sp != CGAL::EQUAL) continue;
       if (sp == CGAL::EQUAL) crossings.push_back(p.x());
       if (sq == CGAL::EQUAL) crossings.push_back(q.x());
-      if (sp != CGAL::EQUAL && sq != CGAL::EQUAL)
-        crossings.push_back(p.x() + (q.x() - p.x()) * (Y - p.y()) / (q.y() - p.y()));
+      if (sp != CGAL::EQUAL && sq != CGAL::EQUAL)  // a vertical cut's X as it is: no number to build
+        crossings.push_back(p.x() == q.x() ? p.x() : p.x() + (q.x() - p.x()) * (Y - p.y()) / (q.y() - p.y()));
     }
     std::ranges::sort(crossings);
     // Whether a cut reaches the line within [a, b].
@@ -342,7 +342,8 @@ Point inside_point(const std::vector<Ring>& rings) {
   for (const Ring& ring : rings)
     for (std::size_t i = 0; i < ring.size(); ++i) {
       const Point &p = ring[i], &q = ring[(i + 1) % ring.size()];
-      if ((p.y() < y) != (q.y() < y)) xs.push_back(p.x() + (q.x() - p.x()) * (y - p.y()) / (q.y() - p.y()));
+      if ((p.y() < y) != (q.y() < y))
+        xs.push_back(p.x() == q.x() ? p.x() : p.x() + (q.x() - p.x()) * (y - p.y()) / (q.y() - p.y()));
     }
   std::sort(xs.begin(), xs.end());
   std::size_t best = 0;
@@ -395,7 +396,10 @@ std::optional<Chord> narrowest_chord(const std::vector<Ring>& rings, bool along_
     after.clear(), before.clear();
     for (const Edge* e : active) {
       if (e->u0 == e->u1) continue;  // along the line: both faces' sides come from the other edges
-      const FT v = u == e->u0 ? e->v0 : u == e->u1 ? e->v1 : e->v0 + (e->v1 - e->v0) * (u - e->u0) / (e->u1 - e->u0);
+      // An edge square to the line (most are) crosses it at its own v: no number to build.
+      const FT v = u == e->u0 || e->v0 == e->v1 ? e->v0
+                   : u == e->u1                 ? e->v1
+                                                : e->v0 + (e->v1 - e->v0) * (u - e->u0) / (e->u1 - e->u0);
       if (e->u0 <= u && u < e->u1) after.push_back(v);
       if (e->u0 < u && u <= e->u1) before.push_back(v);
     }
