@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -156,5 +157,12 @@ struct Analyzer {
 
   void finish();
 };
+
+/// The lines of an analysed plan's arrangement after faces were relabelled (the tips,
+/// tip_repair.cpp): edges beside no face of `changed` and of lines before `first_new` as they were
+/// drawn; the rest by the faces either side (a cut, a cut-out's cut, or a fold where two placed
+/// faces meet on their fold line). Segments of one kind are joined end to end where no other of
+/// that kind meets them.
+std::vector<PlanPolyline> arrangement_lines(const Analyzer& a, const std::set<Face>& changed, std::int32_t first_new);
 
 }  // namespace origamic::analysis

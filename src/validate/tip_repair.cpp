@@ -15,7 +15,6 @@
 #include <memory>
 #include <optional>
 #include <set>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -379,7 +378,7 @@ class TipCutter {
     std::set<Arrangement::Face_const_handle> changed;
     for (const auto& [t, from] : given_)
       if (t->data() != from) changed.insert(t);
-    return lines_of(changed);
+    return arrangement_lines(a_, changed, first_new_);
   }
 
  private:
@@ -414,88 +413,6 @@ class TipCutter {
       }
     }
   }
-
-  // The arrangement's lines: unchanged edges as they were drawn, those beside a changed face (or
-  // new) by the faces either side.
-  std::vector<PlanPolyline> lines_of(const std::set<Arrangement::Face_const_handle>& changed) {
-    struct Segment {
-      PlanPoint p, q;
-      LineKind kind;
-    };
-    std::vector<Segment> segments;
-    const auto point = [&](const Point& p) {
-      return PlanPoint{nearest_double(p.x()), nearest_double(p.y() + a_.result.main_fold_Y)};
-    };
-    const auto same = [](PlanPoint p, PlanPoint q) { return p.X == q.X && p.Y == q.Y; };
-    for (auto e = a_.arr.edges_begin(); e != a_.arr.edges_end(); ++e) {
-      Halfedge he = e;
-      if (he->direction() != CGAL::ARR_LEFT_TO_RIGHT) he = he->twin();
-      const Face up = he->face(), down = he->twin()->face();
-      bool fresh = changed.contains(up) || changed.contains(down);
-      for (const std::int32_t d : he->curve().data()) fresh = fresh || d >= first_new_;
-      const PlanPoint p = point(he->source()->point()), q = point(he->target()->point());
-      if (!fresh || up->is_unbounded() || down->is_unbounded()) {
-        // Each kind once: the sheet's outline is there twice (the plan's and the one collect adds).
-        std::set<LineKind> kinds;
-        for (const std::int32_t d : he->curve().data())
-          if (d < first_new_) kinds.insert(a_.kind[static_cast<std::size_t>(d)]);
-        if (!same(p, q))
-          for (const LineKind k : kinds) segments.push_back({p, q, k});
-        continue;
-      }
-      if (up->data() == down->data()) continue;
-      const Place &above = a_.place[static_cast<std::size_t>(up->data())],
-                  &below = a_.place[static_cast<std::size_t>(down->data())];
-      LineKind k =
-          a_.cut_out[static_cast<std::size_t>(up->data())] || a_.cut_out[static_cast<std::size_t>(down->data())]
-              ? LineKind::CutOut
-              : LineKind::Cut;
-      if (k == LineKind::Cut && above.placed && below.placed && above.orientation != below.orientation &&
-          he->source()->point().y() == he->target()->point().y() &&
-          CGAL::abs(he->source()->point().y() - fold_line_Y(below.orientation, below.depth, above.depth)) <=
-              tolerance())
-        k = below.orientation == Orientation::V ? LineKind::Mountain : LineKind::Valley;
-      if (!same(p, q)) segments.push_back({p, q, k});
-    }
-    // Segments of one kind joined end to end where no other of that kind meets them.
-    std::map<std::pair<double, double>, std::vector<std::size_t>> at;
-    const auto key = [](PlanPoint p) { return std::pair{p.X, p.Y}; };
-    std::map<std::tuple<int, double, double>, int> degree;
-    for (const Segment& s : segments)
-      ++degree[{static_cast<int>(s.kind), s.p.X, s.p.Y}], ++degree[{static_cast<int>(s.kind), s.q.X, s.q.Y}];
-    for (std::size_t i = 0; i < segments.size(); ++i)
-      at[key(segments[i].p)].push_back(i), at[key(segments[i].q)].push_back(i);
-    std::vector<bool> used(segments.size(), false);
-    std::vector<PlanPolyline> lines;
-    const auto through = [&](PlanPoint p, LineKind k) { return degree[{static_cast<int>(k), p.X, p.Y}] == 2; };
-    const auto extend = [&](PlanPolyline& line) {
-      for (;;) {
-        const PlanPoint end = line.points.back();
-        if (!through(end, line.kind)) return;
-        std::optional<std::size_t> next;
-        for (const std::size_t j : at[key(end)])
-          if (!used[j] && segments[j].kind == line.kind) next = j;
-        if (!next) return;
-        used[*next] = true;
-        const Segment& s = segments[*next];
-        line.points.push_back(key(s.p) == key(end) ? s.q : s.p);
-      }
-    };
-    for (const bool loops : {false, true})
-      for (std::size_t i = 0; i < segments.size(); ++i) {
-        if (used[i]) continue;
-        const Segment& s = segments[i];
-        if (!loops && through(s.p, s.kind) && through(s.q, s.kind)) continue;  // inside a chain: start at its end
-        used[i] = true;
-        PlanPolyline line{s.kind, {s.p, s.q}};
-        if (!loops && through(s.p, s.kind)) std::swap(line.points[0], line.points[1]);
-        extend(line);
-        lines.push_back(std::move(line));
-      }
-    return lines;
-  }
-
-  FT tolerance() const { return a_.tolerance; }
 };
 
 // The faces of `before` with more narrow places after a round of tips (`after`, each of its regions
