@@ -192,8 +192,7 @@ class CandidateFinder::Search {
       // another face of the model), less than a block of it over f (a corner's holds a block).
       bool past_end = wide && std::min(c1, hi + 1) - std::max(c0, lo) < block_;
       for (int c = c0; c < c1 && past_end; ++c)
-        if (c < lo || c > hi)
-          past_end = face_(c, edge) == kNoFace || face_(c, edge) == kBackFace || face_(c, edge) == kFloorFace;
+        if (c < lo || c > hi) past_end = face_(c, edge) <= kFloorFace;  // the back plane, the floor, no face
       // The support may also start inside f, taking its first rows: between two thin slices the
       // fold onto the next one then lands inside it rather than beyond it, and neither is cut.
       const int inward = up ? 1 : -1;
