@@ -149,6 +149,41 @@ TEST(ChainPoints, AJunctionMovesToWhereTheModelsEdgeMeetsTheLineBesideIt) {
   EXPECT_DOUBLE_EQ(on_fold.moved[0].Y, 7.1);
 }
 
+// Down the staircase's last column from its end, a straight run of 5 pixel edges (a support's side
+// below a wall's edge): the junction above it moves across it, along the row, onto the edge. Where
+// a fold ends the run below, the run's lower end follows along the fold, as far: the run stays
+// straight. Where no fold does, or the run keeps its contour, that end stays.
+TEST(ChainPoints, ARunWhoseJunctionMovedAcrossItTakesItsFoldsEndAlong) {
+  const StaircaseOnAnEdge s;
+  const LatticePoint top = s.row.corners.front();
+  Chain column{4, 5, {}};
+  for (int k = 0; k <= 5; ++k) column.corners.push_back({top.u, top.v + 2 * k});
+  const LatticePoint bottom = column.corners.back();
+  const std::vector<Chain> chains = {s.stairs, s.row, column};
+  const double fold_Y = s.lattice.Y(bottom.v) - 0.1;
+  const chains::JunctionMoves moves =
+      chains::junctions_on_breaks(chains, s.lattice, s.breaks(), {{}, {}, {.fold_Y = {std::nullopt, fold_Y}}});
+  ASSERT_EQ(moves.moved.size(), 2u);
+  const auto at = [&](LatticePoint corner) {
+    return std::ranges::find_if(
+        moves.moved, [&](const chains::MovedJunction& m) { return m.corner.u == corner.u && m.corner.v == corner.v; });
+  };
+  ASSERT_NE(at(top), moves.moved.end());
+  ASSERT_NE(at(bottom), moves.moved.end());
+  const double X = s.c - s.lattice.Y(top.v);  // the row meets the edge
+  EXPECT_NEAR(at(top)->X, X, 1e-9);
+  EXPECT_EQ(at(bottom)->X, at(top)->X);
+  EXPECT_EQ(at(bottom)->Y, fold_Y);
+  EXPECT_EQ(at(bottom)->on_fold_of, 2);
+  EXPECT_EQ(at(bottom)->u_on_lattice, -1);
+  for (const std::vector<chains::ChainEnds>& ends :
+       {std::vector<chains::ChainEnds>{{}, {}, {}}, {{}, {}, {.pinned = true, .fold_Y = {std::nullopt, fold_Y}}}}) {
+    const chains::JunctionMoves kept = chains::junctions_on_breaks(chains, s.lattice, s.breaks(), ends);
+    EXPECT_TRUE(std::ranges::none_of(
+        kept.moved, [&](const chains::MovedJunction& m) { return m.corner.u == bottom.u && m.corner.v == bottom.v; }));
+  }
+}
+
 // A lattice row whose pixel edges the picture breaks across on the row itself (a slice ending on a
 // crease of the model) is still that row beside the junction: the staircase's corner moves along
 // it as it does beside a row with no breaks.

@@ -186,6 +186,36 @@ TEST(ModelEdges, TheRoofEdgesOfAGableHouseAreDrawnOnTheirLines) {
   }
 }
 
+// A box 60 x 30 x 50 mm, square to the card, 30 mm in front of the back plane, its sides at X =
+// 40.1 and 100.1 (between pixel edges): its top folds back to the back plane over pixels of the
+// back plane, where the rays see no edge. The top's sides run on straight along the box's sides,
+// which the rays do see, to the valley fold on the back plane, and that fold ends on them: every
+// plan vertex within a pixel of a side lies on it, to a micrometre.
+TEST(ModelEdges, TheSidesOfABoxsTopRunStraightOnToTheBackPlane) {
+  const double x0 = 40.1, x1 = 100.1, d0 = 30, d1 = 60, height = 50;
+  const Plan plan = design_in_place(test::prism({{x0, d0}, {x1, d0}, {x1, d1}, {x0, d1}}, 0, height));
+  int on_sides = 0;
+  for (const PlanPolyline& line : plan.lines) {
+    if (line.kind == LineKind::Outline) continue;
+    for (const PlanPoint& p : line.points)
+      for (const double side : {x0, x1}) {
+        if (std::abs(p.X - side) > 0.25 || p.Y < height - d1 || p.Y > height) continue;
+        SCOPED_TRACE("vertex (" + std::to_string(p.X) + ", " + std::to_string(p.Y) + ")");
+        EXPECT_NEAR(p.X, side, 1e-3);
+        ++on_sides;
+      }
+  }
+  EXPECT_GE(on_sides, 4) << "each side's cut ends at the top's front fold and at the back plane's fold";
+  // The fold of the top onto the back plane, at Y = 50, runs from side to side.
+  bool back_fold = false;
+  for (const PlanPolyline& line : plan.lines)
+    if (line.kind == LineKind::Valley && line.points.front().Y == height && line.points.back().Y == height) {
+      const auto [lo, hi] = std::minmax(line.points.front().X, line.points.back().X);
+      back_fold = back_fold || (std::abs(lo - x0) <= 1e-3 && std::abs(hi - x1) <= 1e-3);
+    }
+  EXPECT_TRUE(back_fold);
+}
+
 // A slice ends where the model's depth crosses its level (seed §4.3): on a leaning, turned wall,
 // d = 50 + 0.2 (x - 60) - 0.15 h, those contours are straight lines slanting across the plan. Each
 // cut inside the wall is drawn on one of them, not on the pixels' staircase along it: the wall's

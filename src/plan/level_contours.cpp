@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <tuple>
 #include <utility>
 
@@ -45,6 +46,42 @@ Grid<std::int32_t> slice_map(const RasterMaps& maps, const Grid<std::int32_t>& f
       }
   });
   return slice;
+}
+
+// Along one line of pixel edges across the rows (`at(k)`: the fraction on edge k, for k in [0, n);
+// `boundary(k)`: whether two faces meet across it, and no third beside them), the edges of a
+// boundary with no break that run on from a straight model edge on the line take its fraction: a
+// run of kStraightRun edges or more on the boundary, broken at one fraction, next to them (on both
+// sides, at the same one). A box's top folding back to the back plane passes over the back plane's
+// pixels, where the rays see no edge: its sides then ran on the lattice, a pixel's fraction beside
+// the box's, and its fold onto the back plane ended on the lattice too, a jog in the cut and a
+// sliver beside it (the demo house: 13 places narrower than W -> 11; the 37 models at W = 3 mm:
+// 4,393 -> 4,390). Across the columns it made notches at slices' ends and was left out.
+template <typename At, typename Boundary>
+void extend_straight_breaks(int n, At at, Boundary boundary) {
+  constexpr int kStraightRun = 8;  // as the chains' runs drawn on the model's edge (chain_points.cpp)
+  const auto straight = [&](int from, int step) -> std::optional<float> {  // a run from `from` on, away
+    const float t = at(from);
+    if (std::isnan(t)) return std::nullopt;
+    int count = 0;
+    for (int k = from; k >= 0 && k < n && boundary(k) && at(k) == t; k += step) ++count;
+    return count >= kStraightRun ? std::optional<float>(t) : std::nullopt;
+  };
+  for (int k = 0; k < n;) {
+    if (!boundary(k) || !std::isnan(at(k))) {
+      ++k;
+      continue;
+    }
+    int end = k;  // the gap [k, end)
+    while (end < n && boundary(end) && std::isnan(at(end))) ++end;
+    const std::optional<float> before = k > 0 && boundary(k - 1) ? straight(k - 1, -1) : std::nullopt;
+    const std::optional<float> after = end < n && boundary(end) ? straight(end, 1) : std::nullopt;
+    const std::optional<float> t = before && after ? (*before == *after ? before : std::nullopt)
+                                   : before        ? before
+                                                   : after;
+    for (int m = k; t && m < end; ++m) at(m) = *t;
+    k = end;
+  }
 }
 
 }  // namespace
@@ -109,6 +146,13 @@ BreaksAndLevels breaks_and_levels(const RasterMaps& maps, const Grid<std::int32_
       if (s.near_highest < s.far_lowest) t = crossing(da, db, (s.near_highest + s.far_lowest) / 2);
     });
   });
+  for (int c = 0; c + 1 < face.cols; ++c)
+    extend_straight_breaks(
+        face.rows, [&](int r) -> float& { return out.right(c, r); },
+        [&](int r) {
+          const std::int32_t a = face(c, r), b = face(c + 1, r);
+          return a != b && only_these_beside(c, r, c + 1, r, a, b);
+        });
   return out;
 }
 
