@@ -84,21 +84,23 @@ TEST(LevelContours, TheMirrorImageGetsOneMinusEachFraction) {
     }
 }
 
-// A model face's straight side seen against the back plane for 9 pixel rows, broken a quarter pixel
+// A model face's straight side seen against the back plane for 8 pixel rows, broken a quarter pixel
 // into column 2, and below them the face's boundary with the back plane running on down the same
-// pixel edges for 5 rows where the rays see no edge (its top folding back over the back plane): 4 x
+// pixel edges for 6 rows where the rays see no edge (its top folding back over the back plane): 4 x
 // 14 pixels, the back plane in columns 0-1, the face in 2-3.
 struct SideRunningOn {
-  static constexpr int rows = 14, seen = 9;
-  RasterMaps maps = test::blank_maps({.cols = 4, .rows = rows, .px_per_mm = 4, .rows_above_fold = 0}, HitKind::Back);
-  Grid<std::int32_t> face{4, rows, kBackFace};
-  std::vector<RasterFace> faces = {{Orientation::V, 0}, {Orientation::H, 0}, {Orientation::V, 10}};
+  static constexpr int rows = 14, seen = 8;
+  RasterMaps maps;
+  RasterPlan plan;
   SideRunningOn() {
+    maps = test::blank_maps({.cols = 4, .rows = rows, .px_per_mm = 4, .rows_above_fold = 0}, HitKind::Back);
+    plan.face = Grid<std::int32_t>(4, rows, kBackFace);
+    plan.faces = {{Orientation::V, 0}, {Orientation::H, 0}, {Orientation::V, 10}};
     for (int r = 0; r < rows; ++r)
-      for (int c = 2; c < 4; ++c) face(c, r) = 2;
+      for (int c = 2; c < 4; ++c) plan.face(c, r) = 2;
     for (int r = 0; r < seen; ++r) maps.break_right(1, r) = 0.75f;
   }
-  BreaksAndLevels lines() const { return breaks_and_levels(maps, face, faces); }
+  BreaksAndLevels lines() const { return breaks_and_levels(maps, plan.face, plan.faces); }
 };
 
 TEST(LevelContours, AStraightModelEdgeRunsOnAlongTheBoundaryThatContinuesIt) {
@@ -108,27 +110,37 @@ TEST(LevelContours, AStraightModelEdgeRunsOnAlongTheBoundaryThatContinuesIt) {
   EXPECT_EQ(drawn(lines.right), s.rows) << "on that line only";
   EXPECT_EQ(drawn(lines.below), 0);
   const RasterMaps mirrored_maps = mirror_image(s.maps);
-  const RasterPlan mirrored_plan = mirror_image(RasterPlan{.face = s.face, .faces = s.faces});
+  const RasterPlan mirrored_plan = mirror_image(s.plan);
   const BreaksAndLevels mirrored = breaks_and_levels(mirrored_maps, mirrored_plan.face, mirrored_plan.faces);
   for (int r = 0; r < s.rows; ++r) EXPECT_EQ(mirrored.right(1, r), 0.25f) << "mirrored, row " << r;
   // Seen for 7 rows only, the edge may be a slice's end touching a crease: the rest stays.
   SideRunningOn shorter;
-  shorter.maps.break_right(1, 7) = shorter.maps.break_right(1, 8) = std::numeric_limits<float>::quiet_NaN();
-  EXPECT_TRUE(std::isnan(shorter.lines().right(1, 7)));
-  EXPECT_TRUE(std::isnan(shorter.lines().right(1, 13)));
+  shorter.maps.break_right(1, 7) = std::numeric_limits<float>::quiet_NaN();
+  for (const int r : {7, 13}) EXPECT_TRUE(std::isnan(shorter.lines().right(1, r))) << "row " << r;
   // Near a third face the boundary stays on the pixel edge, as a slice's end does.
   SideRunningOn third;
-  third.face(2, 12) = kFloorFace;
+  third.plan.face(2, 12) = kFloorFace;
   const BreaksAndLevels near = third.lines();
   EXPECT_EQ(near.right(1, 10), 0.75f);
   for (const int r : {11, 12, 13}) EXPECT_TRUE(std::isnan(near.right(1, r))) << "row " << r;
-  // Between two straight edges on the line, the gap takes theirs only if they agree.
-  SideRunningOn between;
-  for (int r = 0; r < 4; ++r) between.maps.break_right(1, r) = 0.5f;  // a run of 5 rows at 0.75 left
-  between.maps.break_right(1, 13) = 0.75f;
-  EXPECT_TRUE(std::isnan(between.lines().right(1, 9))) << "a run of 5 rows on one side, 1 on the other";
-  for (int r = 0; r < 4; ++r) between.maps.break_right(1, r) = 0.75f;
-  EXPECT_EQ(between.lines().right(1, 9), 0.75f);
+}
+
+// Between two straight edges on one column of pixel edges, a gap takes their fraction if they
+// agree, and is left to the junction between them if not: 30 rows, edges of 8 rows at the top and
+// the bottom, 14 rows between.
+TEST(LevelContours, AGapBetweenTwoStraightEdgesTakesTheirFractionOnlyIfTheyAgree) {
+  SideRunningOn s;
+  constexpr int rows = 30;
+  s.maps = test::blank_maps({.cols = 4, .rows = rows, .px_per_mm = 4, .rows_above_fold = 0}, HitKind::Back);
+  s.plan.face = Grid<std::int32_t>(4, rows, kBackFace);
+  for (int r = 0; r < rows; ++r)
+    for (int c = 2; c < 4; ++c) s.plan.face(c, r) = 2;
+  for (int r = 0; r < 8; ++r) s.maps.break_right(1, r) = s.maps.break_right(1, rows - 1 - r) = 0.75f;
+  for (int r = 8; r < rows - 8; ++r) EXPECT_EQ(s.lines().right(1, r), 0.75f) << "row " << r;
+  for (int r = rows - 8; r < rows; ++r) s.maps.break_right(1, r) = 0.5f;
+  const BreaksAndLevels apart = s.lines();
+  for (int r = 8; r < rows - 8; ++r) EXPECT_TRUE(std::isnan(apart.right(1, r))) << "row " << r;
+  EXPECT_EQ(apart.right(1, rows - 1), 0.5f);
 }
 
 }  // namespace

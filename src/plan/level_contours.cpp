@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "level_contours.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -48,23 +50,28 @@ Grid<std::int32_t> slice_map(const RasterMaps& maps, const Grid<std::int32_t>& f
   return slice;
 }
 
-// Along one line of pixel edges across the rows (`at(k)`: the fraction on edge k, for k in [0, n);
-// `boundary(k)`: whether two faces meet across it, and no third beside them), the edges of a
-// boundary with no break that run on from a straight model edge on the line take its fraction: a
-// run of kStraightRun edges or more on the boundary, broken at one fraction, next to them (on both
-// sides, at the same one). A box's top folding back to the back plane passes over the back plane's
-// pixels, where the rays see no edge: its sides then ran on the lattice, a pixel's fraction beside
-// the box's, and its fold onto the back plane ended on the lattice too, a jog in the cut and a
-// sliver beside it (the demo house: 13 places narrower than W -> 11; the 37 models at W = 3 mm:
-// 4,393 -> 4,390). Across the columns it made notches at slices' ends and was left out.
-template <typename At, typename Boundary>
-void extend_straight_breaks(int n, At at, Boundary boundary) {
-  constexpr int kStraightRun = 8;  // as the chains' runs drawn on the model's edge (chain_points.cpp)
+// Along one column of pixel edges (edge k between the pixels of row k, for k in [0, n): `seen(k)`,
+// the picture's break there, NaN where the rays saw none; `at(k)`, the fraction drawn there;
+// `boundary(k)`, whether two faces meet across it and no third lies beside them), the edges of a
+// boundary with neither a break nor a level that run on from a straight model edge take its
+// fraction: a run of kStraightRun or more edges of the boundary that the picture breaks across at
+// one fraction, next to them (on both sides, at the same one: two edges meeting there leave it to
+// the junction). A box's top folding back to the back plane passes over the back plane's pixels,
+// where the rays see no edge: its sides ran on the lattice there, a pixel's fraction beside the
+// box's, and its fold onto the back plane ended on the lattice, a jog in the cut and a sliver beside
+// it (the demo house: 13 places narrower than W -> 11; the 37 models at W = 3 mm: 4,393 -> 4,390).
+// Along the rows the same made notches at slices' ends and was left out (the half cylinder 14 -> 23
+// places), as was filling beside a third face.
+template <typename Seen, typename At, typename Boundary>
+void extend_straight_breaks(int n, Seen seen, At at, Boundary boundary) {
+  // As the chains drawn on the model's edge (kMinBreakRun, chain_points.cpp): a shorter run is no
+  // edge a chain would follow.
+  constexpr int kStraightRun = 8;
   const auto straight = [&](int from, int step) -> std::optional<float> {  // a run from `from` on, away
-    const float t = at(from);
+    const float t = seen(from);
     if (std::isnan(t)) return std::nullopt;
     int count = 0;
-    for (int k = from; k >= 0 && k < n && boundary(k) && at(k) == t; k += step) ++count;
+    for (int k = from; k >= 0 && k < n && boundary(k) && seen(k) == t; k += step) ++count;
     return count >= kStraightRun ? std::optional<float>(t) : std::nullopt;
   };
   for (int k = 0; k < n;) {
@@ -146,13 +153,15 @@ BreaksAndLevels breaks_and_levels(const RasterMaps& maps, const Grid<std::int32_
       if (s.near_highest < s.far_lowest) t = crossing(da, db, (s.near_highest + s.far_lowest) / 2);
     });
   });
-  for (int c = 0; c + 1 < face.cols; ++c)
+  // Columns in parallel: each reads the picture's breaks and writes its own edges.
+  tbb::parallel_for(0, face.cols - 1, [&](int c) {
     extend_straight_breaks(
-        face.rows, [&](int r) -> float& { return out.right(c, r); },
+        face.rows, [&](int r) { return maps.break_right(c, r); }, [&](int r) -> float& { return out.right(c, r); },
         [&](int r) {
           const std::int32_t a = face(c, r), b = face(c + 1, r);
           return a != b && only_these_beside(c, r, c + 1, r, a, b);
         });
+  });
   return out;
 }
 

@@ -25,11 +25,12 @@ struct BreaksAndLevels {
 /// contour: where the model's depth (d between V slices, h between H slices) crosses, linearly
 /// between the two centres, the level the slicing cut them at, taken as halfway between the highest
 /// depth on the nearer slice's side of their boundary and the lowest on the farther's (none where
-/// those overlap: slices of two segments). Where a boundary with neither runs on along a column's
-/// edge from a straight model edge there (8 edges or more broken at one fraction), it takes that
-/// fraction: a box's top folding back over the back plane's pixels keeps the box's side. Within a
-/// pixel of a third face the chain stays on the pixel edge, where the other lines end. A mirrored
-/// plan (maps and face map) gets 1 - t exactly.
+/// those overlap: slices of two segments). Where a boundary with no break and no level runs on down
+/// a column of pixel edges from a straight model edge (8 edges or more the picture breaks across at
+/// one fraction, on one side of it, or on both at the same), it takes that fraction: a box's top
+/// folding back over the back plane's pixels keeps the box's side. Within a pixel of a third face
+/// the chain stays on the pixel edge, where the other lines end. A mirrored plan (maps and face map)
+/// gets 1 - t exactly.
 /// \pre face has the maps' size and its ids index faces.
 BreaksAndLevels breaks_and_levels(const RasterMaps& maps, const Grid<std::int32_t>& face,
                                   const std::vector<RasterFace>& faces);

@@ -7,11 +7,10 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
-#include <map>
 #include <optional>
 #include <utility>
 
-#include "union_find.hpp"
+#include "chain_legs.hpp"
 
 namespace origamic::chains {
 namespace {
@@ -19,12 +18,6 @@ namespace {
 // A chain's first edges on the picture's break are a straight leg if they lie within this of one
 // line (refined points on a straight model edge scatter about 1e-4 mm: float rays, 1/1024 pixel).
 constexpr double kLegStraightness_mm = 0.01;
-// Two legs meet in a junction only if they cross at 15 degrees or more: nearly parallel legs (one
-// edge of the model on both sides of the main fold) place it poorly.
-constexpr double kLegMinSine = 0.25;
-// A junction moves at most this far: the model's edge passes within half a pixel of every
-// refined point, and the junction's corner within a pixel's diagonal of the edges' meeting point.
-constexpr double kJunctionMove_px = 1.0;
 // Runs of fewer edges on breaks are not drawn on them (see simplified). Drawing every break left
 // prim_cylinder 24 places narrower than W where the lattice left 9 (its 22.5-degree creases touched
 // by slices' ends); on the 37 models runs of 4, 8 and 16 leave 6,152, 6,129 and 6,130 (the lattice
@@ -53,14 +46,7 @@ ChainPoint edge_point(LatticePoint a, LatticePoint b, const LatticeScale& lattic
   return point;
 }
 
-// A chain's straight start from one of its ends.
-struct Leg {
-  double X, Y;    // a point of the line
-  double dx, dy;  // its unit direction
-  bool on_break;  // the line is the model's edge; otherwise a lattice line through `through`
-  LatticePoint through;
-  std::int32_t fold_chain = -1;  // the line is this chain's fold line (it snaps onto it there)
-};
+}  // namespace
 
 // The chain's leg at its front (or back): its first edges along one lattice line, or else their
 // points on the picture's break, if they lie on one line (a model edge).
@@ -99,75 +85,7 @@ bool same(LatticePoint a, LatticePoint b) { return a.u == b.u && a.v == b.v; }
 
 bool is_loop(const Chain& chain) { return same(chain.corners.front(), chain.corners.back()); }
 
-// Where the two legs most across each other meet, one of them on a break, if they cross at
-// kLegMinSine or more; on a lattice leg's line exactly. Where a chain snaps onto its fold at the
-// junction, on that fold's line: the junction then is the fold's end (and another fold ending
-// there meets it by a connector, as ever).
-std::optional<MovedJunction> meeting_point(const std::vector<Leg>& legs) {
-  const auto folds = std::ranges::count_if(legs, [](const Leg& leg) { return leg.fold_chain >= 0; });
-  double best_sine = kLegMinSine;
-  std::optional<MovedJunction> best;
-  for (const Leg& p : legs)
-    for (const Leg& q : legs) {
-      if (!p.on_break || &p == &q || (folds > 0 && q.fold_chain < 0)) continue;
-      const double sine = p.dx * q.dy - p.dy * q.dx;
-      if (!(std::abs(sine) > best_sine)) continue;
-      const double t = ((q.X - p.X) * q.dy - (q.Y - p.Y) * q.dx) / sine;
-      MovedJunction at{{}, p.X + t * p.dx, p.Y + t * p.dy};
-      if (q.fold_chain >= 0)
-        at.Y = q.Y, at.on_fold_of = q.fold_chain;
-      else if (!q.on_break)
-        (q.dy == 0 ? at.v_on_lattice : at.u_on_lattice) = q.dy == 0 ? q.through.v : q.through.u;
-      best_sine = std::abs(sine);
-      best = at;
-    }
-  return best;
-}
-
-// The junctions of junctions_on_breaks: per chain the clusters its ends are in (a loop's: none),
-// per cluster the junctions in it, the legs meeting there, whether it is held, where it moves.
-struct Clusters {
-  std::vector<std::array<std::size_t, 2>> of_chain;
-  std::vector<std::vector<LatticePoint>> members;
-  std::vector<std::vector<Leg>> legs;
-  std::vector<bool> held;
-  std::vector<std::optional<MovedJunction>> moved_to;
-};
-
-// A straight lattice run whose junction at one end moved across it onto the model's edge takes its
-// other end along where that end is a fold's: along the fold's line, as far, so that the run stays
-// straight and square to the fold. A support's side below a wall's edge, ending on the main fold,
-// slanted from the wall's edge to the fold's end on the lattice, a pixel's fraction over, and left
-// slivers either side (the demo house: 11 places narrower than W -> 8; the 37 models at W = 3 mm:
-// 4,390 -> 4,391, their likeness the same. Taking a lattice line's end along too, not only a fold's,
-// made arch_city_block's supports choose otherwise: p95 3.3 -> 4.7 W).
-void follow_across_runs(const std::vector<Chain>& chains, const std::vector<ChainEnds>& ends,
-                        const LatticeScale& lattice, Clusters& clusters) {
-  for (bool moved = true; moved;) {
-    moved = false;
-    for (std::size_t i = 0; i < chains.size(); ++i) {
-      const std::vector<LatticePoint>& corners = chains[i].corners;
-      const LatticePoint first = corners.front();
-      if (corners.size() < 3 || same(first, corners.back()) || ends[i].pinned) continue;
-      // Along Y (folds run along X), on one lattice column.
-      if (!std::ranges::all_of(corners, [&](LatticePoint p) { return p.u == first.u; })) continue;
-      const auto [front, back] = clusters.of_chain[i];
-      for (const auto& [from, to] : {std::pair{front, back}, std::pair{back, front}}) {
-        if (from == to || !clusters.moved_to[from] || clusters.moved_to[to] || clusters.held[to]) continue;
-        const MovedJunction& m = *clusters.moved_to[from];
-        const auto fold = std::ranges::find_if(clusters.legs[to], [](const Leg& leg) { return leg.fold_chain >= 0; });
-        if (std::abs(m.X - lattice.X(first.u)) < kLeastMove_mm || fold == clusters.legs[to].end()) continue;
-        const MovedJunction at{{}, m.X, fold->Y, -1, -1, fold->fold_chain};
-        if (!std::ranges::all_of(clusters.members[to], [&](LatticePoint p) {
-              return std::hypot(at.X - lattice.X(p.u), at.Y - lattice.Y(p.v)) <= kJunctionMove_px * lattice.px_mm;
-            }))
-          continue;
-        clusters.moved_to[to] = at;
-        moved = true;
-      }
-    }
-  }
-}
+namespace {
 
 // Where a run of points on the model's edge meets a straight run along one lattice line (a support's
 // side leaving a roof's edge), the corner between them moves onto the edge: the two lines' meeting
@@ -413,75 +331,6 @@ std::optional<double> leg_meets_line(const Chain& chain, bool front, double Y, c
   const LatticePoint end = front ? chain.corners.front() : chain.corners.back();
   if (!(std::hypot(X - lattice.X(end.u), Y - lattice.Y(end.v)) <= kFoldEndMove_px * lattice.px_mm)) return std::nullopt;
   return X;
-}
-
-JunctionMoves junctions_on_breaks(const std::vector<Chain>& chains, const LatticeScale& lattice,
-                                  const PictureBreaks& breaks, const std::vector<ChainEnds>& ends) {
-  assert(ends.size() == chains.size());
-  JunctionMoves result;
-  result.collapsed.assign(chains.size(), false);
-  if (breaks.right.size() == 0) return result;
-  // Junctions one pixel edge apart are one place on the model's edge (where it crosses the main
-  // fold, say, between the back plane and the floor): the short chains between them form clusters.
-  std::map<std::pair<int, int>, std::int32_t> junction_of;
-  std::vector<LatticePoint> corner_of;
-  const auto id = [&](LatticePoint p) {
-    const auto [it, fresh] = junction_of.try_emplace({p.u, p.v}, static_cast<std::int32_t>(corner_of.size()));
-    if (fresh) corner_of.push_back(p);
-    return it->second;
-  };
-  for (const Chain& chain : chains)
-    if (!is_loop(chain)) id(chain.corners.front()), id(chain.corners.back());
-  UnionFind<std::int32_t> union_of(corner_of.size());
-  const auto is_short = [](const Chain& chain) { return chain.corners.size() < 3; };
-  for (const Chain& chain : chains)
-    if (!is_loop(chain) && is_short(chain)) union_of.join(id(chain.corners.front()), id(chain.corners.back()));
-  const auto cluster = [&](LatticePoint p) { return static_cast<std::size_t>(union_of.root(id(p))); };
-  Clusters clusters{std::vector<std::array<std::size_t, 2>>(chains.size()),
-                    std::vector<std::vector<LatticePoint>>(corner_of.size()),
-                    std::vector<std::vector<Leg>>(corner_of.size()), std::vector<bool>(corner_of.size(), false),
-                    std::vector<std::optional<MovedJunction>>(corner_of.size())};
-  for (std::size_t j = 0; j < corner_of.size(); ++j) clusters.members[cluster(corner_of[j])].push_back(corner_of[j]);
-  for (std::size_t i = 0; i < chains.size(); ++i) {
-    const Chain& chain = chains[i];
-    if (is_loop(chain)) continue;
-    clusters.of_chain[i] = {cluster(chain.corners.front()), cluster(chain.corners.back())};
-    for (const bool front : {true, false}) {
-      const LatticePoint end = front ? chain.corners.front() : chain.corners.back();
-      const std::size_t c = cluster(end);
-      if (ends[i].pinned) clusters.held[c] = true;
-      if (const std::optional<double> fold_Y = ends[i].fold_Y[front ? 0 : 1])
-        clusters.legs[c].push_back({lattice.X(end.u), *fold_Y, 1, 0, false, end, static_cast<std::int32_t>(i)});
-      else if (const std::optional<Leg> leg = leg_of(chain, front, lattice, breaks))
-        clusters.legs[c].push_back(*leg);
-    }
-  }
-  // A cluster moves whole or not at all; by a pixel at most, and not by the rays' rounding alone.
-  const auto moves_by = [&](std::size_t c, const MovedJunction& at) {
-    double farthest = 0;
-    for (const LatticePoint p : clusters.members[c])
-      farthest = std::max(farthest, std::hypot(at.X - lattice.X(p.u), at.Y - lattice.Y(p.v)));
-    return farthest;
-  };
-  for (std::size_t c = 0; c < corner_of.size(); ++c) {
-    if (clusters.members[c].empty() || clusters.held[c]) continue;
-    const std::optional<MovedJunction> at = meeting_point(clusters.legs[c]);
-    if (at && moves_by(c, *at) <= kJunctionMove_px * lattice.px_mm && moves_by(c, *at) >= kLeastMove_mm)
-      clusters.moved_to[c] = at;
-  }
-  follow_across_runs(chains, ends, lattice, clusters);
-  for (std::size_t j = 0; j < corner_of.size(); ++j)
-    if (const auto& at = clusters.moved_to[cluster(corner_of[j])]) {
-      MovedJunction moved = *at;
-      moved.corner = corner_of[j];
-      result.moved.push_back(moved);
-    }
-  for (std::size_t i = 0; i < chains.size(); ++i) {
-    const Chain& chain = chains[i];
-    if (is_loop(chain) || !is_short(chain)) continue;
-    result.collapsed[i] = clusters.moved_to[cluster(chain.corners.front())].has_value();
-  }
-  return result;
 }
 
 DrawnChain simplified(const Chain& chain, const LatticeScale& lattice, const PictureBreaks& breaks,
