@@ -126,8 +126,7 @@ TEST(CliValidate, DesignedPlanValidatesWithTheDesignsCounts) {
 // wrote, read back: the same places, widths, ends and folds apart, in the same order, to the last
 // bit (it measures its lines as the file holds them, Y from the sheet's bottom edge). Measured on
 // its lines as computed, seedlike/wedge had 25 places where its DXF had 21: steps of 7e-15 mm
-// between a fold on h - d and a support's corner on the pixel lattice, which no file has. (Its
-// supports no longer reach past its end: 1 place now.)
+// between a fold on h - d and a support's corner on the pixel lattice, which no file has.
 TEST(CliValidate, TheDesignReportsThePlacesValidateFindsNarrowerThanW) {
   std::vector<std::pair<std::filesystem::path, std::string>> models{
       {std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj", "y"}};

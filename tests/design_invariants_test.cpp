@@ -197,7 +197,7 @@ TEST(DesignTips, ARoundWhoseTipsMakeNarrowPlacesIsTriedAgainWithoutThem) {
                                  [](const PlanProblem& p) { return p.kind == PlanProblemKind::NarrowStrip; });
   };
   const TipRepairOptions once{
-      .min_strip_mm = W, .max_tip_mm = 4.0 / 3.0 * W, .rounds = 1, .retries = 0};  // as design()
+      .min_strip_mm = W, .max_tip_mm = 4.0 / 3.0 * W, .rounds = 1, .retries = 0};  // design()'s reach
   const TipRepair whole = blunt_narrow_tips(supported.plan.lines, once);
   TipRepairOptions again = once;
   again.retries = 1;

@@ -168,11 +168,6 @@ TEST(Supports, RaysMeetFacesTheRasterPlanGainedSinceTheExactPlan) {
   for (const Candidate& c : before) EXPECT_EQ(c.target, kFloorFace);
 }
 
-// A support that folds onto a face less than W before that face's next fold beyond leaves a strip
-// between two parallel folds narrower than W (issue 23): the front V(47.1), reaching down, folds
-// onto an H(20) band at Y = -27.1; a V face below the band makes its next fold at 20 - d. Where the
-// band reaches 2.9 mm past the support's fold, the candidate says so; where it reaches 5.9 mm, or
-// ends on the floor (a cut: no second fold), it does not. So on the face it holds.
 // A support from face 2 to face 3, 10 mm long (Y = -27.1 to -37.1), that costs the picture 1.5 and
 // cuts no face: the costs support_edge adds to it are its own.
 Candidate priced_candidate() {
@@ -182,6 +177,11 @@ Candidate priced_candidate() {
   return c;
 }
 
+// A support that folds onto a face less than W before that face's next fold beyond leaves a strip
+// between two parallel folds narrower than W (issue 23): the front V(47.1), reaching down, folds
+// onto an H(20) band at Y = -27.1; a V face below the band makes its next fold at 20 - d. Where the
+// band reaches 2.9 mm past the support's fold, the candidate says so; where it reaches 5.9 mm, or
+// ends on the floor (a cut: no second fold), it does not. So on the face it holds.
 TEST(Supports, ASupportLeavingItsFacesAStripUnderWBeforeTheirNextFoldSaysSo) {
   const test::FloatingBoxPlan box;
   const RasterMaps& maps = box.maps;

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "bands.hpp"
+#include "chain_points.hpp"
 
 namespace origamic {
 namespace {
@@ -54,20 +55,21 @@ Grid<std::int32_t> slice_map(const RasterMaps& maps, const Grid<std::int32_t>& f
 // the picture's break there, NaN where the rays saw none; `at(k)`, the fraction drawn there;
 // `boundary(k)`, whether two faces meet across it and no third lies beside them), the edges of a
 // boundary with neither a break nor a level that run on from a straight model edge take its
-// fraction: a run of kStraightRun or more edges of the boundary that the picture breaks across at
+// fraction: a run of kMinBreakRun or more edges of the boundary that the picture breaks across at
 // one fraction, next to them (on both sides, at the same one: two edges meeting there leave it to
 // the junction). A box's top folding back to the back plane passes over the back plane's pixels,
 // where the rays see no edge: its sides ran on the lattice there, a pixel's fraction beside the
 // box's, and its fold onto the back plane ended on the lattice, a jog in the cut and a sliver beside
-// it (the demo house: 13 places narrower than W -> 11; the 37 models at W = 3 mm: 4,393 -> 4,390).
+// it (the demo house: 13 places narrower than W -> 11; the 37 models at W = 3 mm: 4,393 -> 4,390,
+// measured before junction_moves.cpp took fold ends along, which left 4,391).
 // Along the rows the same made notches at slices' ends and was left out (the half cylinder 14 -> 23
 // places), as was filling beside a third face.
 template <typename Seen, typename At, typename Boundary>
 void extend_straight_breaks(int n, Seen seen, At at, Boundary boundary) {
-  // As the chains drawn on the model's edge (kMinBreakRun, chain_points.cpp): a shorter run is no
-  // edge a chain would follow. Runs of 4 or 16 gave 4,392 and 4,390 places over the 37 models at
-  // W = 3 mm (8: 4,391), the demo house 8 each.
-  constexpr int kStraightRun = 8;
+  // The run the chains are drawn on the model's edge for: a shorter one is no edge a chain would
+  // follow. Its own measure hardly moves (runs of 4 / 8 / 16: 4,392 / 4,391 / 4,390 places over the
+  // 37 models at W = 3 mm, the demo house 8 each); it is kept one with the chains' for that reason.
+  constexpr int kStraightRun = static_cast<int>(chains::kMinBreakRun);
   const auto straight = [&](int from, int step) -> std::optional<float> {  // a run from `from` on, away
     const float t = seen(from);
     if (std::isnan(t)) return std::nullopt;

@@ -373,7 +373,7 @@ bool Analyzer::crosses_between(std::size_t r, const FT& X, const FT& lo, const F
         if (CGAL::min(p.y(), q.y()) < hi && lo < CGAL::max(p.y(), q.y())) return true;
         continue;
       }
-      const FT Y = p.y() + (q.y() - p.y()) * (X - p.x()) / (q.x() - p.x());
+      const FT Y = crossing_v(p.x(), p.y(), q.x(), q.y(), X);
       if (lo < Y && Y < hi) return true;
     }
   return false;

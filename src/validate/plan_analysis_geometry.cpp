@@ -101,8 +101,7 @@ void add_joined_folds(std::vector<FoldPiece> pieces, Input& in) {
       if (sp == sq && sp != CGAL::EQUAL) continue;
       if (sp == CGAL::EQUAL) crossings.push_back(p.x());
       if (sq == CGAL::EQUAL) crossings.push_back(q.x());
-      if (sp != CGAL::EQUAL && sq != CGAL::EQUAL)  // a vertical cut's X as it is: no number to build
-        crossings.push_back(p.x() == q.x() ? p.x() : p.x() + (q.x() - p.x()) * (Y - p.y()) / (q.y() - p.y()));
+      if (sp != CGAL::EQUAL && sq != CGAL::EQUAL) crossings.push_back(crossing_v(p.y(), p.x(), q.y(), q.x(), Y));
     }
     std::ranges::sort(crossings);
     // Whether a cut reaches the line within [a, b].
@@ -328,6 +327,10 @@ double ring_area(const Ring& ring) {
 
 // A point strictly inside: on the horizontal line midway across the widest gap between vertex
 // heights, the middle of the widest stretch inside.
+FT crossing_v(const FT& u0, const FT& v0, const FT& u1, const FT& v1, const FT& u) {
+  return v0 == v1 ? v0 : v0 + (v1 - v0) * (u - u0) / (u1 - u0);
+}
+
 Point inside_point(const std::vector<Ring>& rings) {
   std::vector<FT> ys;
   for (const Ring& ring : rings)
@@ -342,8 +345,7 @@ Point inside_point(const std::vector<Ring>& rings) {
   for (const Ring& ring : rings)
     for (std::size_t i = 0; i < ring.size(); ++i) {
       const Point &p = ring[i], &q = ring[(i + 1) % ring.size()];
-      if ((p.y() < y) != (q.y() < y))
-        xs.push_back(p.x() == q.x() ? p.x() : p.x() + (q.x() - p.x()) * (y - p.y()) / (q.y() - p.y()));
+      if ((p.y() < y) != (q.y() < y)) xs.push_back(crossing_v(p.y(), p.x(), q.y(), q.x(), y));
     }
   std::sort(xs.begin(), xs.end());
   std::size_t best = 0;
@@ -396,10 +398,7 @@ std::optional<Chord> narrowest_chord(const std::vector<Ring>& rings, bool along_
     after.clear(), before.clear();
     for (const Edge* e : active) {
       if (e->u0 == e->u1) continue;  // along the line: both faces' sides come from the other edges
-      // An edge square to the line (most are) crosses it at its own v: no number to build.
-      const FT v = u == e->u0 || e->v0 == e->v1 ? e->v0
-                   : u == e->u1                 ? e->v1
-                                                : e->v0 + (e->v1 - e->v0) * (u - e->u0) / (e->u1 - e->u0);
+      const FT v = u == e->u0 ? e->v0 : u == e->u1 ? e->v1 : crossing_v(e->u0, e->v0, e->u1, e->v1, u);
       if (e->u0 <= u && u < e->u1) after.push_back(v);
       if (e->u0 < u && u <= e->u1) before.push_back(v);
     }

@@ -59,6 +59,11 @@ std::vector<Ring> rings_of(exact::Arrangement::Face_const_handle f);
 /// The signed area of a ring in mm², in doubles: positive counter-clockwise.
 double ring_area(const Ring& ring);
 
+/// Where the segment from (u0, v0) to (u1, v1) crosses the line at u (\pre u0 != u1): its v there.
+/// A segment square to the line (most are) crosses it at its own v, taken as it is: no number built.
+exact::FT crossing_v(const exact::FT& u0, const exact::FT& v0, const exact::FT& u1, const exact::FT& v1,
+                     const exact::FT& u);
+
 /// A point strictly inside the face the rings bound. \pre rings bound a face of positive area.
 exact::Point inside_point(const std::vector<Ring>& rings);
 

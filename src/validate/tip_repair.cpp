@@ -46,7 +46,7 @@ using exact::Point;
 // A face's boundary edges in (u, v): u across a chord, v along it.
 struct UvEdge {
   FT u0, v0, u1, v1;  // u0 < u1
-  FT v_at(const FT& u) const { return v0 == v1 ? v0 : v0 + (v1 - v0) * (u - u0) / (u1 - u0); }
+  FT v_at(const FT& u) const { return analysis::crossing_v(u0, v0, u1, v1, u); }
 };
 
 // The stretches inside the face on the line at u (no vertex there): each between two edges.

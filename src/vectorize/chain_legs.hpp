@@ -33,8 +33,10 @@ struct Leg {
 // points on the picture's break, if they lie on one line (a model edge).
 std::optional<Leg> leg_of(const Chain& chain, bool front, const LatticeScale& lattice, const PictureBreaks& breaks);
 
-// Whether two lattice points are one; whether a chain closes on itself (no junctions).
+// Whether two lattice points are one; whether a chain closes on itself (no junctions); whether it
+// is a single pixel edge (its junctions one place on the model's edge).
 bool same(LatticePoint a, LatticePoint b);
 bool is_loop(const Chain& chain);
+inline bool is_short(const Chain& chain) { return chain.corners.size() < 3; }
 
 }  // namespace origamic::chains

@@ -18,11 +18,6 @@ namespace {
 // A chain's first edges on the picture's break are a straight leg if they lie within this of one
 // line (refined points on a straight model edge scatter about 1e-4 mm: float rays, 1/1024 pixel).
 constexpr double kLegStraightness_mm = 0.01;
-// Runs of fewer edges on breaks are not drawn on them (see simplified). Drawing every break left
-// prim_cylinder 24 places narrower than W where the lattice left 9 (its 22.5-degree creases touched
-// by slices' ends); on the 37 models runs of 4, 8 and 16 leave 6,152, 6,129 and 6,130 (the lattice
-// 6,060).
-constexpr std::size_t kMinBreakRun = 8;
 // A fold's end moves along its line to the model's edge by at most this: a 30-degree edge meets
 // the line up to 1.5 pixels from where the traced run reached it.
 constexpr double kFoldEndMove_px = 2.0;

@@ -43,11 +43,19 @@ std::optional<MovedJunction> meeting_point(const std::vector<Leg>& legs) {
 }
 
 // The junctions of junctions_on_breaks, by id; those one pixel edge apart are one cluster, named by
-// its root's id (the other ids' entries stay empty): per chain the clusters of its ends (a loop's:
-// none), per cluster its junctions, the legs meeting there, whether it is held and where it moves.
+// its root's id (the other ids' entries stay empty): per chain the clusters of its ends (a loop's
+// are not set), per cluster its junctions, the legs meeting there, whether it is held and where it
+// moves.
 struct Clusters {
   explicit Clusters(std::size_t chains, std::size_t junctions)
       : of_chain(chains), members(junctions), legs(junctions), held(junctions, false), moved_to(junctions) {}
+  // How far cluster c's farthest junction goes to `at`.
+  double moves_by(std::size_t c, const MovedJunction& at, const LatticeScale& lattice) const {
+    double farthest = 0;
+    for (const LatticePoint p : members[c])
+      farthest = std::max(farthest, std::hypot(at.X - lattice.X(p.u), at.Y - lattice.Y(p.v)));
+    return farthest;
+  }
   std::vector<std::array<std::size_t, 2>> of_chain;
   std::vector<std::vector<LatticePoint>> members;
   std::vector<std::vector<Leg>> legs;
@@ -68,7 +76,7 @@ void follow_across_runs(const std::vector<Chain>& chains, const LatticeScale& la
   std::vector<std::size_t> runs;  // the chains straight down a column, not loops
   for (std::size_t i = 0; i < chains.size(); ++i) {
     const std::vector<LatticePoint>& corners = chains[i].corners;
-    if (corners.size() >= 3 && !same(corners.front(), corners.back()) &&
+    if (!is_short(chains[i]) && !is_loop(chains[i]) &&
         std::ranges::all_of(corners, [&](LatticePoint p) { return p.u == corners.front().u; }))
       runs.push_back(i);
   }
@@ -93,10 +101,7 @@ void follow_across_runs(const std::vector<Chain>& chains, const LatticeScale& la
         const auto line = fold_line(to);
         if (std::abs(X - lattice.X(u)) < kLeastMove_mm || !line) continue;
         const MovedJunction at{{}, X, line->first, -1, -1, line->second};
-        if (!std::ranges::all_of(clusters.members[to], [&](LatticePoint p) {
-              return std::hypot(at.X - lattice.X(p.u), at.Y - lattice.Y(p.v)) <= kJunctionMove_px * lattice.px_mm;
-            }))
-          continue;
+        if (!(clusters.moves_by(to, at, lattice) <= kJunctionMove_px * lattice.px_mm)) continue;
         const auto [it, fresh] = proposed.try_emplace(to, at);
         if (!fresh && it->second && it->second->X != at.X) it->second.reset();
       }
@@ -127,7 +132,6 @@ JunctionMoves junctions_on_breaks(const std::vector<Chain>& chains, const Lattic
   for (const Chain& chain : chains)
     if (!is_loop(chain)) id(chain.corners.front()), id(chain.corners.back());
   UnionFind<std::int32_t> union_of(corner_of.size());
-  const auto is_short = [](const Chain& chain) { return chain.corners.size() < 3; };
   for (const Chain& chain : chains)
     if (!is_loop(chain) && is_short(chain)) union_of.join(id(chain.corners.front()), id(chain.corners.back()));
   const auto cluster = [&](LatticePoint p) { return static_cast<std::size_t>(union_of.root(id(p))); };
@@ -148,17 +152,11 @@ JunctionMoves junctions_on_breaks(const std::vector<Chain>& chains, const Lattic
     }
   }
   // A cluster moves whole or not at all; by a pixel at most, and not by the rays' rounding alone.
-  const auto moves_by = [&](std::size_t c, const MovedJunction& at) {
-    double farthest = 0;
-    for (const LatticePoint p : clusters.members[c])
-      farthest = std::max(farthest, std::hypot(at.X - lattice.X(p.u), at.Y - lattice.Y(p.v)));
-    return farthest;
-  };
   for (std::size_t c = 0; c < corner_of.size(); ++c) {
     if (clusters.members[c].empty() || clusters.held[c]) continue;
     const std::optional<MovedJunction> at = meeting_point(clusters.legs[c]);
     if (!at) continue;
-    const double move = moves_by(c, *at);
+    const double move = clusters.moves_by(c, *at, lattice);
     if (move <= kJunctionMove_px * lattice.px_mm && move >= kLeastMove_mm) clusters.moved_to[c] = at;
   }
   follow_across_runs(chains, lattice, clusters);
