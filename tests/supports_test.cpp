@@ -262,6 +262,7 @@ TEST(Supports, ASupportLeavingItsFacesAStripUnderWBeforeTheirNextFoldSaysSo) {
 
 // A support whose block column reaches past the end of the face it holds over the back plane or
 // the floor is drawn only as far as the face's side, narrower than W: it says so and costs more.
+// Over another face of the model there, it does not.
 TEST(Supports, ASupportReachingPastItsFacesEndOverTheBackPlaneSaysSoAndCostsMore) {
   const test::FloatingBoxPlan box;
   int lo = INT_MAX, hi = -1;  // the front's columns
@@ -283,6 +284,16 @@ TEST(Supports, ASupportReachingPastItsFacesEndOverTheBackPlaneSaysSoAndCostsMore
   EXPECT_EQ(past, std::set<int>{lo / box.raster_plan.block_px * box.raster_plan.block_px});
   EXPECT_GE(on_face.size(), 30u) << "the block columns across the front's 90 mm, and the two flush with its ends";
   EXPECT_TRUE(on_face.contains(lo));
+  // With a face of the model beside the front's left end, where that block sticks out, it no longer
+  // reaches past the end over nothing: no candidate says so.
+  RasterPlan beside = box.raster_plan;
+  const auto other = static_cast<std::int32_t>(beside.faces.size());
+  beside.faces.push_back({Orientation::V, 60, 0, 0, false, false});
+  for (int r = 0; r < beside.face.rows; ++r)
+    for (int c = lo / beside.block_px * beside.block_px; c < lo; ++c)
+      if (beside.face(lo, r) == box.front) beside.face(c, r) = other, ++beside.faces.back().pixels;
+  for (const Candidate& c : support_candidates({box.maps, beside, box.exact_plan, {}, {}}, {box.front}, SupportReach{}))
+    EXPECT_FALSE(c.face == box.front && c.past_end) << c.c0 << " " << c.c1;
   // Its edge costs the past-end cost more; the picture's part stays the candidate's own.
   SupportOptions options;
   Candidate c = priced_candidate();
