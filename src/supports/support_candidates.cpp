@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "support_candidates.hpp"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -10,14 +11,17 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
+#include <mutex>
+#include <optional>
 #include <span>
 #include <unordered_map>
 #include <utility>
 
 #include "bands.hpp"
+#include "face_pieces.hpp"
 #include "origamic/plan.hpp"
 #include "plane_numbers.hpp"
-#include "union_find.hpp"
 
 namespace origamic {
 namespace {
@@ -44,10 +48,9 @@ struct SupportStart {
 // The search behind CandidateFinder: per wanted face its runs, box, pieces and edge rows, per column
 // where the raster plan changed since the exact plan, read by many walks at once.
 class CandidateFinder::Search {
-  struct Run {
-    int row, c0, c1;  // pixels [c0, c1) of the row
-  };
-  // Whether face x is cut in two by the pixels [c0, c1) x [r0, r1), as found for one edge's walks.
+  using Run = FacePieces::RowRun;
+  // Whether face x is cut in two by the pixels [c0, c1) x [r0, r1), as found by one thread's walks:
+  // the walks of many faces cross a face between the same columns and rows.
   struct SplitMemo {
     using Key = std::pair<std::uint64_t, std::uint64_t>;
     static Key key(std::int32_t x, int c0, int c1, int r0, int r1) {  // each under 2^21
@@ -138,9 +141,9 @@ class CandidateFinder::Search {
       }
     }
     face_pieces_.resize(faces_.size());
+    face_pieces_once_ = std::make_unique<std::once_flag[]>(faces_.size());
     face_box_.resize(faces_.size());
     for (std::size_t f = 2; f < faces_.size(); ++f) {
-      face_pieces_[f] = pieces(face_runs_[f], 0, 0, 0, 0);
       Box& box = face_box_[f];
       for (const Run& run : face_runs_[f])
         box = {std::min(box.c0, run.c0), std::max(box.c1, run.c1), std::min(box.r0, run.row),
@@ -178,7 +181,7 @@ class CandidateFinder::Search {
     if (corners_ && hi + 1 - block_ >= 0 && hi + 1 + block_ <= face_.cols)
       starts.push_back({hi + 1 - block_, hi + 1 + block_, corner_cost});
     BlockColumn column(face_.rows);
-    SplitMemo memo;
+    SplitMemo& memo = memos_.local();
     for (const auto [c0, c1, extra_cost] : starts) {
       column.reset(c0, c1);
       column.paint(*this, painted_);
@@ -270,68 +273,15 @@ class CandidateFinder::Search {
     const SplitMemo::Key key = SplitMemo::key(x, c0, c1, r0, r1);
     if (memo)
       if (const auto known = memo->known.find(key); known != memo->known.end()) return known->second;
-    const bool split = !joined_around(x, c0, c1, r0, r1) && pieces(face_runs_[i], c0, c1, r0, r1) > face_pieces_[i];
+    const FacePieces& pieces = pieces_of(i);
+    const bool split = pieces.pieces_without(c0, c1, r0, r1) > pieces.pieces();
     if (memo) memo->known.emplace(key, split);
     return split;
   }
-  // Whether the pixels of x beside the rectangle [c0, c1) x [r0, r1) that touch its pixels of x in
-  // it are joined along the one-pixel frame round it: then every piece of x the rectangle leaves
-  // reaches the frame and joins the others there (each piece of a 4-connected face it cuts touches
-  // what it took), so x is left in no more pieces than it was.
-  bool joined_around(std::int32_t x, int c0, int c1, int r0, int r1) const {
-    const auto in_x = [&](int c, int r) { return face_.contains(c, r) && face_(c, r) == x; };
-    // The frame clockwise from its top left corner, in arcs of x's pixels, numbered from 1; of each
-    // pixel beside a side of the rectangle (a corner touches none inside), whether it touches a pixel
-    // of x there. The arcs touched come in order: the first, the next after it, the last.
-    int arcs = 0, lowest = 0, next = 0, highest = 0;
-    bool before = false;
-    const auto visit = [&](int c, int r, int inner_c, int inner_r) {
-      const bool here = in_x(c, r);
-      if (here && !before) ++arcs;
-      before = here;
-      if (!here || inner_c < 0 || !in_x(inner_c, inner_r) || highest == arcs) return;
-      if (lowest == 0)
-        lowest = arcs;
-      else if (next == 0)
-        next = arcs;
-      highest = arcs;
-    };
-    visit(c0 - 1, r0 - 1, -1, 0);
-    for (int c = c0; c < c1; ++c) visit(c, r0 - 1, c, r0);
-    visit(c1, r0 - 1, -1, 0);
-    for (int r = r0; r < r1; ++r) visit(c1, r, c1 - 1, r);
-    visit(c1, r1, -1, 0);
-    for (int c = c1 - 1; c >= c0; --c) visit(c, r1, c, r1 - 1);
-    visit(c0 - 1, r1, -1, 0);
-    for (int r = r1 - 1; r >= r0; --r) visit(c0 - 1, r, c0, r);
-    if (lowest == highest) return true;  // one arc touched, or none
-    // Where the frame closes in x, its last arc runs on into its first.
-    const bool closes = before && in_x(c0 - 1, r0 - 1);
-    return closes && lowest == 1 && highest == arcs && next == highest;
-  }
-  // The 4-connected pieces of a face's runs less the pixels [c0, c1) x [r0, r1).
-  static int pieces(const std::vector<Run>& runs, int c0, int c1, int r0, int r1) {
-    thread_local std::vector<Run> left;
-    thread_local UnionFind<std::uint32_t> sets;
-    left.clear();
-    for (const Run& run : runs) {
-      if (run.row < r0 || run.row >= r1 || run.c1 <= c0 || c1 <= run.c0) {
-        left.push_back(run);
-        continue;
-      }
-      if (run.c0 < c0) left.push_back({run.row, run.c0, c0});
-      if (c1 < run.c1) left.push_back({run.row, c1, run.c1});
-    }
-    sets.reset(left.size());
-    int count = static_cast<int>(left.size());
-    // Runs are in row-major order: those of the row above overlapping one are joined to it.
-    for (std::size_t b = 0, a_begin = 0; b < left.size(); ++b) {
-      while (a_begin < b && left[a_begin].row < left[b].row - 1) ++a_begin;
-      for (std::size_t a = a_begin; a < b && left[a].row < left[b].row; ++a)
-        if (left[a].row == left[b].row - 1 && left[a].c0 < left[b].c1 && left[b].c0 < left[a].c1)
-          if (sets.join(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b))) --count;
-    }
-    return count;
+  // Face i's pieces, counted on first asking (most faces no walk cuts across).
+  const FacePieces& pieces_of(std::size_t i) const {
+    std::call_once(face_pieces_once_[i], [&] { face_pieces_[i].emplace(face_runs_[i]); });
+    return *face_pieces_[i];
   }
   std::size_t at(std::int32_t f, int c) const {
     return static_cast<std::size_t>(slot_[static_cast<std::size_t>(f)]) * face_.cols + c;
@@ -435,10 +385,15 @@ class CandidateFinder::Search {
         if (target.hole || target.orientation != reached.orientation || target.depth_mm != reached.depth_mm) continue;
         if ((r - step - (edge + step)) * step < 0) return found;  // no room: the faces touch already
         std::vector<std::int32_t> crossed;
-        for (int between = edge + step; between != r; between += step)
-          for (const std::int32_t x : column.faces(column.row(*this, between)))
+        BlockColumn::Row before{};  // rows mostly repeat the faces of the row before: those are in
+        for (int between = edge + step; between != r; between += step) {
+          const BlockColumn::Row row_between = column.row(*this, between);
+          if (between != edge + step && std::ranges::equal(column.faces(row_between), column.faces(before))) continue;
+          for (const std::int32_t x : column.faces(row_between))
             if (std::ranges::find(crossed, x) == crossed.end())
               crossed.push_back(x);  // f too: taking its rows may cut it
+          before = row_between;
+        }
         found.push_back(candidate(start, {row.centre, r, std::move(crossed)}, column, memo));
         break;
       }
@@ -542,7 +497,9 @@ class CandidateFinder::Search {
   std::vector<std::pair<int, int>> columns_;   // per wanted face: its first and last column
   std::vector<std::vector<Changed>> changed_;  // per column
   std::vector<std::vector<Run>> face_runs_;    // per face, its runs of pixels in row-major order
-  std::vector<int> face_pieces_;               // per face, the 4-connected pieces of them
+  mutable std::vector<std::optional<FacePieces>> face_pieces_;  // per face, its pieces once asked for
+  std::unique_ptr<std::once_flag[]> face_pieces_once_;
+  mutable tbb::enumerable_thread_specific<SplitMemo> memos_;
   struct Box {
     int c0 = INT_MAX, c1 = INT_MIN, r0 = INT_MAX, r1 = INT_MIN;  // pixels [c0, c1) x [r0, r1)
   };

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "support_picture.hpp"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
@@ -46,15 +48,29 @@ SupportPicture::SupportPicture(const RasterMaps& maps, const RasterPlan& raster_
       hole_extra_mm_(static_cast<float>(kHoleExtra_W * raster_plan.min_strip_mm)),
       hole_error_(raster_plan.faces.size(), 0.0) {
   // Off the model nothing is compared: the tables cover the model's bounding box only.
-  int c_end = 0, r_end = 0;
-  c0_ = grid_.cols, r0_ = grid_.rows;
-  for (int row = 0; row < grid_.rows; ++row)
-    for (int col = 0; col < grid_.cols; ++col)
-      if (maps.kind(col, row) == HitKind::Model)
-        c0_ = std::min(c0_, col), c_end = std::max(c_end, col + 1), r0_ = std::min(r0_, row), r_end = row + 1;
+  struct Box {
+    int c0, c_end, r0, r_end;
+  };
+  const Box empty{grid_.cols, 0, grid_.rows, 0};
+  const Box bounds = tbb::parallel_reduce(
+      tbb::blocked_range<int>(0, grid_.rows), empty,
+      [&](const tbb::blocked_range<int>& rows, Box box) {
+        for (int row = rows.begin(); row < rows.end(); ++row)
+          for (int col = 0; col < grid_.cols; ++col)
+            if (maps.kind(col, row) == HitKind::Model)
+              box = {std::min(box.c0, col), std::max(box.c_end, col + 1), std::min(box.r0, row), row + 1};
+        return box;
+      },
+      [](const Box& a, const Box& b) {
+        return Box{std::min(a.c0, b.c0), std::max(a.c_end, b.c_end), std::min(a.r0, b.r0), std::max(a.r_end, b.r_end)};
+      });
+  c0_ = bounds.c0, r0_ = bounds.r0;
+  int c_end = bounds.c_end, r_end = bounds.r_end;
   if (c0_ >= c_end) c0_ = r0_ = c_end = r_end = 0;
   model_key_ = Grid<float>(c_end - c0_, r_end - r0_, std::numeric_limits<float>::quiet_NaN());
   error_ = Grid<float>(c_end - c0_, r_end - r0_, 0.0f);
+  // What each pixel of a face adds to its hole error, NaN where it adds nothing.
+  Grid<float> to_hole(c_end - c0_, r_end - r0_, std::numeric_limits<float>::quiet_NaN());
   const auto key_of = [&](const RasterFace& face, double Y) {
     return shown_key(face.orientation, face.depth_mm, face.hole, Y);
   };
@@ -64,21 +80,20 @@ SupportPicture::SupportPicture(const RasterMaps& maps, const RasterPlan& raster_
       if (maps.kind(col, row) != HitKind::Model) continue;
       const double model = maps.h_mm(col, row) + maps.d_mm(col, row);
       model_key_(col - c0_, row - r0_) = static_cast<float>(model);
-      if (const std::int32_t f = raster_plan.face(col, row); f >= 0)
-        error_(col - c0_, row - r0_) =
+      if (const std::int32_t f = raster_plan.face(col, row); f >= 0) {
+        const auto error =
             static_cast<float>(std::abs(key_of(raster_plan.faces[static_cast<std::size_t>(f)], Y) - model));
+        error_(col - c0_, row - r0_) = error;
+        to_hole(col - c0_, row - r0_) = hole_at(Y, model) - error;
+      }
     }
   });
   // In row order, one pixel after another: the sums do not depend on the threads.
   for (int row = r0_; row < r_end; ++row) {
-    const double Y = grid_.Y(row);
-    for (int col = c0_; col < c_end; ++col) {
-      const std::int32_t f = raster_plan.face(col, row);
-      if (f < 0 || maps.kind(col, row) != HitKind::Model) continue;
-      const double model = maps.h_mm(col, row) + maps.d_mm(col, row);
-      const float error = error_(col - c0_, row - r0_);
-      hole_error_[static_cast<std::size_t>(f)] += hole_at(Y, model) - error;
-    }
+    const std::int32_t* faces = &raster_plan.face.values[raster_plan.face.index(0, row)];
+    const float* add = &to_hole.values[to_hole.index(0, row - r0_)];
+    for (int col = c0_; col < c_end; ++col)
+      if (!std::isnan(add[col - c0_])) hole_error_[static_cast<std::size_t>(faces[col])] += add[col - c0_];
   }
   for (double& e : hole_error_) e /= grid_.px_per_mm * grid_.px_per_mm;
 }
