@@ -180,10 +180,10 @@ class CandidateFinder::Search {
       starts.push_back({lo - block_, lo + block_, corner_cost});
     if (corners_ && hi + 1 - block_ >= 0 && hi + 1 + block_ <= face_.cols)
       starts.push_back({hi + 1 - block_, hi + 1 + block_, corner_cost});
-    BlockColumn column(face_.rows);
+    BlockColumn column;
     SplitMemo& memo = memos_.local();
     for (const auto [c0, c1, extra_cost] : starts) {
-      column.reset(c0, c1);
+      column.reset(*this, c0, c1);
       column.paint(*this, painted_);
       // The edge row: f's top (bottom) at the block column's centre. A support needs f along at
       // least half of its near side and its target along half of its far side: slices of curved
@@ -289,15 +289,50 @@ class CandidateFinder::Search {
   int first_row(std::int32_t f, int c) const { return first_[at(f, c)]; }
   int last_row(std::int32_t f, int c) const { return last_[at(f, c)]; }
 
-  // A block column [c0, c1) row by row as the walks out of one face's edge see it, read once for
-  // all of them (one per row the support may take of the face, each from its own start row).
+  // A block column [c0, c1) row by row, each row read once per thread and round: the walks out of
+  // many faces' edges cross the same columns.
+  class ColumnRows {
+   public:
+    ColumnRows(int c0, int c1, int rows)
+        : c0_(c0), c1_(c1), known_(static_cast<std::size_t>(rows), 0), row_(static_cast<std::size_t>(rows)) {}
+    struct Row {
+      std::int32_t centre;     // the face at the block column's centre
+      bool mostly;             // which fills at least half of the row's block
+      std::uint32_t from, to;  // faces_[from, to): the faces along the row, a run of one face once
+    };
+    const Row& row(const Search& finder, int r) {
+      Row& row = row_[static_cast<std::size_t>(r)];
+      if (known_[static_cast<std::size_t>(r)]) return row;
+      known_[static_cast<std::size_t>(r)] = 1;
+      row.centre = finder.face_((c0_ + c1_) / 2, r);
+      row.mostly = row.centre >= 0 && finder.mostly(row.centre, c0_, c1_, r);
+      row.from = static_cast<std::uint32_t>(faces_.size());
+      for (int c = c0_; c < c1_; ++c)
+        if (const std::int32_t x = finder.face_(c, r); faces_.size() == row.from || faces_.back() != x)
+          faces_.push_back(x);
+      row.to = static_cast<std::uint32_t>(faces_.size());
+      return row;
+    }
+    std::span<const std::int32_t> faces(const Row& row) const { return {faces_.data() + row.from, row.to - row.from}; }
+
+   private:
+    int c0_, c1_;
+    std::vector<std::uint8_t> known_;
+    std::vector<Row> row_;
+    std::vector<std::int32_t> faces_;
+  };
+  // Per thread, the block columns its walks have read, by first and end column.
+  using ColumnCache = std::unordered_map<std::uint64_t, ColumnRows>;
+
+  // A block column [c0, c1) as the walks out of one face's edge see it: its rows, and what has
+  // changed along its ray.
   class BlockColumn {
    public:
-    explicit BlockColumn(int rows) : known_(static_cast<std::size_t>(rows), 0), row_(static_cast<std::size_t>(rows)) {}
-    void reset(int c0, int c1) {
-      for (const int r : touched_) known_[static_cast<std::size_t>(r)] = 0;
-      touched_.clear();
-      faces_.clear();
+    using Row = ColumnRows::Row;
+    void reset(const Search& finder, int c0, int c1) {
+      ColumnCache& cache = finder.column_rows_.local();
+      const std::uint64_t key = static_cast<std::uint64_t>(c0) << 32 | static_cast<std::uint32_t>(c1);
+      rows_ = &cache.try_emplace(key, c0, c1, finder.face_.rows).first->second;
       painted_.clear();
       c0_ = c0, c1_ = c1;
     }
@@ -318,34 +353,11 @@ class CandidateFinder::Search {
     std::span<const PaintedBand> painted() const { return painted_; }
     int c0() const { return c0_; }
     int c1() const { return c1_; }
-    struct Row {
-      std::int32_t centre;   // the face at the block column's centre
-      bool mostly;           // which fills at least half of the row's block
-      double Y;              // the row's plan Y
-      std::size_t from, to;  // faces_[from, to): the faces along the row, a run of one face once
-    };
-    const Row& row(const Search& finder, int r) {
-      Row& row = row_[static_cast<std::size_t>(r)];
-      if (known_[static_cast<std::size_t>(r)]) return row;
-      known_[static_cast<std::size_t>(r)] = 1;
-      touched_.push_back(r);
-      row.centre = finder.face_((c0_ + c1_) / 2, r);
-      row.mostly = row.centre >= 0 && finder.mostly(row.centre, c0_, c1_, r);
-      row.Y = finder.grid_.Y(r);
-      row.from = faces_.size();
-      for (int c = c0_; c < c1_; ++c)
-        if (const std::int32_t x = finder.face_(c, r); faces_.size() == row.from || faces_.back() != x)
-          faces_.push_back(x);
-      row.to = faces_.size();
-      return row;
-    }
-    std::span<const std::int32_t> faces(const Row& row) const { return {faces_.data() + row.from, row.to - row.from}; }
+    const Row& row(const Search& finder, int r) { return rows_->row(finder, r); }
+    std::span<const std::int32_t> faces(const Row& row) const { return rows_->faces(row); }
 
    private:
-    std::vector<std::uint8_t> known_;
-    std::vector<Row> row_;
-    std::vector<int> touched_;
-    std::vector<std::int32_t> faces_;
+    ColumnRows* rows_ = nullptr;
     std::vector<PaintedBand> painted_;
     int c0_ = 0, c1_ = 0;
   };
@@ -500,6 +512,7 @@ class CandidateFinder::Search {
   mutable std::vector<std::optional<FacePieces>> face_pieces_;  // per face, its pieces once asked for
   std::unique_ptr<std::once_flag[]> face_pieces_once_;
   mutable tbb::enumerable_thread_specific<SplitMemo> memos_;
+  mutable tbb::enumerable_thread_specific<ColumnCache> column_rows_;
   struct Box {
     int c0 = INT_MAX, c1 = INT_MIN, r0 = INT_MAX, r1 = INT_MIN;  // pixels [c0, c1) x [r0, r1)
   };
