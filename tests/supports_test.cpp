@@ -18,6 +18,7 @@
 #include "origamic/design.hpp"
 #include "origamic/likeness.hpp"
 #include "origamic/plan_analysis.hpp"
+#include "support_candidates.hpp"
 #include "support_choice.hpp"
 #include "support_picture.hpp"
 
@@ -175,6 +176,41 @@ Candidate priced_candidate() {
   c.face = 2, c.target = 3, c.cost = 1.5;
   c.near = {20, 47.1}, c.far = {10, 47.1};
   return c;
+}
+
+// Two supports side by side, touching, one taking the top rows of the box's front and one its
+// bottom rows: each leaves the front one piece, and together they part it (the left end and the
+// bottom stay joined under the first, the right end and the top over the second). A pixel apart,
+// the column between joins them; a block apart, they leave it whole too.
+TEST(Supports, TwoSupportsThatEachLeaveAFaceWholeMayPartItTogether) {
+  const test::FloatingBoxPlan box;
+  const RasterPlan& plan = box.raster_plan;
+  int c_lo = INT_MAX, c_hi = -1, r_lo = INT_MAX, r_hi = -1;
+  for (int r = 0; r < plan.face.rows; ++r)
+    for (int c = 0; c < plan.face.cols; ++c)
+      if (plan.face(c, r) == box.front)
+        c_lo = std::min(c_lo, c), c_hi = std::max(c_hi, c), r_lo = std::min(r_lo, r), r_hi = std::max(r_hi, r);
+  ASSERT_GT(c_hi - c_lo, 4 * plan.block_px);
+  const int mid_c = (c_lo + c_hi) / 2, mid_r = (r_lo + r_hi) / 2, block = plan.block_px;
+  const auto support = [&](int c0, int r0, int r1) {
+    Candidate s;
+    s.face = box.front, s.target = kBackFace;
+    s.c0 = c0, s.c1 = c0 + block, s.r0 = r0, s.r1 = r1;
+    return s;
+  };
+  const Candidate from_top = support(mid_c - block, r_lo - 5, mid_r + 2);  // over the top, into the middle
+  const Candidate from_bottom = support(mid_c, mid_r - 2, r_hi + 6);       // beside it, from below
+  const Candidate pixel_apart = support(mid_c + 1, mid_r - 2, r_hi + 6);
+  const Candidate block_apart = support(mid_c + block, mid_r - 2, r_hi + 6);
+  const SupportPicture picture(box.maps, plan);
+  const CandidateFinder finder({box.maps, plan, box.exact_plan, {}, {}}, {box.front}, picture, SupportReach{});
+  EXPECT_FALSE(finder.cuts(box.front, from_top));
+  EXPECT_FALSE(finder.cuts(box.front, from_bottom));
+  EXPECT_TRUE(finder.cuts_with(box.front, {&from_top, 1}, from_bottom));
+  EXPECT_TRUE(finder.cuts_with(box.front, {&from_bottom, 1}, from_top));
+  EXPECT_FALSE(finder.cuts_with(box.front, {&from_top, 1}, pixel_apart));
+  EXPECT_FALSE(finder.cuts_with(box.front, {&from_top, 1}, block_apart));
+  EXPECT_FALSE(finder.cuts_with(box.front, {}, from_bottom));  // alone: its own `cuts` says
 }
 
 // A support that folds onto a face less than W before that face's next fold beyond leaves a strip
@@ -1003,9 +1039,9 @@ TEST(Supports, WhereBothFramesGaveFacesFarAwayATryWithJoinsCappedIsKeptWhereBett
 TEST(Supports, ThePlanKeptIsTheExactPlanOfTheSlicesKept) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   DesignOptions options;
-  options.placement.up = UpAxis::Z;
+  options.placement.up = UpAxis::Y;
   options.tip_rounds = 0;
-  const DesignResult r = standing_design("prim_genus3_torus.off", options);
+  const DesignResult r = standing_design("res_bunny_low.obj", options);
   ASSERT_GT(r.supports.passes_undone, 0) << "a design with undone passes";
   const Plan fresh = build_plan(r.maps, r.raster_plan, DesignOptions{}.sheet, PlanOptions{});
   EXPECT_EQ(fresh.validity.status, r.plan.validity.status);

@@ -22,6 +22,7 @@
 #include "face_pieces.hpp"
 #include "origamic/plan.hpp"
 #include "plane_numbers.hpp"
+#include "union_find.hpp"
 
 namespace origamic {
 namespace {
@@ -49,6 +50,9 @@ struct SupportStart {
 // where the raster plan changed since the exact plan, read by many walks at once.
 class CandidateFinder::Search {
   using Run = FacePieces::RowRun;
+  struct Box {
+    int c0 = INT_MAX, c1 = INT_MIN, r0 = INT_MAX, r1 = INT_MIN;  // pixels [c0, c1) x [r0, r1)
+  };
   // Whether face x is cut in two by the pixels [c0, c1) x [r0, r1), as found by one thread's walks:
   // the walks of many faces cross a face between the same columns and rows.
   struct SplitMemo {
@@ -153,6 +157,24 @@ class CandidateFinder::Search {
 
   // Whether support s, as it is now (widened), cuts face x in two.
   bool cuts(std::int32_t x, const Candidate& s) const { return splits(x, s); }
+
+  // Whether support s leaves face x in more pieces with the supports `with` than they leave it.
+  bool cuts_with(std::int32_t x, std::span<const Candidate> with, const Candidate& s) const {
+    if (x == kBackFace || x == kFloorFace) return false;
+    const auto i = static_cast<std::size_t>(x);
+    const Box& box = face_box_[i];
+    const auto over_x = [&](const Candidate& c) {
+      return c.c0 < box.c1 && box.c0 < c.c1 && c.r0 < box.r1 && box.r0 < c.r1;
+    };
+    if (!over_x(s)) return false;
+    std::vector<Box> taken;
+    for (const Candidate& c : with)
+      if (over_x(c)) taken.push_back({c.c0, c.c1, c.r0, c.r1});
+    if (taken.empty()) return false;  // s alone: its own `cuts`
+    const int before = pieces_less(face_runs_[i], taken);
+    taken.push_back({s.c0, s.c1, s.r0, s.r1});
+    return pieces_less(face_runs_[i], taken) > before;
+  }
 
   // Candidates from the top (up = true) or bottom edge of face f, one per W-wide block column that
   // f fills on that edge. (h, d) is the OA point of the edge: a support leaving it is H(h) reaching
@@ -277,6 +299,32 @@ class CandidateFinder::Search {
     const bool split = pieces.pieces_without(c0, c1, r0, r1) > pieces.pieces();
     if (memo) memo->known.emplace(key, split);
     return split;
+  }
+  // The 4-connected pieces of a face's runs less the pixels of some boxes.
+  static int pieces_less(const std::vector<Run>& runs, const std::vector<Box>& boxes) {
+    std::vector<Run> left;
+    std::vector<std::pair<int, int>> out;  // columns taken out of a row
+    for (const Run& run : runs) {
+      out.clear();
+      for (const Box& b : boxes)
+        if (b.r0 <= run.row && run.row < b.r1 && b.c0 < run.c1 && run.c0 < b.c1) out.emplace_back(b.c0, b.c1);
+      std::ranges::sort(out);
+      int c = run.c0;
+      for (const auto& [c0, c1] : out) {
+        if (c0 > c) left.push_back({run.row, c, std::min(c0, run.c1)});
+        c = std::max(c, c1);
+      }
+      if (c < run.c1) left.push_back({run.row, c, run.c1});
+    }
+    UnionFind<std::uint32_t> sets(left.size());
+    int count = static_cast<int>(left.size());
+    for (std::size_t b = 0, a_begin = 0; b < left.size(); ++b) {
+      while (a_begin < b && left[a_begin].row < left[b].row - 1) ++a_begin;
+      for (std::size_t a = a_begin; a < b && left[a].row < left[b].row; ++a)
+        if (left[a].row == left[b].row - 1 && left[a].c0 < left[b].c1 && left[b].c0 < left[a].c1)
+          count -= sets.join(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b));
+    }
+    return count;
   }
   // Face i's pieces, counted on first asking (most faces no walk cuts across).
   const FacePieces& pieces_of(std::size_t i) const {
@@ -513,9 +561,6 @@ class CandidateFinder::Search {
   std::unique_ptr<std::once_flag[]> face_pieces_once_;
   mutable tbb::enumerable_thread_specific<SplitMemo> memos_;
   mutable tbb::enumerable_thread_specific<ColumnCache> column_rows_;
-  struct Box {
-    int c0 = INT_MAX, c1 = INT_MIN, r0 = INT_MAX, r1 = INT_MIN;  // pixels [c0, c1) x [r0, r1)
-  };
   std::vector<Box> face_box_;                // per face, its bounding box
   std::vector<int> plane_now_, plane_then_;  // per face of the raster plan and of the exact plan
 };
@@ -526,6 +571,10 @@ CandidateFinder::CandidateFinder(const SupportRound& round, const std::vector<st
 CandidateFinder::~CandidateFinder() = default;
 
 bool CandidateFinder::cuts(std::int32_t x, const Candidate& s) const { return search_->cuts(x, s); }
+
+bool CandidateFinder::cuts_with(std::int32_t x, std::span<const Candidate> with, const Candidate& s) const {
+  return search_->cuts_with(x, with, s);
+}
 
 std::vector<Candidate> CandidateFinder::from_edge(std::int32_t f, bool up) const { return search_->from_edge(f, up); }
 

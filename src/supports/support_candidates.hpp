@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "support_choice.hpp"
@@ -22,6 +23,9 @@ class CandidateFinder {
 
   // Whether support s, as it is now (widened), cuts face x in two.
   bool cuts(std::int32_t x, const Candidate& s) const;
+  // Whether support s cuts face x in two with the supports `with` where they leave it whole (or in
+  // fewer pieces): two supports side by side a pixel apart each leave a face whole and together part it.
+  bool cuts_with(std::int32_t x, std::span<const Candidate> with, const Candidate& s) const;
 
   // Candidates from the top (up = true) or bottom edge of face f, one per W-wide block column that
   // f fills on that edge. Thread-safe (the search only reads).
