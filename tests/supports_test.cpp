@@ -182,7 +182,7 @@ Candidate priced_candidate() {
 // bottom rows: each leaves the front one piece, and together they part it (the left end and the
 // bottom stay joined under the first, the right end and the top over the second). A pixel apart,
 // the column between joins them; a block apart, they leave it whole too.
-TEST(Supports, TwoSupportsThatEachLeaveAFaceWholeMayPartItTogether) {
+TEST(Supports, TwoTouchingSupportsThatEachLeaveAFaceWholePartItTogether) {
   const test::FloatingBoxPlan box;
   const RasterPlan& plan = box.raster_plan;
   int c_lo = INT_MAX, c_hi = -1, r_lo = INT_MAX, r_hi = -1;

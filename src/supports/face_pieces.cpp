@@ -23,7 +23,7 @@ void for_each_touching(const RunsA& a, const RunsB& b, Join&& join) {
 
 }  // namespace
 
-FacePieces::FacePieces(const std::vector<RowRun>& runs) {
+FacePieces::FacePieces(std::span<const RowRun> runs) {
   if (runs.empty()) return;
   int first = INT_MAX, last = INT_MIN;
   for (const RowRun& run : runs) first = std::min(first, run.c0), last = std::max(last, run.c1 - 1);
@@ -81,10 +81,9 @@ int FacePieces::pieces_without(int c0, int c1, int r0, int r1) const {
   if (c0 >= c1 || r0 >= r1) return pieces_;
   // The nodes: the pieces left of the rectangle that reach its left side, those right of it that
   // reach its right side, and the runs of its columns above and below it.
-  thread_local std::vector<int> left, right;
-  thread_local std::vector<ColumnRun> middle;
-  thread_local std::vector<int> middle_begin;
-  left.clear(), right.clear(), middle.clear(), middle_begin.clear();
+  std::vector<int> left, right;
+  std::vector<ColumnRun> middle;
+  std::vector<int> middle_begin;
   const auto column = [&](int c) {
     return std::span(runs_).subspan(column_begin_[c], column_begin_[c + 1] - column_begin_[c]);
   };
@@ -103,8 +102,7 @@ int FacePieces::pieces_without(int c0, int c1, int r0, int r1) const {
   }
   middle_begin.push_back(static_cast<int>(middle.size()));
   const int left_nodes = static_cast<int>(left.size()), side_nodes = left_nodes + static_cast<int>(right.size());
-  thread_local UnionFind<int> sets;
-  sets.reset(static_cast<std::size_t>(side_nodes) + middle.size());
+  UnionFind<int> sets(static_cast<std::size_t>(side_nodes) + middle.size());
   int nodes = side_nodes + static_cast<int>(middle.size());
   const auto middle_of = [&](int k) {
     return std::span(middle).subspan(middle_begin[k], middle_begin[k + 1] - middle_begin[k]);

@@ -3,6 +3,7 @@
 // pixels is taken out of it, in time proportional to the rectangle's columns, not to the face.
 #pragma once
 
+#include <span>
 #include <vector>
 
 namespace origamic {
@@ -15,8 +16,8 @@ class FacePieces {
   struct RowRun {
     int row, c0, c1;  // pixels [c0, c1) of the row
   };
-  // The face's pixels, as runs along its rows in row-major order.
-  explicit FacePieces(const std::vector<RowRun>& runs);
+  /// \pre `runs` are the face's pixels along its rows, in row-major order, none overlapping.
+  explicit FacePieces(std::span<const RowRun> runs);
 
   int pieces() const { return pieces_; }
   // The pieces of the face less the pixels [c0, c1) x [r0, r1).

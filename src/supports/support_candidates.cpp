@@ -46,8 +46,9 @@ struct SupportStart {
 
 }  // namespace
 
-// The search behind CandidateFinder: per wanted face its runs, box, pieces and edge rows, per column
-// where the raster plan changed since the exact plan, read by many walks at once.
+// The search behind CandidateFinder: per face its runs and box, its pieces once asked for, per
+// wanted face its edge rows, per column where the raster plan changed since the exact plan, read
+// by many walks at once.
 class CandidateFinder::Search {
   using Run = FacePieces::RowRun;
   struct Box {
@@ -286,8 +287,8 @@ class CandidateFinder::Search {
   bool splits(std::int32_t x, const Candidate& s, SplitMemo* memo = nullptr) const {
     if (x == kBackFace || x == kFloorFace) return false;
     const auto i = static_cast<std::size_t>(x);
-    // The support's pixels outside x's bounding box take nothing of x: the walks of one edge cross a
-    // face between the same columns at many lengths, and look at it once.
+    // The support's pixels outside x's bounding box take nothing of x: the walks of many edges cross
+    // a face between the same columns at many lengths, and each thread looks at it once.
     const Box& box = face_box_[i];
     const int c0 = std::max(s.c0, box.c0), c1 = std::min(s.c1, box.c1), r0 = std::max(s.r0, box.r0),
               r1 = std::min(s.r1, box.r1);
@@ -445,7 +446,7 @@ class CandidateFinder::Search {
         if (target.hole || target.orientation != reached.orientation || target.depth_mm != reached.depth_mm) continue;
         if ((r - step - (edge + step)) * step < 0) return found;  // no room: the faces touch already
         std::vector<std::int32_t> crossed;
-        BlockColumn::Row before{};  // rows mostly repeat the faces of the row before: those are in
+        BlockColumn::Row before{};  // a row with the faces of the row before adds none
         for (int between = edge + step; between != r; between += step) {
           const BlockColumn::Row row_between = column.row(*this, between);
           if (between != edge + step && std::ranges::equal(column.faces(row_between), column.faces(before))) continue;
@@ -493,8 +494,8 @@ class CandidateFinder::Search {
     s.near = {h, d};
     s.far = support_fold(target.orientation, target.depth_mm, h, d);
     // A support that cuts the face it holds in two holds nothing (candidates_of drops it): the faces
-    // it crosses are then not asked (on seedlike/sphere a third of the candidates, a fifth of the
-    // pixel runs the split tests walk), nor, where no third face may be cut, those after the first
+    // it crosses are then not asked (on seedlike/sphere a third of the candidates), nor, where no
+    // third face may be cut, those after the first
     // it cuts; nor is the picture, which only a support kept is priced by.
     const bool crosses_f = std::ranges::find(crossed, f) != crossed.end();
     if (f != g && crosses_f && splits(f, s, &memo)) {
@@ -578,7 +579,7 @@ bool CandidateFinder::cuts_with(std::int32_t x, std::span<const Candidate> with,
 
 std::vector<Candidate> CandidateFinder::from_edge(std::int32_t f, bool up) const { return search_->from_edge(f, up); }
 
-// The candidates of both edges of the faces, found in parallel (the search only reads), then taken
+// The candidates of both edges of the faces, found in parallel (each thread with its own caches), then taken
 // in order; a support that cuts the face it holds, or the one it reaches, in two holds nothing.
 std::vector<Candidate> candidates_of(const CandidateFinder& finder, const std::vector<std::int32_t>& faces,
                                      bool split_faces) {

@@ -23,12 +23,14 @@ class CandidateFinder {
 
   // Whether support s, as it is now (widened), cuts face x in two.
   bool cuts(std::int32_t x, const Candidate& s) const;
-  // Whether support s cuts face x in two with the supports `with` where they leave it whole (or in
-  // fewer pieces): two supports side by side a pixel apart each leave a face whole and together part it.
+  // Whether face x, less support s and the supports `with`, falls into more pieces than less `with`
+  // alone: two supports side by side, touching, may each leave a face whole and together part it.
+  // False where none of `with` lies over x's box (s alone: its own `cuts`).
   bool cuts_with(std::int32_t x, std::span<const Candidate> with, const Candidate& s) const;
 
   // Candidates from the top (up = true) or bottom edge of face f, one per W-wide block column that
-  // f fills on that edge. Thread-safe (the search only reads).
+  // f fills on that edge. Thread-safe: the search reads the round, and each thread keeps its own
+  // caches.
   std::vector<Candidate> from_edge(std::int32_t f, bool up) const;
 
  private:

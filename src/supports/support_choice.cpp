@@ -214,10 +214,9 @@ class EarTaker {
   // An ear's supports may interfere with each other or with those taken before (they were found
   // apart), or cut a face of their own ear in two, alone or with the supports before it (side by
   // side, touching, two that each leave a face whole may part it, or part a face they fold onto):
-  // such a support is given up and the ear sought again without it. Before the last check, the
-  // faces seedlike/sphere's ears joined were often still unheld the round after (after its third,
-  // 15 of 20), and it took 21 rounds and 92 supports (now 12 and 57); over the 37 models at W = 2 / 3 / 5 mm, places
-  // under W 7,617 / 4,391 / 2,375 -> 7,089 / 4,235 / 2,325, mean p95 2.014 / 1.778 / 1.886 -> 2.014 / 1.788 / 1.881 W.
+  // such a support is given up and the ear sought again without it. Tested one at a time, the faces
+  // seedlike/sphere's ears joined were often still unheld the round after (15 of 20 after its
+  // third), and it took 21 rounds of supports, now 12.
   bool admissible(const Ear& ear) {
     bool all = true;
     std::vector<Candidate> with = choice_.supports;
