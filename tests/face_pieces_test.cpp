@@ -31,11 +31,13 @@ std::vector<FacePieces::RowRun> runs_of(const Picture& picture) {
   return runs;
 }
 
-// The 4-connected pieces of the picture less [c0, c1) x [r0, r1), by flood fill.
-int flood_pieces(Picture picture, int c0, int c1, int r0, int r1) {
-  for (int r = std::max(0, r0); r < std::min(r1, static_cast<int>(picture.size())); ++r)
-    for (int c = std::max(0, c0); c < std::min(c1, static_cast<int>(picture[static_cast<std::size_t>(r)].size())); ++c)
-      picture[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)] = '.';
+// The 4-connected pieces of the picture less the rectangles, by flood fill.
+int flood_pieces(Picture picture, const std::vector<PixelRect>& rects) {
+  for (const auto& [c0, c1, r0, r1] : rects)
+    for (int r = std::max(0, r0); r < std::min(r1, static_cast<int>(picture.size())); ++r)
+      for (int c = std::max(0, c0); c < std::min(c1, static_cast<int>(picture[static_cast<std::size_t>(r)].size()));
+           ++c)
+        picture[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)] = '.';
   const auto at = [&](int c, int r) -> char& {
     return picture[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)];
   };
@@ -102,14 +104,39 @@ TEST(FacePieces, AgreesWithAFloodFillOnEveryRectangleOfRandomFaces) {
     const std::vector<FacePieces::RowRun> runs = runs_of(picture);
     if (runs.empty()) continue;
     const FacePieces pieces(runs);
-    ASSERT_EQ(pieces.pieces(), flood_pieces(picture, 0, 0, 0, 0));
+    ASSERT_EQ(pieces.pieces(), flood_pieces(picture, {}));
     for (int c0 = -1; c0 <= cols; ++c0)
       for (int c1 = c0 + 1; c1 <= cols + 1; ++c1)
         for (int r0 = -1; r0 <= rows; ++r0)
           for (int r1 = r0 + 1; r1 <= rows + 1; ++r1)
-            ASSERT_EQ(pieces.pieces_without(c0, c1, r0, r1), flood_pieces(picture, c0, c1, r0, r1))
+            ASSERT_EQ(pieces.pieces_without(c0, c1, r0, r1), flood_pieces(picture, {{c0, c1, r0, r1}}))
                 << "trial " << trial << " rectangle [" << c0 << ", " << c1 << ") x [" << r0 << ", " << r1 << ")";
   }
+}
+
+// Several rectangles at once (pieces_less, for supports taken together), against a flood fill:
+// random faces, one to three random rectangles each, some overlapping, some touching.
+TEST(FacePieces, LessSeveralRectanglesAgreesWithAFloodFill) {
+  std::mt19937 random(11);
+  int parted = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const int cols = 3 + static_cast<int>(random() % 10), rows = 3 + static_cast<int>(random() % 10);
+    const unsigned fill = 40 + random() % 55;
+    Picture picture(static_cast<std::size_t>(rows), std::string(static_cast<std::size_t>(cols), '.'));
+    for (std::string& row : picture)
+      for (char& p : row) p = random() % 100 < fill ? '#' : '.';
+    const std::vector<FacePieces::RowRun> runs = runs_of(picture);
+    std::vector<PixelRect> rects;
+    for (unsigned k = 0, n = 1 + random() % 3; k < n; ++k) {
+      const int c0 = static_cast<int>(random() % static_cast<unsigned>(cols)) - 1;
+      const int r0 = static_cast<int>(random() % static_cast<unsigned>(rows)) - 1;
+      rects.push_back({c0, c0 + 1 + static_cast<int>(random() % 4), r0, r0 + 1 + static_cast<int>(random() % 6)});
+    }
+    const int expected = flood_pieces(picture, rects);
+    ASSERT_EQ(pieces_less(runs, rects), expected) << "trial " << trial;
+    parted += expected > flood_pieces(picture, {});
+  }
+  EXPECT_GT(parted, 300) << "the rectangles part faces often enough to test it";
 }
 
 }  // namespace

@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <climits>
+#include <cstdint>
 #include <span>
+#include <utility>
 
 #include "union_find.hpp"
 
@@ -130,6 +132,33 @@ int FacePieces::pieces_without(int c0, int c1, int r0, int r1) const {
     });
   }
   return (c0 > 0 ? closed_left_[c0 - 1] : 0) + (c1 < cols_ ? closed_right_[c1] : 0) + nodes;
+}
+
+int pieces_less(std::span<const FacePieces::RowRun> runs, std::span<const PixelRect> rects) {
+  std::vector<FacePieces::RowRun> left;
+  std::vector<std::pair<int, int>> out;  // the columns taken out of a run's row
+  for (const FacePieces::RowRun& run : runs) {
+    out.clear();
+    for (const PixelRect& r : rects)
+      if (r.r0 <= run.row && run.row < r.r1 && r.c0 < run.c1 && run.c0 < r.c1) out.emplace_back(r.c0, r.c1);
+    std::ranges::sort(out);
+    int c = run.c0;
+    for (const auto& [c0, c1] : out) {
+      if (c0 > c) left.push_back({run.row, c, std::min(c0, run.c1)});
+      c = std::max(c, c1);
+    }
+    if (c < run.c1) left.push_back({run.row, c, run.c1});
+  }
+  // Still in row-major order: the runs of the row above overlapping one are joined to it.
+  UnionFind<std::uint32_t> sets(left.size());
+  int count = static_cast<int>(left.size());
+  for (std::size_t b = 0, a_begin = 0; b < left.size(); ++b) {
+    while (a_begin < b && left[a_begin].row < left[b].row - 1) ++a_begin;
+    for (std::size_t a = a_begin; a < b && left[a].row < left[b].row; ++a)
+      if (left[a].row == left[b].row - 1 && left[a].c0 < left[b].c1 && left[b].c0 < left[a].c1)
+        count -= sets.join(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b));
+  }
+  return count;
 }
 
 }  // namespace origamic

@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Internal: how many 4-connected pieces a face of the raster plan falls into once a rectangle of
-// pixels is taken out of it, in time proportional to the rectangle's columns, not to the face.
+// pixels is taken out of it, in time proportional to the rectangle's columns, not to the face; and
+// once several are, in time proportional to the face.
 #pragma once
 
 #include <span>
 #include <vector>
+
+#include "pixel_rect.hpp"
 
 namespace origamic {
 
@@ -36,5 +39,9 @@ class FacePieces {
   std::vector<int> closed_left_;   // per column: pieces of the columns up to it that do not reach it
   std::vector<int> closed_right_;  // per column: pieces of the columns from it on that do not reach it
 };
+
+/// The 4-connected pieces of a face's pixels less those of some rectangles.
+/// \pre as FacePieces'.
+int pieces_less(std::span<const FacePieces::RowRun> runs, std::span<const PixelRect> rects);
 
 }  // namespace origamic

@@ -22,7 +22,6 @@
 #include "face_pieces.hpp"
 #include "origamic/plan.hpp"
 #include "plane_numbers.hpp"
-#include "union_find.hpp"
 
 namespace origamic {
 namespace {
@@ -51,9 +50,6 @@ struct SupportStart {
 // by many walks at once.
 class CandidateFinder::Search {
   using Run = FacePieces::RowRun;
-  struct Box {
-    int c0 = INT_MAX, c1 = INT_MIN, r0 = INT_MAX, r1 = INT_MIN;  // pixels [c0, c1) x [r0, r1)
-  };
   // Whether face x is cut in two by the pixels [c0, c1) x [r0, r1), as found by one thread's walks:
   // the walks of many faces cross a face between the same columns and rows.
   struct SplitMemo {
@@ -147,9 +143,9 @@ class CandidateFinder::Search {
     }
     face_pieces_.resize(faces_.size());
     face_pieces_once_ = std::make_unique<std::once_flag[]>(faces_.size());
-    face_box_.resize(faces_.size());
+    face_box_.resize(faces_.size(), {INT_MAX, INT_MIN, INT_MAX, INT_MIN});
     for (std::size_t f = 2; f < faces_.size(); ++f) {
-      Box& box = face_box_[f];
+      PixelRect& box = face_box_[f];
       for (const Run& run : face_runs_[f])
         box = {std::min(box.c0, run.c0), std::max(box.c1, run.c1), std::min(box.r0, run.row),
                std::max(box.r1, run.row + 1)};
@@ -163,12 +159,12 @@ class CandidateFinder::Search {
   bool cuts_with(std::int32_t x, std::span<const Candidate> with, const Candidate& s) const {
     if (x == kBackFace || x == kFloorFace) return false;
     const auto i = static_cast<std::size_t>(x);
-    const Box& box = face_box_[i];
+    const PixelRect& box = face_box_[i];
     const auto over_x = [&](const Candidate& c) {
       return c.c0 < box.c1 && box.c0 < c.c1 && c.r0 < box.r1 && box.r0 < c.r1;
     };
     if (!over_x(s)) return false;
-    std::vector<Box> taken;
+    std::vector<PixelRect> taken;
     for (const Candidate& c : with)
       if (over_x(c)) taken.push_back({c.c0, c.c1, c.r0, c.r1});
     if (taken.empty()) return false;  // s alone: its own `cuts`
@@ -289,7 +285,7 @@ class CandidateFinder::Search {
     const auto i = static_cast<std::size_t>(x);
     // The support's pixels outside x's bounding box take nothing of x: the walks of many edges cross
     // a face between the same columns at many lengths, and each thread looks at it once.
-    const Box& box = face_box_[i];
+    const PixelRect& box = face_box_[i];
     const int c0 = std::max(s.c0, box.c0), c1 = std::min(s.c1, box.c1), r0 = std::max(s.r0, box.r0),
               r1 = std::min(s.r1, box.r1);
     if (c0 >= c1 || r0 >= r1) return false;
@@ -300,32 +296,6 @@ class CandidateFinder::Search {
     const bool split = pieces.pieces_without(c0, c1, r0, r1) > pieces.pieces();
     if (memo) memo->known.emplace(key, split);
     return split;
-  }
-  // The 4-connected pieces of a face's runs less the pixels of some boxes.
-  static int pieces_less(const std::vector<Run>& runs, const std::vector<Box>& boxes) {
-    std::vector<Run> left;
-    std::vector<std::pair<int, int>> out;  // columns taken out of a row
-    for (const Run& run : runs) {
-      out.clear();
-      for (const Box& b : boxes)
-        if (b.r0 <= run.row && run.row < b.r1 && b.c0 < run.c1 && run.c0 < b.c1) out.emplace_back(b.c0, b.c1);
-      std::ranges::sort(out);
-      int c = run.c0;
-      for (const auto& [c0, c1] : out) {
-        if (c0 > c) left.push_back({run.row, c, std::min(c0, run.c1)});
-        c = std::max(c, c1);
-      }
-      if (c < run.c1) left.push_back({run.row, c, run.c1});
-    }
-    UnionFind<std::uint32_t> sets(left.size());
-    int count = static_cast<int>(left.size());
-    for (std::size_t b = 0, a_begin = 0; b < left.size(); ++b) {
-      while (a_begin < b && left[a_begin].row < left[b].row - 1) ++a_begin;
-      for (std::size_t a = a_begin; a < b && left[a].row < left[b].row; ++a)
-        if (left[a].row == left[b].row - 1 && left[a].c0 < left[b].c1 && left[b].c0 < left[a].c1)
-          count -= sets.join(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b));
-    }
-    return count;
   }
   // Face i's pieces, counted on first asking (most faces no walk cuts across).
   const FacePieces& pieces_of(std::size_t i) const {
@@ -495,8 +465,8 @@ class CandidateFinder::Search {
     s.far = support_fold(target.orientation, target.depth_mm, h, d);
     // A support that cuts the face it holds in two holds nothing (candidates_of drops it): the faces
     // it crosses are then not asked (on seedlike/sphere a third of the candidates), nor, where no
-    // third face may be cut, those after the first
-    // it cuts; nor is the picture, which only a support kept is priced by.
+    // third face may be cut, those after the first it cuts; nor is the picture, which only a support
+    // kept is priced by.
     const bool crosses_f = std::ranges::find(crossed, f) != crossed.end();
     if (f != g && crosses_f && splits(f, s, &memo)) {
       s.cuts.push_back(f);
@@ -562,7 +532,7 @@ class CandidateFinder::Search {
   std::unique_ptr<std::once_flag[]> face_pieces_once_;
   mutable tbb::enumerable_thread_specific<SplitMemo> memos_;
   mutable tbb::enumerable_thread_specific<ColumnCache> column_rows_;
-  std::vector<Box> face_box_;                // per face, its bounding box
+  std::vector<PixelRect> face_box_;          // per face, its bounding box
   std::vector<int> plane_now_, plane_then_;  // per face of the raster plan and of the exact plan
 };
 
@@ -579,8 +549,9 @@ bool CandidateFinder::cuts_with(std::int32_t x, std::span<const Candidate> with,
 
 std::vector<Candidate> CandidateFinder::from_edge(std::int32_t f, bool up) const { return search_->from_edge(f, up); }
 
-// The candidates of both edges of the faces, found in parallel (each thread with its own caches), then taken
-// in order; a support that cuts the face it holds, or the one it reaches, in two holds nothing.
+// The candidates of both edges of the faces, found in parallel (each thread with its own caches),
+// then taken in order; a support that cuts the face it holds, or the one it reaches, in two holds
+// nothing.
 std::vector<Candidate> candidates_of(const CandidateFinder& finder, const std::vector<std::int32_t>& faces,
                                      bool split_faces) {
   std::vector<std::vector<Candidate>> found(2 * faces.size());

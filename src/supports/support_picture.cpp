@@ -48,24 +48,21 @@ SupportPicture::SupportPicture(const RasterMaps& maps, const RasterPlan& raster_
       hole_extra_mm_(static_cast<float>(kHoleExtra_W * raster_plan.min_strip_mm)),
       hole_error_(raster_plan.faces.size(), 0.0) {
   // Off the model nothing is compared: the tables cover the model's bounding box only.
-  struct Box {
-    int c0, c_end, r0, r_end;
-  };
-  const Box empty{grid_.cols, 0, grid_.rows, 0};
-  const Box bounds = tbb::parallel_reduce(
+  const PixelRect empty{grid_.cols, 0, grid_.rows, 0};
+  const PixelRect bounds = tbb::parallel_reduce(
       tbb::blocked_range<int>(0, grid_.rows), empty,
-      [&](const tbb::blocked_range<int>& rows, Box box) {
+      [&](const tbb::blocked_range<int>& rows, PixelRect box) {
         for (int row = rows.begin(); row < rows.end(); ++row)
           for (int col = 0; col < grid_.cols; ++col)
             if (maps.kind(col, row) == HitKind::Model)
-              box = {std::min(box.c0, col), std::max(box.c_end, col + 1), std::min(box.r0, row), row + 1};
+              box = {std::min(box.c0, col), std::max(box.c1, col + 1), std::min(box.r0, row), row + 1};
         return box;
       },
-      [](const Box& a, const Box& b) {
-        return Box{std::min(a.c0, b.c0), std::max(a.c_end, b.c_end), std::min(a.r0, b.r0), std::max(a.r_end, b.r_end)};
+      [](const PixelRect& a, const PixelRect& b) {
+        return PixelRect{std::min(a.c0, b.c0), std::max(a.c1, b.c1), std::min(a.r0, b.r0), std::max(a.r1, b.r1)};
       });
   c0_ = bounds.c0, r0_ = bounds.r0;
-  int c_end = bounds.c_end, r_end = bounds.r_end;
+  int c_end = bounds.c1, r_end = bounds.r1;
   if (c0_ >= c_end) c0_ = r0_ = c_end = r_end = 0;
   model_key_ = Grid<float>(c_end - c0_, r_end - r0_, std::numeric_limits<float>::quiet_NaN());
   error_ = Grid<float>(c_end - c0_, r_end - r0_, 0.0f);

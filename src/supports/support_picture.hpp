@@ -17,6 +17,7 @@
 #include "origamic/oa.hpp"
 #include "origamic/raster.hpp"
 #include "origamic/slice.hpp"
+#include "pixel_rect.hpp"
 
 namespace origamic {
 
@@ -30,9 +31,7 @@ class SupportPicture {
   /// The picture of the raster plan as it is.
   SupportPicture(const RasterMaps& maps, const RasterPlan& raster_plan);
 
-  struct PixelBox {
-    int c0, c1, r0, r1;  // pixels [c0, c1) x [r0, r1)
-  };
+  using PixelBox = PixelRect;
   /// The error a face of this plane would add over the pixels of the box, in mm of h + d times mm²
   /// of plan (negative where it would show the model better than what is there).
   double added_error(Orientation orientation, double depth_mm, PixelBox box) const;

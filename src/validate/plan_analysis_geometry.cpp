@@ -325,12 +325,12 @@ double ring_area(const Ring& ring) {
   return twice / 2;
 }
 
-// A point strictly inside: on the horizontal line midway across the widest gap between vertex
-// heights, the middle of the widest stretch inside.
 FT crossing_v(const FT& u0, const FT& v0, const FT& u1, const FT& v1, const FT& u) {
   return v0 == v1 ? v0 : v0 + (v1 - v0) * (u - u0) / (u1 - u0);
 }
 
+// A point strictly inside: on the horizontal line midway across the widest gap between vertex
+// heights, the middle of the widest stretch inside.
 Point inside_point(const std::vector<Ring>& rings) {
   std::vector<FT> ys;
   for (const Ring& ring : rings)

@@ -1,0 +1,11 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Internal to the supports stage: a rectangle of the raster plan's pixels.
+#pragma once
+
+namespace origamic {
+
+struct PixelRect {
+  int c0, c1, r0, r1;  // pixels [c0, c1) x [r0, r1)
+};
+
+}  // namespace origamic
