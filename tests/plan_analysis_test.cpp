@@ -376,6 +376,31 @@ TEST(PlanAnalysis, AStripNarrowerThanWBetweenAFoldAndACutIsNoFoldPair) {
   EXPECT_EQ(analysis_summary_line(a).find("between two folds"), std::string::npos) << analysis_summary_line(a);
 }
 
+TEST(PlanAnalysis, AStripUpToACrossingOfTwoCutsIsMeasuredExactly) {
+  // A hole in the box's top face (its piece falls out), its lowest corner where two cuts cross (each
+  // runs on past it: slits, no side of a face): a vertex the file does not give, at a Y no double
+  // holds. The face is narrowest through it, from the mountain fold up to it (2.05 mm); the corner's
+  // interval decides nothing there, so the exact numbers do.
+  const Box b;
+  std::vector<PlanPolyline> lines = box_plan(b);
+  const double fold_Y = b.h - b.d, top_Y = fold_Y + 10, low_Y = fold_Y + 1.25;
+  lines.push_back({LineKind::Cut, {{80, top_Y}, {96.5, low_Y}}});
+  lines.push_back({LineKind::Cut, {{110, top_Y}, {93.5, low_Y}}});
+  lines.push_back({LineKind::Cut, {{80, top_Y}, {110, top_Y}}});
+  const double crossing_Y = top_Y + (low_Y - top_Y) * 15 / 16.5;  // X = 95, by symmetry
+  const PlanAnalysis a = analyze_plan(lines, {.min_strip_mm = 3});
+  const auto narrow = problems_of(a, PlanProblemKind::NarrowStrip);
+  ASSERT_EQ(narrow.size(), 1u) << listing(a);
+  EXPECT_EQ(narrow[0].region, region_at(a, {b.mid(), b.h - 1}));
+  EXPECT_EQ(narrow[0].from.X, 95);
+  EXPECT_EQ(narrow[0].from.Y, fold_Y);
+  EXPECT_NEAR(narrow[0].to.Y, crossing_Y, 1e-12);
+  EXPECT_NEAR(narrow[0].value_mm, crossing_Y - fold_Y, 1e-12);
+  EXPECT_EQ(narrow[0].message.find("such places"), std::string::npos) << "both sides of the line hold one chord";
+  // At W under it, no place: the hole's other corners lie farther from the fold.
+  EXPECT_TRUE(problems_of(analyze_plan(lines, {.min_strip_mm = 2}), PlanProblemKind::NarrowStrip).empty());
+}
+
 // The box plan whose top face H(h) ends on the right in a tip: its right side is a cut slanted from
 // the mountain fold's end (x1, h - d) up to (x1 - run, h), through a point `in` mm along X from that
 // end, so that the face is narrower than W through a vertex there.

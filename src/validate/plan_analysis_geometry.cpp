@@ -10,6 +10,7 @@
 #include <CGAL/intersections.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -44,7 +45,13 @@ std::string num(double value) {
 
 std::string point_text(PlanPoint p) { return "(" + num(p.X) + ", " + num(p.Y) + ")"; }
 
-PlanPoint plan_point(const Point& p) { return {nearest_double(p.x()), nearest_double(p.y())}; }
+PlanPoint plan_point(const Point& p) {
+  // Read off the point's intervals where they are points (every vertex a file gave): no lazy number.
+  const auto nearest = [](const CGAL::Interval_nt<false>& c, auto exact) {
+    return c.inf() == c.sup() ? c.inf() + 0.0 : nearest_double(exact());
+  };
+  return {nearest(p.approx().x(), [&] { return p.x(); }), nearest(p.approx().y(), [&] { return p.y(); })};
+}
 
 // ---------------------------------------------------------------------------------------------
 // The arrangement of every line, clipped to the sheet.
@@ -79,25 +86,41 @@ struct FoldPiece {
 // of the cuts, so a fold drawn with them runs on to the cut on either side (the sheet's edge if
 // none). The ends are exact: a joined fold meets its cut at their exact crossing.
 void add_joined_folds(std::vector<FoldPiece> pieces, Input& in) {
-  std::vector<std::pair<Kernel::Segment_2, std::pair<double, double>>> cuts;  // with their Y range
+  struct Cut {
+    Point p, q;
+    double lo, hi;  // its Y range, a millimetre wider than its doubles say
+  };
+  std::vector<Cut> cuts;
   for (const Traits::Curve_2& curve : in.curves)
     if (in.kind[static_cast<std::size_t>(curve.data())] != LineKind::Mountain &&
         in.kind[static_cast<std::size_t>(curve.data())] != LineKind::Valley) {
-      const double a = CGAL::to_double(curve.source().y()), b = CGAL::to_double(curve.target().y());
-      cuts.emplace_back(Kernel::Segment_2(curve.source(), curve.target()), std::pair{std::min(a, b), std::max(a, b)});
+      const double a = exact::approx_y(curve.source()), b = exact::approx_y(curve.target());
+      cuts.push_back({curve.source(), curve.target(), std::min(a, b) - 1, std::max(a, b) + 1});
     }
+  // The folds' lines bottom to top, and the cuts by where their ranges start: each line looks only at
+  // the cuts whose ranges hold it (res_dragon_full: each looked at all 7,582 cut segments).
+  std::ranges::sort(cuts, {}, &Cut::lo);
   std::ranges::sort(pieces, [](const FoldPiece& a, const FoldPiece& b) {
     return std::tie(a.Y, a.kind, a.lo) < std::tie(b.Y, b.kind, b.lo);
   });
+  std::vector<const Cut*> near;
+  std::size_t next_cut = 0;
+  // Where a point lies against the line Y: on the doubles where both are doubles (most), no lazy
+  // number made.
+  const auto compare_to_line = [](const Point& p, const FT& Y) {
+    const CGAL::Interval_nt<false>&py = p.approx().y(), &y = Y.approx();
+    return py.is_point() && y.is_point() ? CGAL::compare(py.inf(), y.inf()) : CGAL::compare(p.y(), Y);
+  };
   std::vector<FT> crossings;
   for (std::size_t i = 0; i < pieces.size();) {
     const FT Y = pieces[i].Y;
     const double Y_double = CGAL::to_double(Y);
+    while (next_cut < cuts.size() && cuts[next_cut].lo <= Y_double) near.push_back(&cuts[next_cut++]);
+    std::erase_if(near, [&](const Cut* cut) { return cut->hi < Y_double; });
     crossings.clear();
-    for (const auto& [cut, range] : cuts) {
-      if (Y_double < range.first - 1 || Y_double > range.second + 1) continue;
-      const Point &p = cut.source(), &q = cut.target();
-      const CGAL::Comparison_result sp = CGAL::compare(p.y(), Y), sq = CGAL::compare(q.y(), Y);
+    for (const Cut* cut : near) {
+      const Point &p = cut->p, &q = cut->q;
+      const CGAL::Comparison_result sp = compare_to_line(p, Y), sq = compare_to_line(q, Y);
       if (sp == sq && sp != CGAL::EQUAL) continue;
       if (sp == CGAL::EQUAL) crossings.push_back(p.x());
       if (sq == CGAL::EQUAL) crossings.push_back(q.x());
@@ -288,21 +311,27 @@ std::vector<Ring> rings_of(Face f) {
   for (auto ccb = f->inner_ccbs_begin(); ccb != f->inner_ccbs_end(); ++ccb) collect(*ccb);
   std::unordered_map<const void*, bool> used;
   for (const Halfedge& he : real) used[&*he] = false;
-  std::vector<std::pair<FT, Ring>> rings;  // (twice the signed area, ring)
+  std::vector<Ring> found;
   for (const Halfedge& start : real) {
     if (used[&*start]) continue;
-    Ring ring;
-    FT twice = 0;
+    Ring& ring = found.emplace_back();
     Halfedge he = start;
     do {
       used[&*he] = true;
       ring.push_back(he->source()->point());
-      const Point &p = he->source()->point(), &q = he->target()->point();
-      twice += p.x() * q.y() - q.x() * p.y();
       Halfedge next = he->next();
       while (next->twin()->face() == f) next = next->twin()->next();
       he = next;
     } while (he != start);
+  }
+  if (found.size() == 1) return found;     // the one ring is outer: no area needed (most faces)
+  std::vector<std::pair<FT, Ring>> rings;  // (twice the signed area, ring)
+  for (Ring& ring : found) {
+    FT twice = 0;
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Point &p = ring[i], &q = ring[(i + 1) % ring.size()];
+      twice += p.x() * q.y() - q.x() * p.y();
+    }
     rings.emplace_back(twice, std::move(ring));
   }
   // Counter-clockwise rings (positive area) are outer boundaries: the largest first, then the holes.
@@ -366,64 +395,144 @@ Point inside_point(const std::vector<Ring>& rings) {
 // a hole, whose corners are its only vertices, was not seen: 4,447 places at W = 3 mm over the 37
 // plans, 4,734 seen so (teeth of a traced line a fraction of a millimetre high, strips of a face
 // between a notch and a fold).
-std::optional<Chord> narrowest_chord(const std::vector<Ring>& rings, bool along_Y, const FT& W, int& narrow) {
+namespace {
+
+using Interval = CGAL::Interval_nt<false>;
+
+// A coordinate of a ring's point: its interval (no lazy number made) or its exact number.
+template <typename NT>
+NT coordinate(const Point& p, bool x);
+template <>
+Interval coordinate<Interval>(const Point& p, bool x) {
+  return x ? p.approx().x() : p.approx().y();
+}
+template <>
+FT coordinate<FT>(const Point& p, bool x) {
+  return x ? p.x() : p.y();
+}
+
+using analysis::crossing_v;  // on exact numbers; this one on intervals
+Interval crossing_v(const Interval& u0, const Interval& v0, const Interval& u1, const Interval& v1, const Interval& u) {
+  return v0 == v1 ? v0 : v0 + (v1 - v0) * (u - u0) / (u1 - u0);
+}
+
+// Where the chord search found the narrowest chord: the vertex on its line and the face's edges its
+// ends lie on (each by its ends, u0 first), from which the exact chord is made.
+struct ChordPlace {
+  const Point* vertex;
+  std::array<const Point*, 2> lo, hi;
+};
+
+// The chord search of narrowest_chord on one number type, `narrow` added to only when it ends.
+template <typename NT>
+std::optional<ChordPlace> narrowest_chord_place(const std::vector<Ring>& rings, bool along_Y, const NT& W,
+                                                int& narrow) {
   struct Edge {
-    FT u0, v0, u1, v1;  // u across the chord, v along it; u0 <= u1
+    NT u0, v0, u1, v1;                 // u across the chord, v along it; u0 <= u1
+    std::array<const Point*, 2> ends;  // at u0, at u1
   };
+  struct Vertex {
+    NT u, v;
+    const Point* p;
+  };
+  struct End {
+    NT v;
+    const Edge* edge;
+  };
+  struct Piece {
+    End lo, hi;
+  };
+  // One edge's ends on the line are one number, which its intervals, if not a point, cannot say.
+  const auto less = [](const End& a, const End& b) -> bool { return a.edge != b.edge && a.v < b.v; };
+  const auto same = [](const End& a, const End& b) -> bool { return a.edge == b.edge || a.v == b.v; };
   std::vector<Edge> edges;
-  std::vector<std::pair<FT, FT>> vertices;  // (u, v), each coordinate read off its point once
+  std::vector<Vertex> vertices;  // each coordinate read off its point once
   for (const Ring& ring : rings) {
     const std::size_t first = vertices.size();
-    for (const Point& p : ring) vertices.emplace_back(along_Y ? p.x() : p.y(), along_Y ? p.y() : p.x());
+    for (const Point& p : ring) vertices.push_back({coordinate<NT>(p, along_Y), coordinate<NT>(p, !along_Y), &p});
     for (std::size_t i = 0; i < ring.size(); ++i) {
-      const auto& [pu, pv] = vertices[first + i];
-      const auto& [qu, qv] = vertices[first + (i + 1) % ring.size()];
-      edges.push_back(pu <= qu ? Edge{pu, pv, qu, qv} : Edge{qu, qv, pu, pv});
+      const Vertex &p = vertices[first + i], &q = vertices[first + (i + 1) % ring.size()];
+      edges.push_back(p.u <= q.u ? Edge{p.u, p.v, q.u, q.v, {p.p, q.p}} : Edge{q.u, q.v, p.u, p.v, {q.p, p.p}});
     }
   }
-  std::sort(vertices.begin(), vertices.end());
-  std::sort(edges.begin(), edges.end(), [](const Edge& a, const Edge& b) { return a.u0 < b.u0; });
-  std::optional<Chord> best;
+  std::sort(vertices.begin(), vertices.end(),
+            [](const Vertex& a, const Vertex& b) -> bool { return a.u < b.u || (!(b.u < a.u) && a.v < b.v); });
+  std::sort(edges.begin(), edges.end(), [](const Edge& a, const Edge& b) -> bool { return a.u0 < b.u0; });
+  std::optional<ChordPlace> best;
+  NT best_length = 0;
+  int found = 0;
   std::vector<const Edge*> active;
-  std::vector<FT> after, before;
-  std::vector<std::pair<FT, FT>> pieces;
+  std::vector<End> after, before;
+  std::vector<Piece> pieces;
   std::vector<std::uint8_t> counted;
   std::size_t next_edge = 0;
   for (std::size_t i = 0; i < vertices.size();) {
-    const FT u = vertices[i].first;
+    const NT u = vertices[i].u;
     std::size_t j = i;
-    while (j < vertices.size() && vertices[j].first == u) ++j;
+    while (j < vertices.size() && vertices[j].u == u) ++j;
     while (next_edge < edges.size() && edges[next_edge].u0 <= u) active.push_back(&edges[next_edge++]);
-    std::erase_if(active, [&](const Edge* e) { return e->u1 < u; });
+    std::erase_if(active, [&](const Edge* e) -> bool { return e->u1 < u; });
     after.clear(), before.clear();
     for (const Edge* e : active) {
       if (e->u0 == e->u1) continue;  // along the line: both faces' sides come from the other edges
-      const FT v = u == e->u0 ? e->v0 : u == e->u1 ? e->v1 : crossing_v(e->u0, e->v0, e->u1, e->v1, u);
-      if (e->u0 <= u && u < e->u1) after.push_back(v);
-      if (e->u0 < u && u <= e->u1) before.push_back(v);
+      const NT v = u == e->u0 ? e->v0 : u == e->u1 ? e->v1 : crossing_v(e->u0, e->v0, e->u1, e->v1, u);
+      if (e->u0 <= u && u < e->u1) after.push_back({v, e});
+      if (e->u0 < u && u <= e->u1) before.push_back({v, e});
     }
     pieces.clear();
-    for (std::vector<FT>* side : {&after, &before}) {
-      std::sort(side->begin(), side->end());
-      for (std::size_t k = 0; k + 1 < side->size(); k += 2) pieces.emplace_back((*side)[k], (*side)[k + 1]);
+    for (std::vector<End>* side : {&after, &before}) {
+      std::sort(side->begin(), side->end(), less);
+      for (std::size_t k = 0; k + 1 < side->size(); k += 2) pieces.push_back({(*side)[k], (*side)[k + 1]});
     }
     // A stretch the same on both sides (the face crosses the line there) is one chord.
-    std::sort(pieces.begin(), pieces.end());
-    pieces.erase(std::unique(pieces.begin(), pieces.end()), pieces.end());
+    std::sort(pieces.begin(), pieces.end(), [&](const Piece& a, const Piece& b) {
+      return less(a.lo, b.lo) || (!less(b.lo, a.lo) && less(a.hi, b.hi));
+    });
+    pieces.erase(std::unique(pieces.begin(), pieces.end(),
+                             [&](const Piece& a, const Piece& b) { return same(a.lo, b.lo) && same(a.hi, b.hi); }),
+                 pieces.end());
     counted.assign(pieces.size(), 0);
     for (std::size_t k = i; k < j; ++k)
       for (std::size_t m = 0; m < pieces.size(); ++m) {
-        const auto& piece = pieces[m];
-        if (vertices[k].second < piece.first || piece.second < vertices[k].second || counted[m]) continue;
+        const Piece& piece = pieces[m];
+        if (vertices[k].v < piece.lo.v || piece.hi.v < vertices[k].v || counted[m]) continue;
         counted[m] = 1;  // vertices of one chord count it once
-        const FT length = piece.second - piece.first;
+        const NT length = piece.hi.v - piece.lo.v;
         if (!CGAL::is_positive(length) || !(length < W)) continue;
-        ++narrow;
-        if (!best || length < best->hi - best->lo) best = Chord{u, piece.first, piece.second};
+        ++found;
+        if (!best || length < best_length)
+          best = ChordPlace{vertices[i].p, piece.lo.edge->ends, piece.hi.edge->ends}, best_length = length;
       }
     i = j;
   }
+  narrow += found;
   return best;
+}
+
+// The exact v at u of the edge from a to b (u0 <= u <= u1), as the chord search made it.
+FT exact_v(const std::array<const Point*, 2>& edge, bool along_Y, const FT& u) {
+  const FT u0 = coordinate<FT>(*edge[0], along_Y), v0 = coordinate<FT>(*edge[0], !along_Y);
+  const FT u1 = coordinate<FT>(*edge[1], along_Y), v1 = coordinate<FT>(*edge[1], !along_Y);
+  return u == u0 ? v0 : u == u1 ? v1 : crossing_v(u0, v0, u1, v1, u);
+}
+
+}  // namespace
+
+// The search runs on the vertices' intervals, which make no lazy number and decide all but a few
+// faces' comparisons (an uncertain one throws: res_dragon_full, 31 of 4,272 searches); on exact
+// numbers where they do not. Both give the same chord: every comparison the intervals decide, they
+// decide as the exact numbers do.
+std::optional<Chord> narrowest_chord(const std::vector<Ring>& rings, bool along_Y, const FT& W, int& narrow) {
+  std::optional<ChordPlace> place;
+  try {
+    const CGAL::Protect_FPU_rounding<true> rounding;
+    place = narrowest_chord_place<Interval>(rings, along_Y, W.approx(), narrow);
+  } catch (const CGAL::Uncertain_conversion_exception&) {
+    place = narrowest_chord_place<FT>(rings, along_Y, W, narrow);
+  }
+  if (!place) return std::nullopt;
+  const FT at = coordinate<FT>(*place->vertex, along_Y);
+  return Chord{at, exact_v(place->lo, along_Y, at), exact_v(place->hi, along_Y, at)};
 }
 
 }  // namespace origamic::analysis
