@@ -12,6 +12,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <shared_mutex>
 #include <span>
 #include <vector>
 
@@ -32,7 +33,11 @@ using exact::Point;
 // [its left end's x, its right end's x): a line through a vertex takes the edges to its right, as a
 // line a hair to the right would, and no vertical edge.
 const std::vector<ExactPlan::State::Crossing>& ExactPlan::State::line_at(double x) {
-  const std::lock_guard lock(mutex);
+  {
+    const std::shared_lock reading(mutex);  // most lines are known: threads look them up at once
+    if (const auto known = lines.find(x); known != lines.end()) return known->second;
+  }
+  const std::unique_lock lock(mutex);
   if (const auto known = lines.find(x); known != lines.end()) return known->second;
   const Arrangement& arr = built.arrangement;
   const auto columns = static_cast<std::size_t>(std::ceil(plan.sheet.width_mm * grid.px_per_mm)) + 1;
@@ -142,6 +147,16 @@ std::ptrdiff_t marks_under_start(const std::vector<Mark>& line, const ExactPlan:
   return under;
 }
 
+// Whether a <= b (or a < b, as `exactly` asks) for two numbers known by their doubles a and b and
+// exactly: settled on the doubles where they lie farther apart than kSettled_mm, else exactly. The
+// doubles are each within a few ulps of their numbers (nearest doubles, and sums of two): on a plan
+// a few hundred millimetres across, under 1e-12 mm.
+constexpr double kSettled_mm = 1e-9;
+template <typename Exactly>
+bool at_most(double a, double b, Exactly exactly) {
+  return b - a > kSettled_mm || (b - a >= -kSettled_mm && exactly());
+}
+
 // Whether a fold lands on the piece of the line between marks lo and hi, from the ray's start on.
 // The piece holds its near end, not its far one: a fold there lands on the next piece. Ends are
 // taken as the plan takes fold lines, to kFoldLineTolerance_mm: a support's height is the double
@@ -149,13 +164,17 @@ std::ptrdiff_t marks_under_start(const std::vector<Mark>& line, const ExactPlan:
 // The near end reaches short_mm farther: a fold that short of it lands on the piece.
 bool lands_between(const FoldLine& fold, const Mark& lo, const Mark& hi, const ExactPlan::Ray& ray) {
   using exact::Rational;
-  const double slack = kFoldLineTolerance_mm + ray.short_mm + 1e-9;  // closer calls go exact
+  const double tolerance = kFoldLineTolerance_mm, reach = tolerance + ray.short_mm;
   const double Y_near = fold.h - fold.d;
-  if (Y_near < lo.Y_near - slack || Y_near > hi.Y_near + slack) return false;
-  const Rational Y = exact_Y(fold), start(ray.from_Y), tolerance(kFoldLineTolerance_mm);
-  const Rational near_reach = tolerance + Rational(ray.short_mm);
-  return ray.up ? start <= Y && lo.exact() - near_reach <= Y && Y < hi.exact() - tolerance
-                : Y <= start && lo.exact() + tolerance < Y && Y <= hi.exact() + near_reach;
+  const auto Y = [&] { return exact_Y(fold); };
+  const auto near_reach = [&] { return Rational(tolerance) + Rational(ray.short_mm); };
+  if (ray.up)
+    return at_most(ray.from_Y, Y_near, [&] { return Rational(ray.from_Y) <= Y(); }) &&
+           at_most(lo.Y_near - reach, Y_near, [&] { return lo.exact() - near_reach() <= Y(); }) &&
+           at_most(Y_near, hi.Y_near - tolerance, [&] { return Y() < hi.exact() - Rational(tolerance); });
+  return at_most(Y_near, ray.from_Y, [&] { return Y() <= Rational(ray.from_Y); }) &&
+         at_most(lo.Y_near + tolerance, Y_near, [&] { return lo.exact() + Rational(tolerance) < Y(); }) &&
+         at_most(Y_near, hi.Y_near + reach, [&] { return Y() <= hi.exact() + near_reach(); });
 }
 
 struct Plane {
@@ -183,8 +202,10 @@ std::optional<Plane> plane_above(std::int32_t g, const std::vector<RasterFace>& 
 
 std::vector<ExactPlan::Reached> ExactPlan::faces_reached(const Ray& ray) const {
   const auto& [x, from_Y, up, h, d, painted, short_mm] = ray;
+  const std::vector<State::Crossing>& at_x = state_->line_at(x);
   std::vector<Mark> crossings;
-  for (const State::Crossing& c : state_->line_at(x)) crossings.push_back({&c.Y, {}, c.Y_near, c.above});
+  crossings.reserve(at_x.size() + 2 * painted.size());  // each band may add its two ends
+  for (const State::Crossing& c : at_x) crossings.push_back({&c.Y, {}, c.Y_near, c.above});
   const std::vector<Mark> line = painted_over(std::move(crossings), painted);
   std::vector<Reached> reached;
   const auto n = static_cast<std::ptrdiff_t>(line.size());

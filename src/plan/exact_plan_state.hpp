@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <map>
 #include <mutex>
+#include <shared_mutex>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -102,9 +103,10 @@ struct ExactPlan::State {
   std::vector<std::uint8_t> cut_out;                                                  // per piece: a crumb, cut out
   Plan plan;                                                                          // the verdict
 
-  // Vertical ray shooting (faces_reached). The exact numbers are read under the lock only; the
-  // lines keep their crossings as plain rationals, which threads may read at once (MPFR, which
-  // to_interval calls on them, is built thread-safe in Debian).
+  // Vertical ray shooting (faces_reached). The exact numbers are read under the lock held alone,
+  // while a line is made; lines made are looked up under it shared. They keep their crossings as
+  // plain rationals, which threads may read at once (MPFR, which to_interval calls on them, is
+  // built thread-safe in Debian).
   struct Crossing {
     exact::Rational Y;
     double Y_near;       // nearest double: a smaller one means a smaller Y, an equal one decides nothing
@@ -114,7 +116,7 @@ struct ExactPlan::State {
     double x_lo, x_hi;                             // the edge's x-extent, widened by its doubles' rounding
     exact::Arrangement::Halfedge_const_handle he;  // directed left to right: its face lies above it
   };
-  std::mutex mutex;
+  std::shared_mutex mutex;
   // The edges by the pixel columns their x-extents meet, so that a line looks at its column's only.
   std::vector<std::vector<EdgeSpan>> spans_by_column;
   std::map<double, std::vector<Crossing>> lines;  // by x: a map's elements stay where they are
