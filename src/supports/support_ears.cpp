@@ -71,8 +71,18 @@ class EarSearch::Paths {
         open_(open),
         usable_(usable),
         states_of_(graph.arcs_.size()),
-        first_arc_(graph.arcs_.size() + 1) {
-    for (std::size_t u = 0; u < graph.arcs_.size(); ++u) first_arc_[u + 1] = first_arc_[u] + graph.arcs_[u].size();
+        first_arc_(graph.arcs_.size() + 1),
+        first_open_arc_(graph.arcs_.size() + 1),
+        end_open_arc_(graph.arcs_.size()) {
+    for (std::size_t u = 0; u < graph.arcs_.size(); ++u) {
+      first_arc_[u + 1] = first_arc_[u] + graph.arcs_[u].size();
+      for (std::size_t a = 0; a < graph.arcs_[u].size(); ++a) {
+        const Arc& arc = graph.arcs_[u][a];
+        if (open_[static_cast<std::size_t>(arc.to)] && allowed(arc))
+          open_arcs_.push_back(static_cast<std::uint32_t>(a));
+      }
+      first_open_arc_[u + 1] = end_open_arc_[u] = open_arcs_.size();
+    }
     arc_state_.assign(first_arc_.back(), kNoState);
   }
 
@@ -98,19 +108,29 @@ class EarSearch::Paths {
         ++st.settled;
       }
       const auto u = static_cast<std::size_t>(label.face);
-      for (std::size_t a = 0; a < graph_.arcs_[u].size(); ++a) {
+      // An arc into a state whose two labels are final leads nowhere again: it leaves u's list, which
+      // keeps its order (seedlike/torus's 33 searches followed 9.4 million arcs, 4.0 million of them
+      // into such states).
+      std::size_t kept = first_open_arc_[u];
+      for (std::size_t i = first_open_arc_[u]; i < end_open_arc_[u]; ++i) {
+        const std::uint32_t a = open_arcs_[i];
         const Arc& arc = graph_.arcs_[u][a];
-        if (!allowed(arc) || same_line(arc.here_Y, label.Y)) continue;  // a face held on one line swings
+        if (same_line(arc.here_Y, label.Y)) {  // a face held on one line swings
+          open_arcs_[kept++] = a;
+          continue;
+        }
         const std::uint32_t entered = state_entered(u, a);
-        if (states_[entered].settled == 2) continue;  // its two labels are final
+        if (states_[entered].settled == 2) continue;
+        open_arcs_[kept++] = a;
         // Straight back is no path; longer cycles cost more than their way round, and an ear found
         // through one is passed over below.
         const bool back = label.prev >= 0 && labels_[static_cast<std::size_t>(label.prev)].face == arc.to;
-        if (!open_[static_cast<std::size_t>(arc.to)] || back || breaks(id, arc)) continue;
+        if (back || breaks(id, arc)) continue;
         const bool cutting = label.cutting || !cuts_of(arc.support).empty();
         push({label.dist + arc.cost, label.picture + arc.picture, arc.to, arc.there_Y, label.source, id, arc.support,
               cutting, entered});
       }
+      end_open_arc_[u] = kept;
     }
   }
 
@@ -259,6 +279,10 @@ class EarSearch::Paths {
   static constexpr std::uint32_t kNoState = std::numeric_limits<std::uint32_t>::max();
   std::vector<std::size_t> first_arc_;    // per face, the index of its first arc among all
   std::vector<std::uint32_t> arc_state_;  // per arc, the state it enters, kNoState until looked up
+  // Per face, the arcs a path may take out of it (usable, into an open face, into a state not yet
+  // final), by their index among its arcs: first_open_arc_[u] to end_open_arc_[u] in open_arcs_.
+  std::vector<std::size_t> first_open_arc_, end_open_arc_;
+  std::vector<std::uint32_t> open_arcs_;
 };
 
 namespace {
