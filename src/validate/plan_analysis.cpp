@@ -380,12 +380,13 @@ bool Analyzer::crosses_between(std::size_t r, const FT& X, const FT& lo, const F
 }
 
 void Analyzer::check_strips() {
+  const std::vector<FaceChords> chords = narrowest_chords(rings, cut_out, W);
   narrowest.assign(faces.size(), {});
   for (std::size_t r = 0; r < faces.size(); ++r)
     for (const bool along_Y : {true, false}) {
-      if (cut_out[r]) continue;
-      int narrow = 0;
-      const std::optional<Chord>& chord = narrowest[r][along_Y ? 0 : 1] = narrowest_chord(rings[r], along_Y, W, narrow);
+      const std::size_t axis = along_Y ? 0 : 1;
+      const int narrow = chords[r].narrow[axis];
+      const std::optional<Chord>& chord = narrowest[r][axis] = chords[r].narrowest[axis];
       if (!chord) continue;
       const Point a = along_Y ? Point(chord->at, chord->lo) : Point(chord->lo, chord->at);
       const Point b = along_Y ? Point(chord->at, chord->hi) : Point(chord->hi, chord->at);

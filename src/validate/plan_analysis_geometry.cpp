@@ -8,6 +8,7 @@
 #include "plan_analysis_geometry.hpp"
 
 #include <CGAL/intersections.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -518,21 +519,47 @@ FT exact_v(const std::array<const Point*, 2>& edge, bool along_Y, const FT& u) {
 
 }  // namespace
 
-// The search runs on the vertices' intervals, which make no lazy number and decide all but a few
-// faces' comparisons (an uncertain one throws: res_dragon_full, 31 of 4,272 searches); on exact
-// numbers where they do not. Both give the same chord: every comparison the intervals decide, they
-// decide as the exact numbers do.
-std::optional<Chord> narrowest_chord(const std::vector<Ring>& rings, bool along_Y, const FT& W, int& narrow) {
-  std::optional<ChordPlace> place;
-  try {
-    const CGAL::Protect_FPU_rounding<true> rounding;
-    place = narrowest_chord_place<Interval>(rings, along_Y, W.approx(), narrow);
-  } catch (const CGAL::Uncertain_conversion_exception&) {
-    place = narrowest_chord_place<FT>(rings, along_Y, W, narrow);
+// The searches run on the vertices' intervals, which make no lazy number and decide all but a few
+// faces' comparisons (an uncertain one throws: res_dragon_full, 31 of 4,272 searches), in parallel:
+// they only read the intervals, which no exact number is made to change meanwhile. Then, one after
+// another, those left on exact numbers, and the exact chords. Both searches give the same chord:
+// every comparison the intervals decide, they decide as the exact numbers do.
+std::vector<FaceChords> narrowest_chords(const std::vector<std::vector<Ring>>& rings,
+                                         const std::vector<std::uint8_t>& skip, const FT& W) {
+  struct Found {
+    std::optional<ChordPlace> place;
+    int narrow = 0;
+    bool decided = false;
+  };
+  std::vector<std::array<Found, 2>> found(rings.size());
+  const Interval W_interval = W.approx();
+  tbb::parallel_for(std::size_t{0}, rings.size(), [&](std::size_t f) {
+    if (skip[f]) return;
+    for (const int axis : {0, 1}) {
+      Found& out = found[f][static_cast<std::size_t>(axis)];
+      try {
+        const CGAL::Protect_FPU_rounding<true> rounding;
+        out.place = narrowest_chord_place<Interval>(rings[f], axis == 0, W_interval, out.narrow);
+        out.decided = true;
+      } catch (const CGAL::Uncertain_conversion_exception&) {
+      }
+    }
+  });
+  std::vector<FaceChords> chords(rings.size());
+  for (std::size_t f = 0; f < rings.size(); ++f) {
+    if (skip[f]) continue;
+    for (const int axis : {0, 1}) {
+      const bool along_Y = axis == 0;
+      Found& in = found[f][static_cast<std::size_t>(axis)];
+      if (!in.decided) in.place = narrowest_chord_place<FT>(rings[f], along_Y, W, in.narrow);
+      chords[f].narrow[static_cast<std::size_t>(axis)] = in.narrow;
+      if (!in.place) continue;
+      const FT at = coordinate<FT>(*in.place->vertex, along_Y);
+      chords[f].narrowest[static_cast<std::size_t>(axis)] =
+          Chord{at, exact_v(in.place->lo, along_Y, at), exact_v(in.place->hi, along_Y, at)};
+    }
   }
-  if (!place) return std::nullopt;
-  const FT at = coordinate<FT>(*place->vertex, along_Y);
-  return Chord{at, exact_v(place->lo, along_Y, at), exact_v(place->hi, along_Y, at)};
+  return chords;
 }
 
 }  // namespace origamic::analysis

@@ -74,11 +74,18 @@ struct Chord {
   exact::FT at, lo, hi;  // the chord runs from lo to hi along the measured axis, at `at` on the other
 };
 
-/// The shortest chord of the face the rings bound through one of its vertices, along Y or along X,
-/// longer than zero and shorter than W, if any; adds the number of such chords to `narrow`. A chord
-/// is the face's stretch on the line just before it or just after it, each side on its own (the
-/// strip under a notch, whose corners are its only vertices, is one).
-std::optional<Chord> narrowest_chord(const std::vector<Ring>& rings, bool along_Y, const exact::FT& W, int& narrow);
+/// A face's shortest chords through one of its vertices, along Y ([0]) and along X ([1]), longer
+/// than zero and shorter than W, if any, and how many such chords it has each way. A chord is the
+/// face's stretch on the line just before it or just after it, each side on its own (the strip
+/// under a notch, whose corners are its only vertices, is one).
+struct FaceChords {
+  std::array<std::optional<Chord>, 2> narrowest;
+  std::array<int, 2> narrow = {0, 0};
+};
+
+/// The chords of each face the rings bound (rings[f]), none sought where skip[f] is set.
+std::vector<FaceChords> narrowest_chords(const std::vector<std::vector<Ring>>& rings,
+                                         const std::vector<std::uint8_t>& skip, const exact::FT& W);
 
 // ---------------------------------------------------------------------------------------------
 // The analysis (plan_analysis.cpp), which the tip repair (tip_repair.cpp) runs round after round.
