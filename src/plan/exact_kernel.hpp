@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Internal: the exact kernel shared by the translation units that build arrangements (exact_plan*.cpp
-// through exact_plan_state.hpp; plan_analysis.cpp and tip_repair.cpp, with plan_analysis_geometry.cpp),
+// through exact_plan_state.hpp; plan_analysis.cpp and tip_repair.cpp, with plan_analysis_geometry.cpp
+// and plan_analysis_chords.cpp),
 // and the one conversion of an exact number to the double written out.
 #pragma once
 

@@ -150,7 +150,8 @@ std::ptrdiff_t marks_under_start(const std::vector<Mark>& line, const ExactPlan:
 // Whether a <= b (or a < b, as `exactly` asks) for two numbers known by their doubles a and b and
 // exactly: settled on the doubles where they lie farther apart than kSettled_mm, else exactly. The
 // doubles are each within a few ulps of their numbers (nearest doubles, and sums of two): on a plan
-// a few hundred millimetres across, under 1e-12 mm.
+// a few hundred millimetres across, under 1e-12 mm. (seedlike/chapel: the ray shooting 11% -> 6% of
+// its samples; folds that land on a crossing's line still go exact.)
 constexpr double kSettled_mm = 1e-9;
 template <typename Exactly>
 bool at_most(double a, double b, Exactly exactly) {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The translation unit that validates a plan from its lines on an exact arrangement (CGAL is heavy
-// to compile: keep it here and in plan_analysis_geometry.cpp, which holds the geometry it works on).
+// to compile: keep it here, in plan_analysis_geometry.cpp, which holds the geometry it works on, and
+// in plan_analysis_chords.cpp, its strip widths).
 // One exact run at a time: see exact_runs.hpp.
 #define CGAL_HAS_NO_THREADS 1
 

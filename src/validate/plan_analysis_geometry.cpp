@@ -1,17 +1,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The exact geometry under a plan's analysis (plan_analysis.cpp): the plan's lines collected onto the
-// sheet, the faces of their arrangement as rings, and the narrowest chords across a face. CGAL is
-// heavy to compile: the analysis has these two translation units and no more. One exact run at a
-// time: see exact_runs.hpp.
+// sheet and the faces of their arrangement as rings (the narrowest chords across a face are
+// plan_analysis_chords.cpp's). CGAL is heavy to compile: the analysis has these three translation
+// units and no more. One exact run at a time: see exact_runs.hpp.
 #define CGAL_HAS_NO_THREADS 1
 
 #include "plan_analysis_geometry.hpp"
 
 #include <CGAL/intersections.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -90,13 +88,14 @@ void add_joined_folds(std::vector<FoldPiece> pieces, Input& in) {
   struct Cut {
     Point p, q;
     double lo, hi;  // its Y range, a millimetre wider than its doubles say
+    std::size_t index;  // among the cuts as drawn
   };
   std::vector<Cut> cuts;
   for (const Traits::Curve_2& curve : in.curves)
     if (in.kind[static_cast<std::size_t>(curve.data())] != LineKind::Mountain &&
         in.kind[static_cast<std::size_t>(curve.data())] != LineKind::Valley) {
       const double a = exact::approx_y(curve.source()), b = exact::approx_y(curve.target());
-      cuts.push_back({curve.source(), curve.target(), std::min(a, b) - 1, std::max(a, b) + 1});
+      cuts.push_back({curve.source(), curve.target(), std::min(a, b) - 1, std::max(a, b) + 1, cuts.size()});
     }
   // The folds' lines bottom to top, and the cuts by where their ranges start: each line looks only at
   // the cuts whose ranges hold it (res_dragon_full: each looked at all 7,582 cut segments).
@@ -118,6 +117,9 @@ void add_joined_folds(std::vector<FoldPiece> pieces, Input& in) {
     const double Y_double = CGAL::to_double(Y);
     while (next_cut < cuts.size() && cuts[next_cut].lo <= Y_double) near.push_back(&cuts[next_cut++]);
     std::erase_if(near, [&](const Cut* cut) { return cut->hi < Y_double; });
+    // In the order drawn: the crossings' sort below is not stable, and which of two equal crossings
+    // it leaves first follows the order they came in.
+    std::ranges::sort(near, {}, &Cut::index);
     crossings.clear();
     for (const Cut* cut : near) {
       const Point &p = cut->p, &q = cut->q;
@@ -382,184 +384,6 @@ Point inside_point(const std::vector<Ring>& rings) {
   for (std::size_t i = 2; i + 1 < xs.size(); i += 2)
     if (xs[i + 1] - xs[i] > xs[best + 1] - xs[best]) best = i;
   return {(xs[best] + xs[best + 1]) / 2, y};
-}
-
-// ---------------------------------------------------------------------------------------------
-// Strips narrower than W: chords of a face along one axis through each of its vertices.
-
-// The shortest chord through a vertex, along Y (vertical chords at each vertex X) or along X, that is
-// longer than zero (a corner's tip is no strip) and shorter than W; `narrow` counts such chords. A
-// chord is a stretch of the face along the line just before it or just after it (half-open
-// crossing rules on each side, exact), each side on its own: where a side of the face runs along
-// the line, as a notch's wall does, the face on the line's other side may be narrower than the
-// closed face on the line. Taken as the union of the two sides, the strip under a notch or beside
-// a hole, whose corners are its only vertices, was not seen: 4,447 places at W = 3 mm over the 37
-// plans, 4,734 seen so (teeth of a traced line a fraction of a millimetre high, strips of a face
-// between a notch and a fold).
-namespace {
-
-using Interval = CGAL::Interval_nt<false>;
-
-// A coordinate of a ring's point: its interval (no lazy number made) or its exact number.
-template <typename NT>
-NT coordinate(const Point& p, bool x);
-template <>
-Interval coordinate<Interval>(const Point& p, bool x) {
-  return x ? p.approx().x() : p.approx().y();
-}
-template <>
-FT coordinate<FT>(const Point& p, bool x) {
-  return x ? p.x() : p.y();
-}
-
-using analysis::crossing_v;  // on exact numbers; this one on intervals
-Interval crossing_v(const Interval& u0, const Interval& v0, const Interval& u1, const Interval& v1, const Interval& u) {
-  return v0 == v1 ? v0 : v0 + (v1 - v0) * (u - u0) / (u1 - u0);
-}
-
-// Where the chord search found the narrowest chord: the vertex on its line and the face's edges its
-// ends lie on (each by its ends, u0 first), from which the exact chord is made.
-struct ChordPlace {
-  const Point* vertex;
-  std::array<const Point*, 2> lo, hi;
-};
-
-// The chord search of narrowest_chord on one number type, `narrow` added to only when it ends.
-template <typename NT>
-std::optional<ChordPlace> narrowest_chord_place(const std::vector<Ring>& rings, bool along_Y, const NT& W,
-                                                int& narrow) {
-  struct Edge {
-    NT u0, v0, u1, v1;                 // u across the chord, v along it; u0 <= u1
-    std::array<const Point*, 2> ends;  // at u0, at u1
-  };
-  struct Vertex {
-    NT u, v;
-    const Point* p;
-  };
-  struct End {
-    NT v;
-    const Edge* edge;
-  };
-  struct Piece {
-    End lo, hi;
-  };
-  // One edge's ends on the line are one number, which its intervals, if not a point, cannot say.
-  const auto less = [](const End& a, const End& b) -> bool { return a.edge != b.edge && a.v < b.v; };
-  const auto same = [](const End& a, const End& b) -> bool { return a.edge == b.edge || a.v == b.v; };
-  std::vector<Edge> edges;
-  std::vector<Vertex> vertices;  // each coordinate read off its point once
-  for (const Ring& ring : rings) {
-    const std::size_t first = vertices.size();
-    for (const Point& p : ring) vertices.push_back({coordinate<NT>(p, along_Y), coordinate<NT>(p, !along_Y), &p});
-    for (std::size_t i = 0; i < ring.size(); ++i) {
-      const Vertex &p = vertices[first + i], &q = vertices[first + (i + 1) % ring.size()];
-      edges.push_back(p.u <= q.u ? Edge{p.u, p.v, q.u, q.v, {p.p, q.p}} : Edge{q.u, q.v, p.u, p.v, {q.p, p.p}});
-    }
-  }
-  std::sort(vertices.begin(), vertices.end(),
-            [](const Vertex& a, const Vertex& b) -> bool { return a.u < b.u || (!(b.u < a.u) && a.v < b.v); });
-  std::sort(edges.begin(), edges.end(), [](const Edge& a, const Edge& b) -> bool { return a.u0 < b.u0; });
-  std::optional<ChordPlace> best;
-  NT best_length = 0;
-  int found = 0;
-  std::vector<const Edge*> active;
-  std::vector<End> after, before;
-  std::vector<Piece> pieces;
-  std::vector<std::uint8_t> counted;
-  std::size_t next_edge = 0;
-  for (std::size_t i = 0; i < vertices.size();) {
-    const NT u = vertices[i].u;
-    std::size_t j = i;
-    while (j < vertices.size() && vertices[j].u == u) ++j;
-    while (next_edge < edges.size() && edges[next_edge].u0 <= u) active.push_back(&edges[next_edge++]);
-    std::erase_if(active, [&](const Edge* e) -> bool { return e->u1 < u; });
-    after.clear(), before.clear();
-    for (const Edge* e : active) {
-      if (e->u0 == e->u1) continue;  // along the line: both faces' sides come from the other edges
-      const NT v = u == e->u0 ? e->v0 : u == e->u1 ? e->v1 : crossing_v(e->u0, e->v0, e->u1, e->v1, u);
-      if (e->u0 <= u && u < e->u1) after.push_back({v, e});
-      if (e->u0 < u && u <= e->u1) before.push_back({v, e});
-    }
-    pieces.clear();
-    for (std::vector<End>* side : {&after, &before}) {
-      std::sort(side->begin(), side->end(), less);
-      for (std::size_t k = 0; k + 1 < side->size(); k += 2) pieces.push_back({(*side)[k], (*side)[k + 1]});
-    }
-    // A stretch the same on both sides (the face crosses the line there) is one chord.
-    std::sort(pieces.begin(), pieces.end(), [&](const Piece& a, const Piece& b) {
-      return less(a.lo, b.lo) || (!less(b.lo, a.lo) && less(a.hi, b.hi));
-    });
-    pieces.erase(std::unique(pieces.begin(), pieces.end(),
-                             [&](const Piece& a, const Piece& b) { return same(a.lo, b.lo) && same(a.hi, b.hi); }),
-                 pieces.end());
-    counted.assign(pieces.size(), 0);
-    for (std::size_t k = i; k < j; ++k)
-      for (std::size_t m = 0; m < pieces.size(); ++m) {
-        const Piece& piece = pieces[m];
-        if (vertices[k].v < piece.lo.v || piece.hi.v < vertices[k].v || counted[m]) continue;
-        counted[m] = 1;  // vertices of one chord count it once
-        const NT length = piece.hi.v - piece.lo.v;
-        if (!CGAL::is_positive(length) || !(length < W)) continue;
-        ++found;
-        if (!best || length < best_length)
-          best = ChordPlace{vertices[i].p, piece.lo.edge->ends, piece.hi.edge->ends}, best_length = length;
-      }
-    i = j;
-  }
-  narrow += found;
-  return best;
-}
-
-// The exact v at u of the edge from a to b (u0 <= u <= u1), as the chord search made it.
-FT exact_v(const std::array<const Point*, 2>& edge, bool along_Y, const FT& u) {
-  const FT u0 = coordinate<FT>(*edge[0], along_Y), v0 = coordinate<FT>(*edge[0], !along_Y);
-  const FT u1 = coordinate<FT>(*edge[1], along_Y), v1 = coordinate<FT>(*edge[1], !along_Y);
-  return u == u0 ? v0 : u == u1 ? v1 : crossing_v(u0, v0, u1, v1, u);
-}
-
-}  // namespace
-
-// The searches run on the vertices' intervals, which make no lazy number and decide all but a few
-// faces' comparisons (an uncertain one throws: res_dragon_full, 31 of 4,272 searches), in parallel:
-// they only read the intervals, which no exact number is made to change meanwhile. Then, one after
-// another, those left on exact numbers, and the exact chords. Both searches give the same chord:
-// every comparison the intervals decide, they decide as the exact numbers do.
-std::vector<FaceChords> narrowest_chords(const std::vector<std::vector<Ring>>& rings,
-                                         const std::vector<std::uint8_t>& skip, const FT& W) {
-  struct Found {
-    std::optional<ChordPlace> place;
-    int narrow = 0;
-    bool decided = false;
-  };
-  std::vector<std::array<Found, 2>> found(rings.size());
-  const Interval W_interval = W.approx();
-  tbb::parallel_for(std::size_t{0}, rings.size(), [&](std::size_t f) {
-    if (skip[f]) return;
-    for (const int axis : {0, 1}) {
-      Found& out = found[f][static_cast<std::size_t>(axis)];
-      try {
-        const CGAL::Protect_FPU_rounding<true> rounding;
-        out.place = narrowest_chord_place<Interval>(rings[f], axis == 0, W_interval, out.narrow);
-        out.decided = true;
-      } catch (const CGAL::Uncertain_conversion_exception&) {
-      }
-    }
-  });
-  std::vector<FaceChords> chords(rings.size());
-  for (std::size_t f = 0; f < rings.size(); ++f) {
-    if (skip[f]) continue;
-    for (const int axis : {0, 1}) {
-      const bool along_Y = axis == 0;
-      Found& in = found[f][static_cast<std::size_t>(axis)];
-      if (!in.decided) in.place = narrowest_chord_place<FT>(rings[f], along_Y, W, in.narrow);
-      chords[f].narrow[static_cast<std::size_t>(axis)] = in.narrow;
-      if (!in.place) continue;
-      const FT at = coordinate<FT>(*in.place->vertex, along_Y);
-      chords[f].narrowest[static_cast<std::size_t>(axis)] =
-          Chord{at, exact_v(in.place->lo, along_Y, at), exact_v(in.place->hi, along_Y, at)};
-    }
-  }
-  return chords;
 }
 
 }  // namespace origamic::analysis

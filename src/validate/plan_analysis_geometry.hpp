@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Internal: the exact geometry shared by the plan analysis's translation units (plan_analysis.cpp
 // runs the analysis, tip_repair.cpp parts tips off and runs it again, plan_analysis_geometry.cpp
-// holds this): the plan's lines collected onto the sheet, faces as rings, chords narrower than W,
+// and plan_analysis_chords.cpp hold this): the plan's lines collected onto the sheet, faces as
+// rings, chords narrower than W,
 // the numbers and points of the messages, and the analysis's state (Analyzer). Define
 // CGAL_HAS_NO_THREADS before including it (see exact_kernel.hpp).
 #pragma once
