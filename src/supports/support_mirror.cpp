@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "bands.hpp"
+
 namespace origamic {
 namespace {
 
@@ -21,6 +23,25 @@ Grid<T> columns_reversed(Grid<T> grid) {
     std::reverse(row, row + grid.cols);
   }
   return grid;
+}
+
+// A copy of a grid with its columns in reverse order, each value as `value` makes it from the one
+// it mirrors, written once (bands of rows in parallel), not copied and then reversed.
+template <class T, class Value>
+Grid<T> mirrored_copy(const Grid<T>& grid, Value value) {
+  Grid<T> out = Grid<T>::unfilled(grid.cols, grid.rows);
+  for_bands(grid.rows, [&](int, int row_begin, int row_end) {
+    for (int r = row_begin; r < row_end; ++r) {
+      const T* from = &grid.values[grid.index(0, r)];
+      T* to = &out.values[out.index(0, r)] + grid.cols;
+      for (int c = 0; c < grid.cols; ++c) *--to = value(from[c]);
+    }
+  });
+  return out;
+}
+template <class T>
+Grid<T> mirrored_copy(const Grid<T>& grid) {
+  return mirrored_copy(grid, [](const T& v) { return v; });
 }
 
 // What a pixel of the raster plan is, whatever the ids: the kind of paper there, its plane, whether
@@ -60,25 +81,35 @@ SupportFrame first_support_frame(const RasterPlan& raster_plan, const PixelGrid&
   return SupportFrame::Only;
 }
 
+// Every map written once into its mirror image, in parallel (seedlike/chapel's second frame: copying
+// the maps and then reversing them took 3.5% of its samples, now 2.4%, mostly the first touches of
+// their memory). Each member is named: a grid added to RasterMaps and left out here is a warning
+// (-Wmissing-field-initializers; not a member with a default initializer).
 RasterMaps mirror_image(const RasterMaps& maps) {
-  RasterMaps out = maps;
-  out.kind = columns_reversed(std::move(out.kind));
-  out.d_mm = columns_reversed(std::move(out.d_mm));
-  out.h_mm = columns_reversed(std::move(out.h_mm));
-  out.D = columns_reversed(std::move(out.D));
-  out.F = columns_reversed(std::move(out.F));
-  out.T = columns_reversed(std::move(out.T));
-  out.normal = columns_reversed(std::move(out.normal));
-  for (glm::vec3& n : out.normal.values) n.x = -n.x;
-  out.primitive = columns_reversed(std::move(out.primitive));
-  out.break_below = columns_reversed(std::move(out.break_below));
   // A break between columns c and c + 1, t of the way from c, is between their mirror images, the
-  // same distance from the other: in the mirror image's column cols - 2 - c, 1 - t of the way.
+  // same distance from the other: in the mirror image's column cols - 2 - c, 1 - t of the way; the
+  // last column has none.
   const Grid<float>& right = maps.break_right;
-  std::ranges::fill(out.break_right.values, std::numeric_limits<float>::quiet_NaN());
-  for (int r = 0; r < right.rows; ++r)
-    for (int c = 0; c + 1 < right.cols; ++c) out.break_right(right.cols - 2 - c, r) = 1 - right(c, r);
-  return out;
+  Grid<float> break_right = Grid<float>::unfilled(right.cols, right.rows);
+  for_bands(right.rows, [&](int, int row_begin, int row_end) {
+    for (int r = row_begin; r < row_end; ++r) {
+      for (int c = 0; c + 1 < right.cols; ++c) break_right(right.cols - 2 - c, r) = 1 - right(c, r);
+      if (right.cols > 0) break_right(right.cols - 1, r) = std::numeric_limits<float>::quiet_NaN();
+    }
+  });
+  return RasterMaps{maps.grid,
+                    maps.reference,
+                    mirrored_copy(maps.kind),
+                    mirrored_copy(maps.d_mm),
+                    mirrored_copy(maps.h_mm),
+                    mirrored_copy(maps.D),
+                    mirrored_copy(maps.F),
+                    mirrored_copy(maps.T),
+                    mirrored_copy(maps.normal, [](glm::vec3 n) { return glm::vec3(-n.x, n.y, n.z); }),
+                    mirrored_copy(maps.primitive),
+                    std::move(break_right),
+                    mirrored_copy(maps.break_below),
+                    maps.model_pixels};
 }
 
 RasterPlan mirror_image(RasterPlan raster_plan) {
