@@ -379,8 +379,9 @@ TEST(PlanAnalysis, AStripNarrowerThanWBetweenAFoldAndACutIsNoFoldPair) {
 TEST(PlanAnalysis, AStripUpToACrossingOfTwoCutsIsMeasuredExactly) {
   // A hole in the box's top face (its piece falls out), its lowest corner where two cuts cross (each
   // runs on past it: slits, no side of a face): a vertex the file does not give, at a Y no double
-  // holds. The face is narrowest through it, from the mountain fold up to it (2.05 mm); the corner's
-  // interval decides nothing there, so the exact numbers do.
+  // holds. The face is narrowest through it, from the mountain fold up to it (2.05 mm). The corner's
+  // interval is no point, and the intervals leave this face to the exact search: with that search
+  // finding nothing, this test fails.
   const Box b;
   std::vector<PlanPolyline> lines = box_plan(b);
   const double fold_Y = b.h - b.d, top_Y = fold_Y + 10, low_Y = fold_Y + 1.25;

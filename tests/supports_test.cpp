@@ -206,11 +206,12 @@ TEST(Supports, TwoTouchingSupportsThatEachLeaveAFaceWholePartItTogether) {
   const CandidateFinder finder({box.maps, plan, box.exact_plan, {}, {}}, {box.front}, picture, SupportReach{});
   EXPECT_FALSE(finder.cuts(box.front, from_top));
   EXPECT_FALSE(finder.cuts(box.front, from_bottom));
-  EXPECT_TRUE(finder.cuts_with(box.front, {&from_top, 1}, from_bottom));
-  EXPECT_TRUE(finder.cuts_with(box.front, {&from_bottom, 1}, from_top));
-  EXPECT_FALSE(finder.cuts_with(box.front, {&from_top, 1}, pixel_apart));
-  EXPECT_FALSE(finder.cuts_with(box.front, {&from_top, 1}, block_apart));
-  EXPECT_FALSE(finder.cuts_with(box.front, {}, from_bottom));  // alone: its own `cuts` says
+  const PixelRect top = from_top.pixels(), bottom = from_bottom.pixels();
+  EXPECT_TRUE(finder.cuts_with(box.front, {&top, 1}, bottom));
+  EXPECT_TRUE(finder.cuts_with(box.front, {&bottom, 1}, top));
+  EXPECT_FALSE(finder.cuts_with(box.front, {&top, 1}, pixel_apart.pixels()));
+  EXPECT_FALSE(finder.cuts_with(box.front, {&top, 1}, block_apart.pixels()));
+  EXPECT_FALSE(finder.cuts_with(box.front, {}, bottom));  // alone: its own `cuts` says
 }
 
 // A support that folds onto a face less than W before that face's next fold beyond leaves a strip
@@ -905,7 +906,7 @@ TEST(Supports, APictureGivenAJoinIsThePictureOfTheJoinedPlan) {
   const SupportPicture fresh(maps, joined);
   const int c0 = pixels.front().c, r0 = pixels.front().r, c1 = pixels.back().c + 1, r1 = pixels.back().r + 1;
   for (const auto& [orientation, depth] : {std::pair{Orientation::V, 20.0}, std::pair{Orientation::H, 70.0}})
-    for (const SupportPicture::PixelBox box : {SupportPicture::PixelBox{c0, c1, r0, r1}, {c0, c0 + 12, r0 - 40, r1}})
+    for (const PixelRect box : {PixelRect{c0, c1, r0, r1}, {c0, c0 + 12, r0 - 40, r1}})
       EXPECT_EQ(given.added_error(orientation, depth, box), fresh.added_error(orientation, depth, box));
   EXPECT_NEAR(given.hole_error(top), fresh.hole_error(top), 1e-9 * fresh.hole_error(top));
   EXPECT_EQ(given.hole_error(front), 0.0);
@@ -936,7 +937,7 @@ TEST(Supports, APictureGivenSharesIsThePictureOfTheSharedPlan) {
   const SupportPicture fresh(maps, shared);
   const int c0 = upper.front().c, r0 = upper.front().r, c1 = lower.back().c + 1, r1 = lower.back().r + 1;
   for (const auto& [orientation, depth] : {std::pair{Orientation::V, 20.0}, std::pair{Orientation::H, 70.0}})
-    for (const SupportPicture::PixelBox box : {SupportPicture::PixelBox{c0, c1, r0, r1}, {c0, c0 + 12, r0 - 40, r1}})
+    for (const PixelRect box : {PixelRect{c0, c1, r0, r1}, {c0, c0 + 12, r0 - 40, r1}})
       EXPECT_EQ(given.added_error(orientation, depth, box), fresh.added_error(orientation, depth, box));
   for (const std::int32_t f : {top, std::int32_t{kFloorFace}})
     EXPECT_NEAR(given.hole_error(f), fresh.hole_error(f), 1e-9 * std::abs(fresh.hole_error(f)));

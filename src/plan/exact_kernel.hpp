@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Internal: the exact kernel shared by the translation units that build arrangements (exact_plan*.cpp
 // through exact_plan_state.hpp; plan_analysis.cpp and tip_repair.cpp, with plan_analysis_geometry.cpp
-// and plan_analysis_chords.cpp),
-// and the one conversion of an exact number to the double written out.
+// and plan_analysis_chords.cpp), and the one conversion of an exact number to the double written out.
 #pragma once
 
 // Exact numbers are never shared between threads; without this, every lazily evaluated number pays
 // for a std::call_once (a futex system call on completion), which tripled the plan's time. Each
-// including translation unit defines it first, so all agree.
+// including translation unit defines it first, so all agree. Threads may read the intervals of
+// numbers made before them (approx(): a plain read) while none is made or evaluated exactly, as the
+// strip widths' chord searches do (plan_analysis_chords.cpp).
 #ifndef CGAL_HAS_NO_THREADS
 #error "define CGAL_HAS_NO_THREADS before including exact_kernel.hpp"
 #endif
@@ -66,6 +67,14 @@ inline double nearest_double(const Rational& exact) {
 inline double nearest_double(const FT& x) {
   if (const auto [lo, hi] = CGAL::to_interval(x); lo == hi) return lo + 0.0;  // most often; no -0
   return nearest_double(x.exact());
+}
+
+/// A point's x (i = 0) or y (i = 1) as nearest_double gives it, read off the point's interval where
+/// that is a point (every vertex a file or the pixel lattice gave): no lazy number made, as p.x() would.
+inline double nearest_coordinate(const Point& p, int i) {
+  const CGAL::Interval_nt<false>& interval = i == 0 ? p.approx().x() : p.approx().y();
+  if (interval.inf() == interval.sup()) return interval.inf() + 0.0;
+  return nearest_double(i == 0 ? p.x() : p.y());
 }
 
 }  // namespace origamic::exact

@@ -21,7 +21,7 @@ namespace {
 
 using exact::Arrangement;
 using exact::length_of;
-using exact::nearest_double;
+using exact::nearest_coordinate;
 
 // Joins segments of one kind that meet end to end (at vertices where exactly two of them meet).
 std::vector<PlanPolyline> chain_segments(LineKind kind,
@@ -120,7 +120,7 @@ std::vector<PlanRegion> regions_of(const Arrangement& arr, const std::vector<Pla
       Halfedge he = first;
       do {
         walked[he] = true;
-        const PlanPoint p{nearest_double(he->source()->point().x()), nearest_double(he->source()->point().y())};
+        const PlanPoint p{nearest_coordinate(he->source()->point(), 0), nearest_coordinate(he->source()->point(), 1)};
         if (ring.empty() || ring.back().X != p.X || ring.back().Y != p.Y) ring.push_back(p);
         he = next_on_boundary(he);
       } while (he != first);
@@ -157,7 +157,7 @@ void draw_lines(const std::vector<std::pair<Arrangement::Halfedge_const_handle, 
   std::vector<PlanPoint> vertex_points;
   auto index_of = [&](Arrangement::Vertex_const_handle v) {
     auto [it, fresh] = vertex_index.try_emplace(v, vertex_points.size());
-    if (fresh) vertex_points.push_back({nearest_double(v->point().x()), nearest_double(v->point().y())});
+    if (fresh) vertex_points.push_back({nearest_coordinate(v->point(), 0), nearest_coordinate(v->point(), 1)});
     return it->second;
   };
   std::vector<std::pair<std::size_t, std::size_t>> by_kind[5];

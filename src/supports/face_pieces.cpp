@@ -149,16 +149,7 @@ int pieces_less(std::span<const FacePieces::RowRun> runs, std::span<const PixelR
     }
     if (c < run.c1) left.push_back({run.row, c, run.c1});
   }
-  // Still in row-major order: the runs of the row above overlapping one are joined to it.
-  UnionFind<std::uint32_t> sets(left.size());
-  int count = static_cast<int>(left.size());
-  for (std::size_t b = 0, a_begin = 0; b < left.size(); ++b) {
-    while (a_begin < b && left[a_begin].row < left[b].row - 1) ++a_begin;
-    for (std::size_t a = a_begin; a < b && left[a].row < left[b].row; ++a)
-      if (left[a].row == left[b].row - 1 && left[a].c0 < left[b].c1 && left[b].c0 < left[a].c1)
-        count -= sets.join(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b));
-  }
-  return count;
+  return FacePieces(left).pieces();  // still in row-major order
 }
 
 }  // namespace origamic

@@ -156,20 +156,17 @@ class CandidateFinder::Search {
   bool cuts(std::int32_t x, const Candidate& s) const { return splits(x, s); }
 
   // Whether support s leaves face x in more pieces with the supports `with` than they leave it.
-  bool cuts_with(std::int32_t x, std::span<const Candidate> with, const Candidate& s) const {
+  bool cuts_with(std::int32_t x, std::span<const PixelRect> with, const PixelRect& s) const {
     if (x == kBackFace || x == kFloorFace) return false;
     const auto i = static_cast<std::size_t>(x);
     const PixelRect& box = face_box_[i];
-    const auto over_x = [&](const Candidate& c) {
-      return c.c0 < box.c1 && box.c0 < c.c1 && c.r0 < box.r1 && box.r0 < c.r1;
-    };
-    if (!over_x(s)) return false;
+    if (!overlaps(s, box)) return false;
     std::vector<PixelRect> taken;
-    for (const Candidate& c : with)
-      if (over_x(c)) taken.push_back({c.c0, c.c1, c.r0, c.r1});
+    for (const PixelRect& c : with)
+      if (overlaps(c, box)) taken.push_back(c);
     if (taken.empty()) return false;  // s alone: its own `cuts`
     const int before = pieces_less(face_runs_[i], taken);
-    taken.push_back({s.c0, s.c1, s.r0, s.r1});
+    taken.push_back(s);
     return pieces_less(face_runs_[i], taken) > before;
   }
 
@@ -489,7 +486,7 @@ class CandidateFinder::Search {
       s.thin_strip_mm = std::min(beyond_target, beyond_face);
     }
     const double length = (s.r1 - s.r0) * px_mm_;
-    s.picture_mm = std::max(0.0, picture_.added_error(s.orientation, s.depth_mm, {s.c0, s.c1, s.r0, s.r1})) / (W_ * W_);
+    s.picture_mm = std::max(0.0, picture_.added_error(s.orientation, s.depth_mm, s.pixels())) / (W_ * W_);
     s.cost = kCostPerLength * length + s.picture_mm;
     return s;
   }
@@ -543,7 +540,7 @@ CandidateFinder::~CandidateFinder() = default;
 
 bool CandidateFinder::cuts(std::int32_t x, const Candidate& s) const { return search_->cuts(x, s); }
 
-bool CandidateFinder::cuts_with(std::int32_t x, std::span<const Candidate> with, const Candidate& s) const {
+bool CandidateFinder::cuts_with(std::int32_t x, std::span<const PixelRect> with, const PixelRect& s) const {
   return search_->cuts_with(x, with, s);
 }
 

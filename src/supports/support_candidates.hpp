@@ -26,7 +26,7 @@ class CandidateFinder {
   // Whether face x, less support s and the supports `with`, falls into more pieces than less `with`
   // alone: two supports side by side, touching, may each leave a face whole and together part it.
   // False where none of `with` lies over x's box (s alone: its own `cuts`).
-  bool cuts_with(std::int32_t x, std::span<const Candidate> with, const Candidate& s) const;
+  bool cuts_with(std::int32_t x, std::span<const PixelRect> with, const PixelRect& s) const;
 
   // Candidates from the top (up = true) or bottom edge of face f, one per W-wide block column that
   // f fills on that edge. Thread-safe: the search reads the round, and each thread keeps its own

@@ -16,6 +16,7 @@
 #include "origamic/slice.hpp"
 #include "origamic/supports.hpp"
 #include "origamic/validity.hpp"
+#include "pixel_rect.hpp"
 #include "support_ears.hpp"
 
 namespace origamic {
@@ -42,6 +43,8 @@ struct Candidate {
   // Its block column reaches past the end of the face it holds (one at least W wide) over the back
   // plane or the floor: the support is drawn only as far as that face's side, narrower than W.
   bool past_end = false;
+
+  PixelRect pixels() const { return {c0, c1, r0, r1}; }
 };
 
 // What the loop needs to know of a plan: each face's status and which of its sides are folded.

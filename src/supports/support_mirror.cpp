@@ -84,7 +84,7 @@ SupportFrame first_support_frame(const RasterPlan& raster_plan, const PixelGrid&
 // Every map written once into its mirror image, in parallel (seedlike/chapel's second frame: copying
 // the maps and then reversing them took 3.5% of its samples, now 2.4%, mostly the first touches of
 // their memory). Each member is named: a grid added to RasterMaps and left out here is a warning
-// (-Wmissing-field-initializers; not a member with a default initializer).
+// (-Wmissing-field-initializers; not so a member with a default initializer).
 RasterMaps mirror_image(const RasterMaps& maps) {
   // A break between columns c and c + 1, t of the way from c, is between their mirror images, the
   // same distance from the other: in the mirror image's column cols - 2 - c, 1 - t of the way; the
@@ -97,19 +97,19 @@ RasterMaps mirror_image(const RasterMaps& maps) {
       if (right.cols > 0) break_right(right.cols - 1, r) = std::numeric_limits<float>::quiet_NaN();
     }
   });
-  return RasterMaps{maps.grid,
-                    maps.reference,
-                    mirrored_copy(maps.kind),
-                    mirrored_copy(maps.d_mm),
-                    mirrored_copy(maps.h_mm),
-                    mirrored_copy(maps.D),
-                    mirrored_copy(maps.F),
-                    mirrored_copy(maps.T),
-                    mirrored_copy(maps.normal, [](glm::vec3 n) { return glm::vec3(-n.x, n.y, n.z); }),
-                    mirrored_copy(maps.primitive),
-                    std::move(break_right),
-                    mirrored_copy(maps.break_below),
-                    maps.model_pixels};
+  return RasterMaps{.grid = maps.grid,
+                    .reference = maps.reference,
+                    .kind = mirrored_copy(maps.kind),
+                    .d_mm = mirrored_copy(maps.d_mm),
+                    .h_mm = mirrored_copy(maps.h_mm),
+                    .D = mirrored_copy(maps.D),
+                    .F = mirrored_copy(maps.F),
+                    .T = mirrored_copy(maps.T),
+                    .normal = mirrored_copy(maps.normal, [](glm::vec3 n) { return glm::vec3(-n.x, n.y, n.z); }),
+                    .primitive = mirrored_copy(maps.primitive),
+                    .break_right = std::move(break_right),
+                    .break_below = mirrored_copy(maps.break_below),
+                    .model_pixels = maps.model_pixels};
 }
 
 RasterPlan mirror_image(RasterPlan raster_plan) {

@@ -232,7 +232,7 @@ void SupportPicture::give(std::int32_t f, std::int32_t into, const RasterFace& p
   hole_error_[static_cast<std::size_t>(f)] = 0;
 }
 
-double SupportPicture::added_error(Orientation orientation, double depth_mm, PixelBox box) const {
+double SupportPicture::added_error(Orientation orientation, double depth_mm, PixelRect box) const {
   const int c0 = std::max(box.c0, c0_), c1 = std::min(box.c1, c0_ + error_.cols), r0 = std::max(box.r0, r0_),
             r1 = std::min(box.r1, r0_ + error_.rows);
   double sum = 0;

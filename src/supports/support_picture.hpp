@@ -31,10 +31,9 @@ class SupportPicture {
   /// The picture of the raster plan as it is.
   SupportPicture(const RasterMaps& maps, const RasterPlan& raster_plan);
 
-  using PixelBox = PixelRect;
   /// The error a face of this plane would add over the pixels of the box, in mm of h + d times mm²
   /// of plan (negative where it would show the model better than what is there).
-  double added_error(Orientation orientation, double depth_mm, PixelBox box) const;
+  double added_error(Orientation orientation, double depth_mm, PixelRect box) const;
 
   /// The error cutting face f out of the sheet would add: through the hole the back plane shows
   /// above the main fold and the floor below it, and no model. In mm times mm², as added_error.

@@ -19,11 +19,6 @@ namespace {
 
 using exact::FT;
 using exact::Point;
-
-}  // namespace
-
-namespace {
-
 using Interval = CGAL::Interval_nt<false>;
 
 // A coordinate of a ring's point: its interval (no lazy number made) or its exact number.
@@ -38,21 +33,28 @@ FT coordinate<FT>(const Point& p, bool x) {
   return x ? p.x() : p.y();
 }
 
-using analysis::crossing_v;  // on exact numbers; this one on intervals
-Interval crossing_v(const Interval& u0, const Interval& v0, const Interval& u1, const Interval& v1, const Interval& u) {
-  return v0 == v1 ? v0 : v0 + (v1 - v0) * (u - u0) / (u1 - u0);
+// The v at u of the segment from (u0, v0) to (u1, v1), u0 <= u <= u1: at an end its own, else where
+// it crosses the line at u.
+template <typename NT>
+NT v_at(const NT& u0, const NT& v0, const NT& u1, const NT& v1, const NT& u) {
+  return u == u0 ? v0 : u == u1 ? v1 : crossing_v(u0, v0, u1, v1, u);
 }
 
-// Where the chord search found the narrowest chord: the vertex on its line and the face's edges its
-// ends lie on (each by its ends, u0 first), from which the exact chord is made.
-struct ChordPlace {
-  const Point* vertex;
-  std::array<const Point*, 2> lo, hi;
+// What the chord search found: where the narrowest chord is (the vertex on its line and the face's
+// edges its ends lie on, each by its ends, u0 first: the exact chord is made from them), if any, and
+// how many chords narrower than W there are.
+struct ChordSearch {
+  struct Place {
+    const Point* vertex;
+    std::array<const Point*, 2> lo, hi;
+  };
+  std::optional<Place> narrowest;
+  int narrow = 0;
 };
 
 // The shortest chord through a vertex, along Y (vertical chords at each vertex X) or along X, that is
-// longer than zero (a corner's tip is no strip) and shorter than W, on one number type; `narrow`
-// counts such chords, added to only when the search ends. A chord is a stretch of the face along the
+// longer than zero (a corner's tip is no strip) and shorter than W, on one number type, and how many
+// such chords there are. A chord is a stretch of the face along the
 // line just before it or just after it (half-open crossing rules on each side), each side on its
 // own: where a side of the face runs along the line, as a notch's wall does, the face on the line's
 // other side may be narrower than the closed face on the line. Taken as the union of the two sides,
@@ -60,8 +62,7 @@ struct ChordPlace {
 // places at W = 3 mm over the 37 plans, 4,734 seen so (teeth of a traced line a fraction of a
 // millimetre high, strips of a face between a notch and a fold).
 template <typename NT>
-std::optional<ChordPlace> narrowest_chord_place(const std::vector<Ring>& rings, bool along_Y, const NT& W,
-                                                int& narrow) {
+ChordSearch search_chords(const std::vector<Ring>& rings, bool along_Y, const NT& W) {
   struct Edge {
     NT u0, v0, u1, v1;                 // u across the chord, v along it; u0 <= u1
     std::array<const Point*, 2> ends;  // at u0, at u1
@@ -93,9 +94,8 @@ std::optional<ChordPlace> narrowest_chord_place(const std::vector<Ring>& rings, 
   std::sort(vertices.begin(), vertices.end(),
             [](const Vertex& a, const Vertex& b) -> bool { return a.u < b.u || (!(b.u < a.u) && a.v < b.v); });
   std::sort(edges.begin(), edges.end(), [](const Edge& a, const Edge& b) -> bool { return a.u0 < b.u0; });
-  std::optional<ChordPlace> best;
+  ChordSearch found;
   NT best_length = 0;
-  int found = 0;
   std::vector<const Edge*> active;
   std::vector<End> after, before;
   std::vector<Piece> pieces;
@@ -110,7 +110,7 @@ std::optional<ChordPlace> narrowest_chord_place(const std::vector<Ring>& rings, 
     after.clear(), before.clear();
     for (const Edge* e : active) {
       if (e->u0 == e->u1) continue;  // along the line: both faces' sides come from the other edges
-      const NT v = u == e->u0 ? e->v0 : u == e->u1 ? e->v1 : crossing_v(e->u0, e->v0, e->u1, e->v1, u);
+      const NT v = v_at(e->u0, e->v0, e->u1, e->v1, u);
       if (e->u0 <= u && u < e->u1) after.push_back({v, e});
       if (e->u0 < u && u <= e->u1) before.push_back({v, e});
     }
@@ -134,21 +134,20 @@ std::optional<ChordPlace> narrowest_chord_place(const std::vector<Ring>& rings, 
         counted[m] = 1;  // vertices of one chord count it once
         const NT length = piece.hi.v - piece.lo.v;
         if (!CGAL::is_positive(length) || !(length < W)) continue;
-        ++found;
-        if (!best || length < best_length)
-          best = ChordPlace{vertices[i].p, piece.lo.edge->ends, piece.hi.edge->ends}, best_length = length;
+        ++found.narrow;
+        if (!found.narrowest || length < best_length)
+          found.narrowest = {vertices[i].p, piece.lo.edge->ends, piece.hi.edge->ends}, best_length = length;
       }
     i = j;
   }
-  narrow += found;
-  return best;
+  return found;
 }
 
 // The exact v at u of an edge (its ends at u0 and u1, u0 <= u <= u1), as the chord search made it.
 FT exact_v(const std::array<const Point*, 2>& edge, bool along_Y, const FT& u) {
   const FT u0 = coordinate<FT>(*edge[0], along_Y), v0 = coordinate<FT>(*edge[0], !along_Y);
   const FT u1 = coordinate<FT>(*edge[1], along_Y), v1 = coordinate<FT>(*edge[1], !along_Y);
-  return u == u0 ? v0 : u == u1 ? v1 : crossing_v(u0, v0, u1, v1, u);
+  return v_at(u0, v0, u1, v1, u);
 }
 
 }  // namespace
@@ -160,22 +159,15 @@ FT exact_v(const std::array<const Point*, 2>& edge, bool along_Y, const FT& u) {
 // every comparison the intervals decide, they decide as the exact numbers do.
 std::vector<FaceChords> narrowest_chords(const std::vector<std::vector<Ring>>& rings,
                                          const std::vector<std::uint8_t>& skip, const FT& W) {
-  struct Found {
-    std::optional<ChordPlace> place;
-    int narrow = 0;
-    bool decided = false;
-  };
-  std::vector<std::array<Found, 2>> found(rings.size());
+  std::vector<std::array<std::optional<ChordSearch>, 2>> found(rings.size());  // none: undecided
   const Interval W_interval = W.approx();
   tbb::parallel_for(std::size_t{0}, rings.size(), [&](std::size_t f) {
     if (skip[f]) return;
     for (const int axis : {0, 1}) {
-      Found& out = found[f][static_cast<std::size_t>(axis)];
       try {
         const CGAL::Protect_FPU_rounding<true> rounding;
-        out.place = narrowest_chord_place<Interval>(rings[f], axis == 0, W_interval, out.narrow);
-        out.decided = true;
-      } catch (const CGAL::Uncertain_conversion_exception&) {
+        found[f][static_cast<std::size_t>(axis)] = search_chords<Interval>(rings[f], axis == 0, W_interval);
+      } catch (const CGAL::Uncertain_conversion_exception&) {  // left undecided
       }
     }
   });
@@ -184,13 +176,14 @@ std::vector<FaceChords> narrowest_chords(const std::vector<std::vector<Ring>>& r
     if (skip[f]) continue;
     for (const int axis : {0, 1}) {
       const bool along_Y = axis == 0;
-      Found& in = found[f][static_cast<std::size_t>(axis)];
-      if (!in.decided) in.place = narrowest_chord_place<FT>(rings[f], along_Y, W, in.narrow);
-      chords[f].narrow[static_cast<std::size_t>(axis)] = in.narrow;
-      if (!in.place) continue;
-      const FT at = coordinate<FT>(*in.place->vertex, along_Y);
+      std::optional<ChordSearch>& in = found[f][static_cast<std::size_t>(axis)];
+      if (!in) in = search_chords<FT>(rings[f], along_Y, W);
+      chords[f].narrow[static_cast<std::size_t>(axis)] = in->narrow;
+      if (!in->narrowest) continue;
+      const ChordSearch::Place& place = *in->narrowest;
+      const FT at = coordinate<FT>(*place.vertex, along_Y);
       chords[f].narrowest[static_cast<std::size_t>(axis)] =
-          Chord{at, exact_v(in.place->lo, along_Y, at), exact_v(in.place->hi, along_Y, at)};
+          Chord{at, exact_v(place.lo, along_Y, at), exact_v(place.hi, along_Y, at)};
     }
   }
   return chords;

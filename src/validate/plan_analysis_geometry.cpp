@@ -44,13 +44,7 @@ std::string num(double value) {
 
 std::string point_text(PlanPoint p) { return "(" + num(p.X) + ", " + num(p.Y) + ")"; }
 
-PlanPoint plan_point(const Point& p) {
-  // Read off the point's intervals where they are points (every vertex a file gave): no lazy number.
-  const auto nearest = [](const CGAL::Interval_nt<false>& c, auto exact) {
-    return c.inf() == c.sup() ? c.inf() + 0.0 : nearest_double(exact());
-  };
-  return {nearest(p.approx().x(), [&] { return p.x(); }), nearest(p.approx().y(), [&] { return p.y(); })};
-}
+PlanPoint plan_point(const Point& p) { return {exact::nearest_coordinate(p, 0), exact::nearest_coordinate(p, 1)}; }
 
 // ---------------------------------------------------------------------------------------------
 // The arrangement of every line, clipped to the sheet.
@@ -117,8 +111,9 @@ void add_joined_folds(std::vector<FoldPiece> pieces, Input& in) {
     const double Y_double = CGAL::to_double(Y);
     while (next_cut < cuts.size() && cuts[next_cut].lo <= Y_double) near.push_back(&cuts[next_cut++]);
     std::erase_if(near, [&](const Cut* cut) { return cut->hi < Y_double; });
-    // In the order drawn: the crossings' sort below is not stable, and which of two equal crossings
-    // it leaves first follows the order they came in.
+    // In the order drawn, as before the sweep: the crossings' sort below is not stable, and which of
+    // two equal crossings ends a fold follows the order they came in. They are one exact number but
+    // may have different intervals, which the doubles of areas and lengths are read from.
     std::ranges::sort(near, {}, &Cut::index);
     crossings.clear();
     for (const Cut* cut : near) {
@@ -355,10 +350,6 @@ double ring_area(const Ring& ring) {
     twice += CGAL::to_double(p.x()) * CGAL::to_double(q.y()) - CGAL::to_double(q.x()) * CGAL::to_double(p.y());
   }
   return twice / 2;
-}
-
-FT crossing_v(const FT& u0, const FT& v0, const FT& u1, const FT& v1, const FT& u) {
-  return v0 == v1 ? v0 : v0 + (v1 - v0) * (u - u0) / (u1 - u0);
 }
 
 // A point strictly inside: on the horizontal line midway across the widest gap between vertex

@@ -2,9 +2,8 @@
 // Internal: the exact geometry shared by the plan analysis's translation units (plan_analysis.cpp
 // runs the analysis, tip_repair.cpp parts tips off and runs it again, plan_analysis_geometry.cpp
 // and plan_analysis_chords.cpp hold this): the plan's lines collected onto the sheet, faces as
-// rings, chords narrower than W,
-// the numbers and points of the messages, and the analysis's state (Analyzer). Define
-// CGAL_HAS_NO_THREADS before including it (see exact_kernel.hpp).
+// rings, chords narrower than W, the numbers and points of the messages, and the analysis's state
+// (Analyzer). Define CGAL_HAS_NO_THREADS before including it (see exact_kernel.hpp).
 #pragma once
 
 #include <array>
@@ -60,10 +59,13 @@ std::vector<Ring> rings_of(exact::Arrangement::Face_const_handle f);
 /// The signed area of a ring in mm², in doubles: positive counter-clockwise.
 double ring_area(const Ring& ring);
 
-/// Where the segment from (u0, v0) to (u1, v1) crosses the line at u (\pre u0 != u1): its v there.
-/// A segment square to the line (most are) crosses it at its own v, taken as it is: no number built.
-exact::FT crossing_v(const exact::FT& u0, const exact::FT& v0, const exact::FT& u1, const exact::FT& v1,
-                     const exact::FT& u);
+/// Where the segment from (u0, v0) to (u1, v1) crosses the line at u (\pre u0 != u1): its v there,
+/// on exact numbers or on intervals (where an interval comparison is uncertain, it throws). A
+/// segment square to the line (most are) crosses it at its own v, taken as it is: no number built.
+template <typename Number>
+Number crossing_v(const Number& u0, const Number& v0, const Number& u1, const Number& v1, const Number& u) {
+  return v0 == v1 ? v0 : v0 + (v1 - v0) * (u - u0) / (u1 - u0);
+}
 
 /// A point strictly inside the face the rings bound. \pre rings bound a face of positive area.
 exact::Point inside_point(const std::vector<Ring>& rings);
