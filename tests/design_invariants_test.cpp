@@ -145,8 +145,8 @@ TEST(DesignInvariants, AModelMovedAlongTheFoldByWholePixelsGivesTheMovedPlan) {
 // off those it can, keeping the plan standing and its picture, and reports the rest as its DXF
 // will read back.
 TEST(DesignTips, TipsNarrowerThanWArePartedOffAndThePlanStillStands) {
-  // This sphere's first round gains as it is; on the 64 x 32 sphere only once tried again without
-  // the tips that made places (ARoundWhoseTipsMakeNarrowPlacesIsTriedAgainWithoutThem).
+  // This sphere's first round gains as it is; on the 48 x 24 sphere at W = 4 mm only once tried
+  // again without the tips that made places (ARoundWhoseTipsMakeNarrowPlacesIsTriedAgainWithoutThem).
   const TriangleMesh ball = test::sphere({0, 0, 0}, 1, 96, 48);
   DesignOptions options;
   options.tip_rounds = 0;
@@ -184,13 +184,14 @@ TEST(DesignTips, TipsNarrowerThanWArePartedOffAndThePlanStillStands) {
 }
 
 // A round of tips where some tips leave their faces, or the faces given them, more places narrower
-// than W than before is tried again without those: on the 64 x 32 sphere the first round's cuts
-// leave more places than they part, and are all refused.
+// than W than before is tried again without those: on the 48 x 24 sphere at W = 4 mm the first
+// round's cuts leave more places than they part, and are all refused.
 TEST(DesignTips, ARoundWhoseTipsMakeNarrowPlacesIsTriedAgainWithoutThem) {
   DesignOptions options;
   options.tip_rounds = 0;
+  options.slice.min_strip_mm = 4;
   const DesignResult supported =
-      design(LoadedMesh{.mesh = test::sphere({0, 0, 0}, 1, 64, 32), .format = "obj"}, options);
+      design(LoadedMesh{.mesh = test::sphere({0, 0, 0}, 1, 48, 24), .format = "obj"}, options);
   const double W = options.slice.min_strip_mm;
   const auto narrow = [](const PlanAnalysis& a) {
     return std::ranges::count_if(a.problems,

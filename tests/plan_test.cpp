@@ -179,6 +179,38 @@ TEST(Plan, ASupportIsDrawnOnItsPixelCornersWhereAFaceWrapsRoundIt) {
   EXPECT_EQ(regions, 1);
 }
 
+// A boundary that is no model edge and no level contour (where two subsegments' slices meet) has
+// only its pixel contour to go by. Drawn with the default options it is the line the staircase
+// follows, not its steps: a patch on the back plane whose lower side climbs one pixel every `run`
+// pixels is drawn as a quadrilateral, its four corners where the patch's are.
+TEST(Plan, AStaircaseNoModelEdgeExplainsIsDrawnAsTheLineItFollows) {
+  const RayScene scene(test::box({40, 0, 0}, {150, 60, 40}));
+  const Sheet sheet;
+  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
+  const RasterPlan sliced = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const int col = maps.grid.cols / 2 - 40, row = maps.grid.rows_above_fold / 4;  // above the box
+  for (const int run : {2, 3, 4, 6}) {
+    RasterPlan s = sliced;
+    const auto patch = static_cast<std::int32_t>(s.faces.size());
+    s.faces.push_back({Orientation::V, 30, 0, 0, false});
+    for (int c = col; c < col + 24 * run; ++c)
+      for (int r = row; r < row + 20 + (c - col) / run; ++r) {
+        ASSERT_EQ(s.face(c, r), kBackFace);
+        s.face(c, r) = patch;
+      }
+    const Plan plan = build_plan(maps, s, sheet, PlanOptions{});
+    expect_exact_construction(plan);
+    const auto region = std::ranges::find(plan.regions, patch, &PlanRegion::face);
+    ASSERT_NE(region, plan.regions.end());
+    ASSERT_EQ(region->rings.size(), 1u);
+    EXPECT_EQ(region->rings.front().size(), 4u) << "a staircase climbing a pixel every " << run << " pixels";
+    const double px = maps.grid.px_per_mm;
+    for (const PlanPoint& p : region->rings.front()) {
+      EXPECT_TRUE(p.X == col / px || p.X == (col + 24 * run) / px) << "at X = " << p.X;
+    }
+  }
+}
+
 TEST(Plan, BoxFloatingInMidAirIsFloating) {
   const Plan plan = plan_of_oa_mesh(test::box({60, 40, 20}, {150, 80, 50}));
   expect_exact_construction(plan);
