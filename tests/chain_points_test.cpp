@@ -184,6 +184,39 @@ TEST(ChainPoints, ARunWhoseJunctionMovedAcrossItTakesItsFoldsEndAlong) {
   }
 }
 
+// Where no model edge passes, a junction where a fold snaps onto its line moves square onto that
+// line, by at most a pixel: the fold ends where the cuts meet. Not where two folds there snap onto
+// two lines, nor where a chain there keeps its contour.
+TEST(ChainPoints, AJunctionWhereAFoldSnapsMovesOntoItsLine) {
+  const chains::LatticeScale lattice{20, 1.0};
+  const Grid<float> none(40, 40, std::numeric_limits<float>::quiet_NaN());
+  const chains::PictureBreaks no_breaks{none, none};
+  const LatticePoint junction{10, 10};
+  const Chain fold{2, 3, {junction, {20, 10}, {20, 14}}}, up{2, 4, {junction, {10, 2}, {6, 2}}},
+      down{3, 4, {junction, {10, 18}, {14, 18}}};
+  const std::vector<Chain> chains = {fold, up, down};
+  const double fold_Y = lattice.Y(junction.v) - 0.3;
+  const chains::ChainEnds snaps{.fold_Y = {fold_Y, std::nullopt}};
+  const chains::JunctionMoves moves = chains::junctions_on_breaks(chains, lattice, no_breaks, {snaps, {}, {}});
+  ASSERT_EQ(moves.moved.size(), 1u);
+  const chains::MovedJunction& m = moves.moved[0];
+  EXPECT_EQ(m.corner.u, junction.u);
+  EXPECT_EQ(m.corner.v, junction.v);
+  EXPECT_EQ(m.X, lattice.X(junction.u));
+  EXPECT_EQ(m.u_on_lattice, junction.u);
+  EXPECT_EQ(m.Y, fold_Y);
+  EXPECT_EQ(m.on_fold_of, 0);
+  EXPECT_EQ(moves.collapsed, (std::vector<bool>{false, false, false}));
+  // Two folds onto one line move it; onto two, or a pixel and more away, or a chain pinned, none.
+  EXPECT_EQ(chains::junctions_on_breaks(chains, lattice, no_breaks, {snaps, snaps, {}}).moved.size(), 1u);
+  const chains::ChainEnds other{.fold_Y = {fold_Y + 0.1, std::nullopt}};
+  EXPECT_TRUE(chains::junctions_on_breaks(chains, lattice, no_breaks, {snaps, other, {}}).moved.empty());
+  const chains::ChainEnds far{.fold_Y = {lattice.Y(junction.v) - 1.25, std::nullopt}};
+  EXPECT_TRUE(chains::junctions_on_breaks(chains, lattice, no_breaks, {far, {}, {}}).moved.empty());
+  EXPECT_TRUE(chains::junctions_on_breaks(chains, lattice, no_breaks, {snaps, {}, {.pinned = true}}).moved.empty());
+  EXPECT_TRUE(chains::junctions_on_breaks(chains, lattice, no_breaks, {{}, {}, {}}).moved.empty());
+}
+
 // A lattice row whose pixel edges the picture breaks across on the row itself (a slice ending on a
 // crease of the model) is still that row beside the junction: the staircase's corner moves along
 // it as it does beside a row with no breaks.
