@@ -186,14 +186,26 @@ TEST(ChainPoints, ARunWhoseJunctionMovedAcrossItTakesItsFoldsEndAlong) {
 
 // Where no model edge passes, a junction where a fold snaps onto its line moves square onto that
 // line, by at most a pixel: the fold ends where the cuts meet. Not where two folds there snap onto
-// two lines, nor where a chain there keeps its contour.
+// two lines, where a chain there keeps its contour, where another leaves along the lattice row
+// (it would tilt), nor where the junction is two corners a pixel edge apart.
 TEST(ChainPoints, AJunctionWhereAFoldSnapsMovesOntoItsLine) {
   const chains::LatticeScale lattice{20, 1.0};
   const Grid<float> none(40, 40, std::numeric_limits<float>::quiet_NaN());
   const chains::PictureBreaks no_breaks{none, none};
+  // A chain from `from` through the given corners, one pixel edge (2 lattice steps) at a time.
+  const auto path = [](std::int32_t left, std::int32_t right, LatticePoint from, std::vector<LatticePoint> to) {
+    Chain chain{left, right, {from}};
+    for (const LatticePoint corner : to)
+      while (chain.corners.back().u != corner.u || chain.corners.back().v != corner.v) {
+        const LatticePoint last = chain.corners.back();
+        chain.corners.push_back({last.u + 2 * ((corner.u > last.u) - (corner.u < last.u)),
+                                 last.v + 2 * ((corner.v > last.v) - (corner.v < last.v))});
+      }
+    return chain;
+  };
   const LatticePoint junction{10, 10};
-  const Chain fold{2, 3, {junction, {20, 10}, {20, 14}}}, up{2, 4, {junction, {10, 2}, {6, 2}}},
-      down{3, 4, {junction, {10, 18}, {14, 18}}};
+  const Chain fold = path(2, 3, junction, {{20, 10}, {20, 14}}), up = path(2, 4, junction, {{10, 2}, {6, 2}}),
+              down = path(3, 4, junction, {{10, 18}, {14, 18}});
   const std::vector<Chain> chains = {fold, up, down};
   const double fold_Y = lattice.Y(junction.v) - 0.3;
   const chains::ChainEnds snaps{.fold_Y = {fold_Y, std::nullopt}};
@@ -215,6 +227,14 @@ TEST(ChainPoints, AJunctionWhereAFoldSnapsMovesOntoItsLine) {
   EXPECT_TRUE(chains::junctions_on_breaks(chains, lattice, no_breaks, {far, {}, {}}).moved.empty());
   EXPECT_TRUE(chains::junctions_on_breaks(chains, lattice, no_breaks, {snaps, {}, {.pinned = true}}).moved.empty());
   EXPECT_TRUE(chains::junctions_on_breaks(chains, lattice, no_breaks, {{}, {}, {}}).moved.empty());
+  const chains::ChainEnds on_its_row{.fold_Y = {lattice.Y(junction.v), std::nullopt}};
+  EXPECT_TRUE(chains::junctions_on_breaks(chains, lattice, no_breaks, {on_its_row, {}, {}}).moved.empty());
+  const Chain along_row = path(3, 5, junction, {{2, 10}, {2, 16}});
+  EXPECT_TRUE(chains::junctions_on_breaks({fold, up, along_row}, lattice, no_breaks, {snaps, {}, {}}).moved.empty());
+  const Chain edge{2, 4, {junction, {10, 8}}}, up_beyond = path(2, 4, {10, 8}, {{10, 2}, {6, 2}});
+  const chains::ChainEnds between{.fold_Y = {lattice.Y(junction.v) + 0.3, std::nullopt}};  // within a pixel of both
+  EXPECT_TRUE(chains::junctions_on_breaks({fold, edge, up_beyond, down}, lattice, no_breaks, {between, {}, {}, {}})
+                  .moved.empty());
 }
 
 // A lattice row whose pixel edges the picture breaks across on the row itself (a slice ending on a

@@ -181,8 +181,8 @@ TEST(Plan, ASupportIsDrawnOnItsPixelCornersWhereAFaceWrapsRoundIt) {
 
 // A boundary that is no model edge and no level contour (where two subsegments' slices meet) has
 // only its pixel contour to go by. Drawn with the default options it is the line the staircase
-// follows, not its steps: a patch on the back plane whose lower side climbs one pixel every `run`
-// pixels is drawn as a quadrilateral, its four corners where the patch's are.
+// follows, not its steps: a patch on the back plane whose lower side steps down one pixel every
+// `run` pixels to the right is drawn as a quadrilateral, its four corners where the patch's are.
 TEST(Plan, AStaircaseNoModelEdgeExplainsIsDrawnAsTheLineItFollows) {
   const RayScene scene(test::box({40, 0, 0}, {150, 60, 40}));
   const Sheet sheet;
@@ -204,9 +204,13 @@ TEST(Plan, AStaircaseNoModelEdgeExplainsIsDrawnAsTheLineItFollows) {
     ASSERT_NE(region, plan.regions.end());
     ASSERT_EQ(region->rings.size(), 1u);
     EXPECT_EQ(region->rings.front().size(), 4u) << "a staircase climbing a pixel every " << run << " pixels";
-    const double px = maps.grid.px_per_mm;
+    const double px = maps.grid.px_per_mm, left = col / px, right = (col + 24 * run) / px;
+    const double top = maps.grid.Y(row) + 0.5 / px;  // pixel centres' Y; their edges half a pixel off
+    const auto bottom = [&](int rows) { return maps.grid.Y(row + rows) + 0.5 / px; };
     for (const PlanPoint& p : region->rings.front()) {
-      EXPECT_TRUE(p.X == col / px || p.X == (col + 24 * run) / px) << "at X = " << p.X;
+      const bool on_left = p.X == left && (p.Y == top || p.Y == bottom(20));
+      const bool on_right = p.X == right && (p.Y == top || p.Y == bottom(20 + 23));
+      EXPECT_TRUE(on_left || on_right) << "a vertex at X = " << p.X << ", Y = " << p.Y;
     }
   }
 }
@@ -449,9 +453,9 @@ std::multiset<SegmentKey> svg_keys_of(const Plan& plan, LineKind kind) {
 
 // Where a snapped fold meets a slanted cut that still leaves the pixel row the fold moved from, a
 // face reaches past its line: the capitol's H faces under the dome reached 0.02-0.08 mm behind the
-// back plane (validate's outside_card); since a junction where a fold snaps moves onto its line,
-// it does so at W = 5 mm. The part beyond is trimmed off to the back plane: no face leaves the
-// card, the plan still stands, and its DXF reads back with no face outside the card.
+// back plane (validate's outside_card). Since a junction where a fold snaps moves onto its line, no
+// face of it does so at W = 3 mm any more; at 5 mm two still do. The part beyond is trimmed off to the back plane: no
+// face leaves the card, the plan still stands, and its DXF reads back with no face outside the card.
 TEST(Plan, AFaceReachingBehindTheBackPlaneIsTrimmedToIt) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   DesignOptions options;

@@ -53,10 +53,11 @@ struct PlanOptions {
   // contour; where they run on the model's own edge, within 0.02 mm of it, and their junctions and
   // corners move onto it (chain_points.hpp). Zero keeps every chain on its pixel contour.
   // A pixel at the default 4 px/mm: a staircase's edge midpoints lie up to a pixel off the line
-  // between its end corners, and 0.1 mm kept shallow staircases. The 37 models at W = 3 mm went from
-  // 69,197 cut segments (41,645 under 1 mm) to 48,338 (22,127); at W = 2, 3 and 5 mm places
-  // narrower than W 7,089 / 4,235 / 2,325 -> 7,119 / 4,226 / 2,303, mean p95 2.01 / 1.79 / 1.88 ->
-  // 1.98 / 1.80 / 1.88 W.
+  // between its end corners, and 0.1 mm kept the steps of shallow staircases. The 37 models at
+  // W = 3 mm went from 69,197 cut segments (41,645 under 1 mm) to 48,338 (22,127); at W = 2, 3 and
+  // 5 mm places narrower than W 7,089 / 4,235 / 2,325 -> 7,119 / 4,226 / 2,303, mean p95 2.01 /
+  // 1.79 / 1.88 -> 1.98 / 1.80 / 1.88 W (the worst, at 3 mm, 3.83 -> 4.00 W: bad_motorbike's
+  // supports chose otherwise, its sliced plan the same).
   double simplify_mm = 0.25;
   // A V/H boundary within this fraction of W (plus one pixel) of its fold line Y = h - d becomes
   // that fold (§4.5: the faces are extended or trimmed to meet on it); farther off it is a cut.

@@ -98,12 +98,13 @@ struct JunctionMoves {
   std::vector<bool> collapsed;  // per chain: a short chain whose ends moved to one point: no line
 };
 
-/// The junctions that chains on breaks place on the model's edge, each moved less than a pixel.
+/// Junctions moved less than a pixel: those that chains on breaks place on the model's edge, and
+/// (below) those that folds snapping there place on their line.
 /// Junctions joined by chains of one pixel edge move as one, to one point, and those chains
 /// vanish. A straight run down a lattice column whose one end moved across it takes its other end
-/// along the fold line that end lies on, as far. A junction of one corner that none of these moves,
-/// where the chains that snap onto their folds all snap onto one line, moves square onto that line
-/// (by a pixel at most). Nothing moves where the picture's breaks are not known. `ends` has each
+/// along the fold line that end lies on, as far. A junction of one corner that no model edge passes,
+/// where the chains that snap onto their folds all snap onto one line and no other leaves along the
+/// lattice row, moves square onto that line. Nothing moves where the picture's breaks are not known. `ends` has each
 /// chain's rule for its ends.
 /// \pre ends.size() == chains.size().
 JunctionMoves junctions_on_breaks(const std::vector<Chain>& chains, const LatticeScale& lattice,

@@ -43,27 +43,32 @@ std::optional<MovedJunction> meeting_point(const std::vector<Leg>& legs) {
   return best;
 }
 
-// Where no model edge moves a junction and the chains that snap onto their folds there all snap
-// onto one line, the junction moves square onto that line, its X the lattice's: the fold then ends
-// where the cuts meet, not a connector's length away, beside which a cut drawn slanted left a sliver
-// (res_dragon_full: 0.024 mm wide at (100, -35.5)). Only a junction of one corner moves so. On the
-// 37 models at W = 3 mm the places narrower than 0.1 mm went 768 -> 380 and the chords narrower
-// than W 52,685 -> 50,420; most faces the slivers were in are narrow elsewhere too, so places (the
-// narrowest per face and axis) at W = 2 / 3 / 5 mm went only 7,119 / 4,226 / 2,303 -> 7,087 /
-// 4,212 / 2,307, the mean p95 within 0.004 W.
-std::optional<MovedJunction> onto_the_fold(const std::vector<Leg>& legs, const std::vector<LatticePoint>& members) {
+// The line the folds snapping at a junction end on (with one of those folds), if they all end on one.
+std::optional<std::pair<double, std::int32_t>> fold_line_of(const std::vector<Leg>& legs) {
+  std::optional<std::pair<double, std::int32_t>> line;
+  for (const Leg& leg : legs)
+    if (leg.fold_chain >= 0) {
+      if (line && line->first != leg.Y) return std::nullopt;
+      if (!line) line = std::pair{leg.Y, leg.fold_chain};
+    }
+  return line;
+}
+
+// Where no model edge passes a junction of one corner and its folds all snap onto one line, the
+// junction moves square onto that line: the fold ends where the cuts meet, not a connector's length
+// away, beside which a cut drawn slanted left a sliver (res_dragon_full: 0.024 mm wide at (100,
+// -35.5); over the 37 models at W = 3 mm places under 0.1 mm wide 768 -> 454). Not where another
+// chain leaves along the lattice row, which the move would tilt, nor where a cluster of several
+// corners would need one X for all.
+std::optional<MovedJunction> onto_the_fold(const std::vector<Leg>& legs, const std::vector<LatticePoint>& members,
+                                           const LatticeScale& lattice) {
   if (members.size() != 1) return std::nullopt;
-  const Leg* fold = nullptr;
-  for (const Leg& leg : legs) {
-    if (leg.fold_chain < 0) continue;
-    if (fold && leg.Y != fold->Y) return std::nullopt;
-    if (!fold) fold = &leg;
-  }
-  if (!fold) return std::nullopt;
-  MovedJunction at{{}, fold->X, fold->Y};
-  at.u_on_lattice = members.front().u;
-  at.on_fold_of = fold->fold_chain;
-  return at;
+  const bool held_in_place =
+      std::ranges::any_of(legs, [](const Leg& leg) { return leg.on_break || (leg.fold_chain < 0 && leg.dy == 0); });
+  const auto line = fold_line_of(legs);
+  if (held_in_place || !line) return std::nullopt;
+  const LatticePoint p = members.front();
+  return MovedJunction{{}, lattice.X(p.u), line->first, p.u, -1, line->second};
 }
 
 // The junctions of junctions_on_breaks, by id; those one pixel edge apart are one cluster, named by
@@ -104,16 +109,6 @@ void follow_across_runs(const std::vector<Chain>& chains, const LatticeScale& la
         std::ranges::all_of(corners, [&](LatticePoint p) { return p.u == corners.front().u; }))
       runs.push_back(i);
   }
-  // The line folds end on at a cluster, if they all end on one.
-  const auto fold_line = [&](std::size_t c) -> std::optional<std::pair<double, std::int32_t>> {
-    std::optional<std::pair<double, std::int32_t>> line;
-    for (const Leg& leg : clusters.legs[c])
-      if (leg.fold_chain >= 0) {
-        if (line && line->first != leg.Y) return std::nullopt;
-        if (!line) line = std::pair{leg.Y, leg.fold_chain};
-      }
-    return line;
-  };
   for (bool moved = true; moved;) {
     std::map<std::size_t, std::optional<MovedJunction>> proposed;  // nullopt: two ways
     for (const std::size_t i : runs) {
@@ -122,7 +117,7 @@ void follow_across_runs(const std::vector<Chain>& chains, const LatticeScale& la
       for (const auto& [from, to] : {std::pair{front, back}, std::pair{back, front}}) {
         if (from == to || !clusters.moved_to[from] || clusters.moved_to[to] || clusters.held[to]) continue;
         const double X = clusters.moved_to[from]->X;
-        const auto line = fold_line(to);
+        const auto line = fold_line_of(clusters.legs[to]);
         if (std::abs(X - lattice.X(u)) < kLeastMove_mm || !line) continue;
         const MovedJunction at{{}, X, line->first, -1, -1, line->second};
         if (!(clusters.moves_by(to, at, lattice) <= kJunctionMove_px * lattice.px_mm)) continue;
@@ -186,8 +181,9 @@ JunctionMoves junctions_on_breaks(const std::vector<Chain>& chains, const Lattic
   follow_across_runs(chains, lattice, clusters);
   for (std::size_t c = 0; c < corner_of.size(); ++c) {
     if (clusters.members[c].empty() || clusters.held[c] || clusters.moved_to[c]) continue;
-    const std::optional<MovedJunction> at = onto_the_fold(clusters.legs[c], clusters.members[c]);
+    const std::optional<MovedJunction> at = onto_the_fold(clusters.legs[c], clusters.members[c], lattice);
     if (!at) continue;
+    // Exact lines: no move is too small to make, unlike one read off the rays.
     const double move = clusters.moves_by(c, *at, lattice);
     if (move > 0 && move <= kJunctionMove_px * lattice.px_mm) clusters.moved_to[c] = at;
   }
