@@ -129,7 +129,7 @@ TEST(ChainPoints, ACornerOfTwoStraightRunsIsDrawnOnIt) {
 TEST(ChainPoints, AJunctionMovesToWhereTheModelsEdgeMeetsTheLineBesideIt) {
   const StaircaseOnAnEdge s;
   const std::vector<Chain> chains = {s.stairs, s.row};
-  const chains::JunctionMoves moves = chains::junctions_on_breaks(chains, s.lattice, s.breaks(), {{}, {}});
+  const chains::JunctionMoves moves = chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}});
   ASSERT_EQ(moves.moved.size(), 1u);
   const chains::MovedJunction& m = moves.moved[0];
   EXPECT_EQ(m.corner.u, s.row.corners.front().u);
@@ -137,12 +137,11 @@ TEST(ChainPoints, AJunctionMovesToWhereTheModelsEdgeMeetsTheLineBesideIt) {
   EXPECT_EQ(m.v_on_lattice, m.corner.v);
   EXPECT_NEAR(m.X, s.c - s.lattice.Y(m.corner.v), 1e-9);
   EXPECT_EQ(moves.collapsed, (std::vector<bool>{false, false}));
-  const chains::JunctionMoves pinned =
-      chains::junctions_on_breaks(chains, s.lattice, s.breaks(), {{.pinned = true}, {}});
+  const chains::JunctionMoves pinned = chains::moved_junctions(chains, s.lattice, s.breaks(), {{.pinned = true}, {}});
   EXPECT_TRUE(pinned.moved.empty());
   // A fold snapping onto Y = 7.1 at the row's end: the junction moves along the fold's line.
   const chains::JunctionMoves on_fold =
-      chains::junctions_on_breaks(chains, s.lattice, s.breaks(), {{}, {.fold_Y = {7.1, std::nullopt}}});
+      chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {.fold_Y = {7.1, std::nullopt}}});
   ASSERT_EQ(on_fold.moved.size(), 1u);
   EXPECT_EQ(on_fold.moved[0].on_fold_of, 1);
   EXPECT_NEAR(on_fold.moved[0].X, s.c - 7.1, 1e-9);
@@ -162,7 +161,7 @@ TEST(ChainPoints, ARunWhoseJunctionMovedAcrossItTakesItsFoldsEndAlong) {
   const std::vector<Chain> chains = {s.stairs, s.row, column};
   const double fold_Y = s.lattice.Y(bottom.v) - 0.1;
   const chains::JunctionMoves moves =
-      chains::junctions_on_breaks(chains, s.lattice, s.breaks(), {{}, {}, {.fold_Y = {std::nullopt, fold_Y}}});
+      chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}, {.fold_Y = {std::nullopt, fold_Y}}});
   ASSERT_EQ(moves.moved.size(), 2u);
   const auto at = [&](LatticePoint corner) {
     return std::ranges::find_if(
@@ -178,7 +177,7 @@ TEST(ChainPoints, ARunWhoseJunctionMovedAcrossItTakesItsFoldsEndAlong) {
   EXPECT_EQ(at(bottom)->u_on_lattice, -1);
   for (const std::vector<chains::ChainEnds>& ends :
        {std::vector<chains::ChainEnds>{{}, {}, {}}, {{}, {}, {.pinned = true, .fold_Y = {std::nullopt, fold_Y}}}}) {
-    const chains::JunctionMoves kept = chains::junctions_on_breaks(chains, s.lattice, s.breaks(), ends);
+    const chains::JunctionMoves kept = chains::moved_junctions(chains, s.lattice, s.breaks(), ends);
     EXPECT_TRUE(std::ranges::none_of(
         kept.moved, [&](const chains::MovedJunction& m) { return m.corner.u == bottom.u && m.corner.v == bottom.v; }));
   }
@@ -209,7 +208,7 @@ TEST(ChainPoints, AJunctionWhereAFoldSnapsMovesOntoItsLine) {
   const std::vector<Chain> chains = {fold, up, down};
   const double fold_Y = lattice.Y(junction.v) - 0.3;
   const chains::ChainEnds snaps{.fold_Y = {fold_Y, std::nullopt}};
-  const chains::JunctionMoves moves = chains::junctions_on_breaks(chains, lattice, no_breaks, {snaps, {}, {}});
+  const chains::JunctionMoves moves = chains::moved_junctions(chains, lattice, no_breaks, {snaps, {}, {}});
   ASSERT_EQ(moves.moved.size(), 1u);
   const chains::MovedJunction& m = moves.moved[0];
   EXPECT_EQ(m.corner.u, junction.u);
@@ -220,21 +219,21 @@ TEST(ChainPoints, AJunctionWhereAFoldSnapsMovesOntoItsLine) {
   EXPECT_EQ(m.on_fold_of, 0);
   EXPECT_EQ(moves.collapsed, (std::vector<bool>{false, false, false}));
   // Two folds onto one line move it; onto two, or a pixel and more away, or a chain pinned, none.
-  EXPECT_EQ(chains::junctions_on_breaks(chains, lattice, no_breaks, {snaps, snaps, {}}).moved.size(), 1u);
+  EXPECT_EQ(chains::moved_junctions(chains, lattice, no_breaks, {snaps, snaps, {}}).moved.size(), 1u);
   const chains::ChainEnds other{.fold_Y = {fold_Y + 0.1, std::nullopt}};
-  EXPECT_TRUE(chains::junctions_on_breaks(chains, lattice, no_breaks, {snaps, other, {}}).moved.empty());
+  EXPECT_TRUE(chains::moved_junctions(chains, lattice, no_breaks, {snaps, other, {}}).moved.empty());
   const chains::ChainEnds far{.fold_Y = {lattice.Y(junction.v) - 1.25, std::nullopt}};
-  EXPECT_TRUE(chains::junctions_on_breaks(chains, lattice, no_breaks, {far, {}, {}}).moved.empty());
-  EXPECT_TRUE(chains::junctions_on_breaks(chains, lattice, no_breaks, {snaps, {}, {.pinned = true}}).moved.empty());
-  EXPECT_TRUE(chains::junctions_on_breaks(chains, lattice, no_breaks, {{}, {}, {}}).moved.empty());
+  EXPECT_TRUE(chains::moved_junctions(chains, lattice, no_breaks, {far, {}, {}}).moved.empty());
+  EXPECT_TRUE(chains::moved_junctions(chains, lattice, no_breaks, {snaps, {}, {.pinned = true}}).moved.empty());
+  EXPECT_TRUE(chains::moved_junctions(chains, lattice, no_breaks, {{}, {}, {}}).moved.empty());
   const chains::ChainEnds on_its_row{.fold_Y = {lattice.Y(junction.v), std::nullopt}};
-  EXPECT_TRUE(chains::junctions_on_breaks(chains, lattice, no_breaks, {on_its_row, {}, {}}).moved.empty());
+  EXPECT_TRUE(chains::moved_junctions(chains, lattice, no_breaks, {on_its_row, {}, {}}).moved.empty());
   const Chain along_row = path(3, 5, junction, {{2, 10}, {2, 16}});
-  EXPECT_TRUE(chains::junctions_on_breaks({fold, up, along_row}, lattice, no_breaks, {snaps, {}, {}}).moved.empty());
+  EXPECT_TRUE(chains::moved_junctions({fold, up, along_row}, lattice, no_breaks, {snaps, {}, {}}).moved.empty());
   const Chain edge{2, 4, {junction, {10, 8}}}, up_beyond = path(2, 4, {10, 8}, {{10, 2}, {6, 2}});
   const chains::ChainEnds between{.fold_Y = {lattice.Y(junction.v) + 0.3, std::nullopt}};  // within a pixel of both
-  EXPECT_TRUE(chains::junctions_on_breaks({fold, edge, up_beyond, down}, lattice, no_breaks, {between, {}, {}, {}})
-                  .moved.empty());
+  EXPECT_TRUE(
+      chains::moved_junctions({fold, edge, up_beyond, down}, lattice, no_breaks, {between, {}, {}, {}}).moved.empty());
 }
 
 // A lattice row whose pixel edges the picture breaks across on the row itself (a slice ending on a
@@ -244,7 +243,7 @@ TEST(ChainPoints, ARowOnACreaseStillTakesTheJunctionAlongIt) {
   StaircaseOnAnEdge s;
   const LatticePoint start = s.row.corners.front();
   for (int k = 0; k < 7; ++k) s.below(start.u / 2 + k, start.v / 2 - 1) = 0.5f;  // Y(v - 1) - 0.5 px: on the row
-  const chains::JunctionMoves moves = chains::junctions_on_breaks({s.stairs, s.row}, s.lattice, s.breaks(), {{}, {}});
+  const chains::JunctionMoves moves = chains::moved_junctions({s.stairs, s.row}, s.lattice, s.breaks(), {{}, {}});
   ASSERT_EQ(moves.moved.size(), 1u);
   EXPECT_EQ(moves.moved[0].v_on_lattice, start.v);
   EXPECT_NEAR(moves.moved[0].X, s.c - s.lattice.Y(start.v), 1e-9);

@@ -18,8 +18,8 @@ namespace {
 
 using chains::Chain;
 using chains::ChainPoint;
-using chains::junctions_on_breaks;
 using chains::LatticePoint;
+using chains::moved_junctions;
 using chains::simplified;
 
 // Where a cut piece's end is drawn when not at its corner: a junction moved onto the model's edge,
@@ -29,7 +29,8 @@ struct PieceEnd {
   std::array<double, 2> near;  // its nearest doubles
 };
 
-// Junctions moved onto the model's edges (chains::junctions_on_breaks), exactly, by their corner.
+// Junctions moved onto the model's edges or their folds' lines (chains::moved_junctions), exactly,
+// by their corner.
 class Junctions {
  public:
   Junctions(const std::vector<chains::MovedJunction>& moved, const Lattice& lattice, const std::vector<Chain>& chains,
@@ -270,11 +271,12 @@ std::vector<chains::ChainEnds> chain_ends(const ArrangementInput& in, const std:
   return ends;
 }
 
-// Every chain's segments, their junctions moved onto the model's edges, and the sheet's outline.
+// Every chain's segments, their junctions moved onto the model's edges or fold lines, and the sheet's
+// outline.
 Curves chain_curves(const ArrangementInput& in, const std::vector<Fallback>& fallback) {
   Curves curves;
   const chains::JunctionMoves moves =
-      junctions_on_breaks(in.chains, in.lattice, in.lattice.breaks, chain_ends(in, fallback));
+      moved_junctions(in.chains, in.lattice, in.lattice.breaks, chain_ends(in, fallback));
   const Junctions junctions(moves.moved, in.lattice, in.chains, in.faces);
   const ChainDrawing drawing{in.faces, in.lattice, junctions, in.simplify_mm, in.fold_tolerance};
   for (std::size_t i = 0; i < in.chains.size(); ++i) {

@@ -50,7 +50,7 @@ struct ChainPoint {
 std::optional<double> leg_meets_line(const Chain& chain, bool front, double Y, const LatticeScale& lattice,
                                      const PictureBreaks& breaks);
 
-/// Where a chain's end corners are drawn if their junctions moved (junctions_on_breaks).
+/// Where a chain's end corners are drawn if their junctions moved (moved_junctions).
 using MovedEnds = std::array<std::optional<std::array<double, 2>>, 2>;
 
 struct DrawnChain {
@@ -99,15 +99,14 @@ struct JunctionMoves {
 };
 
 /// Junctions moved less than a pixel: those that chains on breaks place on the model's edge, and
-/// (below) those that folds snapping there place on their line.
-/// Junctions joined by chains of one pixel edge move as one, to one point, and those chains
-/// vanish. A straight run down a lattice column whose one end moved across it takes its other end
-/// along the fold line that end lies on, as far. A junction of one corner that no model edge passes,
-/// where the chains that snap onto their folds all snap onto one line and no other leaves along the
-/// lattice row, moves square onto that line. Nothing moves where the picture's breaks are not known. `ends` has each
-/// chain's rule for its ends.
+/// those that folds snapping there place on their line. Junctions joined by chains of one pixel
+/// edge move as one, to one point, and those chains vanish. A straight run down a lattice column
+/// whose one end moved across it takes its other end along the fold line that end lies on, as far.
+/// A junction of one corner that no model edge passes, where the chains that snap onto their folds
+/// all snap onto one line and no other leaves along the lattice row, moves square onto that line.
+/// Nothing moves where the picture's breaks are not known. `ends` has each chain's rule for its ends.
 /// \pre ends.size() == chains.size().
-JunctionMoves junctions_on_breaks(const std::vector<Chain>& chains, const LatticeScale& lattice,
-                                  const PictureBreaks& breaks, const std::vector<ChainEnds>& ends);
+JunctionMoves moved_junctions(const std::vector<Chain>& chains, const LatticeScale& lattice,
+                              const PictureBreaks& breaks, const std::vector<ChainEnds>& ends);
 
 }  // namespace origamic::chains

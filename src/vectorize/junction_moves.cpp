@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Junctions moved onto the model's edge (junctions_on_breaks, chain_points.hpp): where the legs
+// Junctions moved onto the model's edge (moved_junctions, chain_points.hpp): where the legs
 // meeting at them cross, and where a straight run's other end follows; elsewhere onto the line their
 // folds snap onto.
 #include <algorithm>
@@ -71,7 +71,7 @@ std::optional<MovedJunction> onto_the_fold(const std::vector<Leg>& legs, const s
   return MovedJunction{{}, lattice.X(p.u), line->first, p.u, -1, line->second};
 }
 
-// The junctions of junctions_on_breaks, by id; those one pixel edge apart are one cluster, named by
+// The junctions of moved_junctions, by id; those one pixel edge apart are one cluster, named by
 // its root's id (the other ids' entries stay empty): per chain the clusters of its ends (a loop's
 // are not set), per cluster its junctions, the legs meeting there, whether it is held and where it
 // moves.
@@ -133,8 +133,8 @@ void follow_across_runs(const std::vector<Chain>& chains, const LatticeScale& la
 
 }  // namespace
 
-JunctionMoves junctions_on_breaks(const std::vector<Chain>& chains, const LatticeScale& lattice,
-                                  const PictureBreaks& breaks, const std::vector<ChainEnds>& ends) {
+JunctionMoves moved_junctions(const std::vector<Chain>& chains, const LatticeScale& lattice,
+                              const PictureBreaks& breaks, const std::vector<ChainEnds>& ends) {
   assert(ends.size() == chains.size());
   JunctionMoves result;
   result.collapsed.assign(chains.size(), false);
