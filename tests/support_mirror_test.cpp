@@ -100,13 +100,12 @@ TEST(SupportMirror, MirroredMapsPutEachBreakBetweenTheMirroredPixelCentres) {
   RasterMaps maps = test::blank_maps(grid(), HitKind::Back);
   maps.kind(2, 1) = HitKind::Model;
   maps.d_mm(2, 1) = 7.5;
-  maps.normal(2, 1) = glm::vec3(0.6f, 0, 0.8f);
   maps.break_right(2, 1) = 0.25f;  // between columns 2 and 3, a quarter of the way from 2
   maps.break_below(2, 1) = 0.5f;
   const RasterMaps m = mirror_image(maps);
   EXPECT_EQ(m.kind(21, 1), HitKind::Model);
   EXPECT_EQ(m.d_mm(21, 1), 7.5);
-  EXPECT_EQ(m.normal(21, 1).x, -0.6f);
+  EXPECT_EQ(m.normal.size(), 0u) << "the support stage reads no normals";
   EXPECT_EQ(m.break_right(20, 1), 0.75f);  // between columns 20 and 21, a quarter from 21
   EXPECT_EQ(m.break_below(21, 1), 0.5f);
   int breaks = 0;
@@ -114,7 +113,7 @@ TEST(SupportMirror, MirroredMapsPutEachBreakBetweenTheMirroredPixelCentres) {
   EXPECT_EQ(breaks, 1);
   const RasterMaps back = mirror_image(m);
   EXPECT_EQ(back.break_right(2, 1), 0.25f);
-  EXPECT_EQ(back.normal(2, 1).x, 0.6f);
+  EXPECT_EQ(back.d_mm(2, 1), 7.5);
 }
 
 TEST(SupportMirror, FacesAreRenumberedInTheOrderAScanMeetsThem) {
