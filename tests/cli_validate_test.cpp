@@ -130,7 +130,7 @@ TEST(CliValidate, DesignedPlanValidatesWithTheDesignsCounts) {
 TEST(CliValidate, TheDesignReportsThePlacesValidateFindsNarrowerThanW) {
   std::vector<std::pair<std::filesystem::path, std::string>> models{
       {std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj", "y"}};
-  if (!test::models_dir().empty()) models.emplace_back(test::models_dir() / "seedlike/wedge.stl", "z");
+  if (!test::models_dir().empty()) models.emplace_back(test::models_dir() / "seedlike/barrel_vault.stl", "z");
   for (const auto& [model, up] : models) {
     SCOPED_TRACE(model.filename().string());
     const test::TempDir dir;
@@ -146,7 +146,7 @@ TEST(CliValidate, TheDesignReportsThePlacesValidateFindsNarrowerThanW) {
     std::vector<nlohmann::json> found;
     for (const auto& p : read_back["problems"])
       if (p["kind"] == "narrow_strip") found.push_back(p);
-    ASSERT_FALSE(found.empty()) << "the house's roof steps and the wedge's ramp leave strips under 3 mm";
+    ASSERT_FALSE(found.empty()) << "the house's roof steps and the barrel vault's slices leave strips under 3 mm";
     ASSERT_EQ(narrow.size(), found.size());
     EXPECT_EQ(report["plan"]["narrow_strip_count"], found.size());
     EXPECT_EQ(report["plan"]["narrow_between_folds_count"], read_back["counts"]["narrow_between_folds"]);
@@ -161,6 +161,25 @@ TEST(CliValidate, TheDesignReportsThePlacesValidateFindsNarrowerThanW) {
     EXPECT_NE(designed.output.find(std::to_string(found.size()) + places + " narrower than W"), std::string::npos)
         << designed.output;
   }
+}
+
+// A ramp off the floor is a staircase of terraces W apart, its lowest W above the floor (slice.cpp):
+// no strip under W anywhere, as the design and `validate --min-strip 3` find its DXF.
+TEST(CliValidate, TheWedgesStaircaseHasNoPlaceNarrowerThanW) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  const test::TempDir dir;
+  const test::CommandRun designed = test::run_origamic(
+      "design " + test::quoted(test::models_dir() / "seedlike/wedge.stl") + " --up z --out " + test::quoted(dir.path));
+  ASSERT_EQ(designed.status, 0) << designed.output;
+  EXPECT_NE(designed.output.find("plan VALID"), std::string::npos) << designed.output;
+  EXPECT_NE(designed.output.find("; 0 places narrower than W"), std::string::npos) << designed.output;
+  const test::CommandRun r =
+      test::run_origamic("validate --json --min-strip 3 " + test::quoted(dir / "wedge.dxf"), true);
+  const auto read_back = nlohmann::json::parse(r.output);
+  int narrow = 0;
+  for (const auto& p : read_back["problems"]) narrow += p["kind"] == "narrow_strip";
+  EXPECT_EQ(narrow, 0);
+  EXPECT_EQ(read_back["counts"]["narrow_between_folds"], 0);
 }
 
 // W is the user's promise to their cutter (issue 23): a plan that stands but has places narrower

@@ -178,6 +178,26 @@ TEST(Slice, ARoofRisingToTheBackPlaneEndsOnItsFoldThereNotBehindIt) {
   EXPECT_GT(top_rows_below_back_plane, static_cast<int>(90 * grid.px_per_mm)) << "folded to the back plane all along";
 }
 
+TEST(Slice, TheLowestTerraceOfARampStandsAtLeastWAboveTheFloor) {
+  // The ramp above: its lowest terrace is held on the floor by a riser as tall as the terrace is
+  // high, a strip between two folds. Its levels begin W / 2 up, the lowest kept W above the floor.
+  TriangleMesh ramp;
+  ramp.positions = {{40, 0, 0}, {40, 0, 60}, {40, 35, 0}, {150, 0, 0}, {150, 0, 60}, {150, 35, 0}};
+  ramp.triangles = {{0, 1, 2}, {3, 5, 4}, {1, 4, 5}, {1, 5, 2}, {0, 3, 4}, {0, 4, 1}, {0, 2, 5}, {0, 5, 3}};
+  for (const double W : {3.0, 5.0}) {
+    SCOPED_TRACE(W);
+    const Planned p = plan_of_oa_mesh(ramp, W);
+    double lowest = 35;
+    int terraces = 0;
+    for (std::size_t f = 2; f < p.raster_plan.faces.size(); ++f)
+      if (const RasterFace& face = p.raster_plan.faces[f]; face.orientation == Orientation::H && face.pixels > 0)
+        ++terraces, lowest = std::min(lowest, face.depth_mm);
+    EXPECT_GE(terraces, 35 / W - 2);
+    EXPECT_GE(lowest, W);
+    EXPECT_LT(lowest, 2 * W);
+  }
+}
+
 TEST(Slice, ThinPoleIsRemovedAndItsHoleFilled) {
   // A box with a 1 mm pole standing in front of it; W = 3 mm.
   const TriangleMesh house = test::box({60, 0, 0}, {150, 50, 30});
