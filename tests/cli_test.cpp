@@ -204,6 +204,13 @@ TEST(Cli, BadInputFilesExitWithStatusTwo) {
   test::write_text(dir / "noface.obj", "v 0 0 0\nv 1 0 0\n");
   test::write_text(dir / "nan.obj", "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n");
   test::write_text(dir / "point.obj", "v 1 1 1\nv 1 1 1\nv 1 1 1\nf 1 2 3\n");
+  // ASCII STL: a vertex line with a word that is no number, and one with two numbers.
+  const auto ascii_stl = [](const std::string& third_vertex) {
+    return "solid t\nfacet normal 0 0 1\n outer loop\n  vertex 0 0 0\n\tvertex 1 0 0\r\n  vertex " + third_vertex +
+           "\n endloop\nendfacet\nendsolid t\n";
+  };
+  test::write_text(dir / "nan.stl", ascii_stl("0 nan 0"));
+  test::write_text(dir / "short.stl", ascii_stl("0 1"));
   test::write_text(dir / "model.3ds", "x");
   test::write_stl_binary(dir / "whole.stl", test::box({0, 0, 0}, {1, 1, 1}));
   std::filesystem::resize_file(dir / "whole.stl", 300);
@@ -214,6 +221,8 @@ TEST(Cli, BadInputFilesExitWithStatusTwo) {
   expect_rejected(quoted(dir / "noface.obj"), "noface.obj", "no faces");
   expect_rejected(quoted(dir / "nan.obj"), "nan.obj", "finite");
   expect_rejected(quoted(dir / "point.obj"), "point.obj", "zero extent");
+  expect_rejected(quoted(dir / "nan.stl"), "nan.stl", "line 6: a vertex needs three finite numbers");
+  expect_rejected(quoted(dir / "short.stl"), "short.stl", "line 6: a vertex needs three finite numbers");
   expect_rejected(quoted(dir / "model.3ds"), "model.3ds", "unknown mesh format");
   expect_rejected(quoted(dir / "whole.stl"), "whole.stl", "truncated");
   expect_rejected(quoted(dir / "bad.obj.gz"), "bad.obj.gz", "no faces");

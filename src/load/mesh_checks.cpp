@@ -185,14 +185,21 @@ void check_stl_numbers(const std::filesystem::path& file, const std::string& byt
       }
     return;
   }
+  // The words split off by hand, not by a string stream per line: a stream's construction took a
+  // third of seedlike/torus's load (9,216 triangles, 24 of 52 ms).
+  constexpr std::string_view kSpace = " \t\r\v\f";
+  std::string word;
   for_each_line(bytes, 0, [&](std::string_view line, std::size_t number) {
-    std::istringstream words{std::string(line)};
-    std::string keyword;
-    words >> keyword;
-    if (keyword != "vertex") return;
+    const auto next_word = [&] {
+      const std::size_t begin = std::min(line.find_first_not_of(kSpace), line.size());
+      line.remove_prefix(begin);
+      const std::string_view found = line.substr(0, std::min(line.find_first_of(kSpace), line.size()));
+      line.remove_prefix(found.size());
+      return found;
+    };
+    if (next_word() != "vertex") return;
     for (int k = 0; k < 3; ++k) {
-      std::string word;
-      words >> word;
+      word = next_word();
       char* stop = nullptr;
       const double value = std::strtod(word.c_str(), &stop);
       if (word.empty() || *stop != '\0' || !std::isfinite(value))
