@@ -99,20 +99,21 @@ TEST(Raster, BoxFrontFaceHasItsExactDepthAndExtent) {
 
 TEST(Raster, FrontDepthIsConstantOnVerticalFacesAndTopDepthOnHorizontalOnes) {
   const RasterMaps maps = box_maps();
+  const NormalisedDepths depths = normalised_depths(maps);
   std::vector<float> front_F, top_T, back_F, floor_T;
   for (int row = 0; row < maps.grid.rows; ++row)
     for (int col = 0; col < maps.grid.cols; ++col) {
       const HitKind kind = maps.kind(col, row);
       if (kind == HitKind::Model && maps.d_mm(col, row) == kDepth) {
-        front_F.push_back(maps.F(col, row));
+        front_F.push_back(depths.F(col, row));
         EXPECT_EQ(maps.normal(col, row), glm::vec3(0, 0, 1));
       }
       if (kind == HitKind::Model && maps.h_mm(col, row) == kHeight) {
-        top_T.push_back(maps.T(col, row));
+        top_T.push_back(depths.T(col, row));
         EXPECT_EQ(maps.normal(col, row), glm::vec3(0, 1, 0));
       }
-      if (kind == HitKind::Back) back_F.push_back(maps.F(col, row));
-      if (kind == HitKind::Floor) floor_T.push_back(maps.T(col, row));
+      if (kind == HitKind::Back) back_F.push_back(depths.F(col, row));
+      if (kind == HitKind::Floor) floor_T.push_back(depths.T(col, row));
     }
   for (const auto* values : {&front_F, &top_T, &back_F, &floor_T}) {
     ASSERT_FALSE(values->empty());
@@ -183,13 +184,13 @@ TEST(Raster, PixelCentresBeyondTheSheetAreOutside) {
   EXPECT_EQ(narrower.kind(100, 5), HitKind::Outside);
   EXPECT_TRUE(std::isnan(narrower.d_mm(100, 5)));
   // Every value of a pixel past the edge is written, though no ray is shot there (the grids are
-  // made unfilled): unset depths, the far reference, no normal, no triangle, no break beside it.
+  // made unfilled): unset depths, the far reference, no normal, no break beside it.
   EXPECT_TRUE(std::isnan(narrower.h_mm(100, 5)));
-  EXPECT_EQ(narrower.D(100, 5), 1.0f);
-  EXPECT_EQ(narrower.F(100, 5), 1.0f);
-  EXPECT_EQ(narrower.T(100, 5), 1.0f);
+  const NormalisedDepths depths = normalised_depths(narrower);
+  EXPECT_EQ(depths.D(100, 5), 1.0f);
+  EXPECT_EQ(depths.F(100, 5), 1.0f);
+  EXPECT_EQ(depths.T(100, 5), 1.0f);
   EXPECT_EQ(narrower.normal(100, 5), glm::vec3(0.0f));
-  EXPECT_EQ(narrower.primitive(100, 5), -1);
   EXPECT_TRUE(std::isnan(narrower.break_right(99, 5)));  // its left neighbour's, towards it
   EXPECT_TRUE(std::isnan(narrower.break_right(100, 5)));
   EXPECT_TRUE(std::isnan(narrower.break_below(100, 5)));
@@ -205,8 +206,11 @@ TEST(Raster, OutputDoesNotDependOnTheThreadCount) {
   many = raster(scene, Sheet{}, RasterOptions{});
   ASSERT_EQ(one.d_mm.size(), many.d_mm.size());
   EXPECT_EQ(std::memcmp(one.d_mm.values.data(), many.d_mm.values.data(), one.d_mm.size() * sizeof(double)), 0);
-  EXPECT_EQ(one.primitive.values, many.primitive.values);
-  EXPECT_EQ(one.F.values, many.F.values);
+  EXPECT_EQ(one.kind.values, many.kind.values);
+  EXPECT_EQ(std::memcmp(one.normal.values.data(), many.normal.values.data(), one.normal.size() * sizeof(glm::vec3)), 0);
+  EXPECT_EQ(std::memcmp(one.break_right.values.data(), many.break_right.values.data(),
+                        one.break_right.size() * sizeof(float)),
+            0);
 }
 
 TEST(Raster, AbsurdResolutionIsRejected) {

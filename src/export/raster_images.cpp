@@ -118,7 +118,8 @@ std::vector<OutputFile> slice_image_files(const RasterMaps& maps, const Segmenta
 std::vector<OutputFile> raster_image_files(const RasterMaps& maps, const std::filesystem::path& dir) {
   const int w = maps.grid.cols, h = maps.grid.rows;
   std::vector<OutputFile> files;
-  for (const auto& [name, map] : {std::pair{"D.png", &maps.D}, {"F.png", &maps.F}, {"T.png", &maps.T}})
+  const NormalisedDepths depths = normalised_depths(maps);
+  for (const auto& [name, map] : {std::pair{"D.png", &depths.D}, {"F.png", &depths.F}, {"T.png", &depths.T}})
     files.push_back({dir / name, encode_png((dir / name).string(), w, h, gray16(*map))});
   files.push_back(
       {dir / "N.png", encode_png((dir / "N.png").string(), w, h, PngFormat::Rgb8, normal_rgb(maps.normal))});

@@ -248,7 +248,7 @@ float break_between(const Tracer& tracer, const Way& way) {
 }
 
 // The maps' breaks between neighbouring pixel centres on the sheet, in parallel over rows.
-void trace_breaks(const Tracer& tracer, RasterMaps& maps) {
+void trace_breaks(const Tracer& tracer, const Grid<std::int32_t>& primitive, RasterMaps& maps) {
   const PixelGrid& grid = maps.grid;
   constexpr float none = std::numeric_limits<float>::quiet_NaN();
   maps.break_right = Grid<float>::unfilled(grid.cols, grid.rows);  // every pixel written below
@@ -262,15 +262,14 @@ void trace_breaks(const Tracer& tracer, RasterMaps& maps) {
           continue;
         }
         const glm::dvec2 a(grid.X(col), grid.Y(row));
-        const Traced at_a{
-            maps.kind(col, row), {maps.h_mm(col, row), maps.d_mm(col, row)}, {}, maps.primitive(col, row)};
+        const Traced at_a{maps.kind(col, row), {maps.h_mm(col, row), maps.d_mm(col, row)}, {}, primitive(col, row)};
         for (const auto& [c, r, out] :
              {std::tuple{col + 1, row, &maps.break_right}, std::tuple{col, row + 1, &maps.break_below}}) {
           if (!maps.kind.contains(c, r) || maps.kind(c, r) == HitKind::Outside) {
             (*out)(col, row) = none;
             continue;
           }
-          const Traced at_b{maps.kind(c, r), {maps.h_mm(c, r), maps.d_mm(c, r)}, {}, maps.primitive(c, r)};
+          const Traced at_b{maps.kind(c, r), {maps.h_mm(c, r), maps.d_mm(c, r)}, {}, primitive(c, r)};
           (*out)(col, row) = break_between(tracer, {a, a + glm::dvec2(c - col, row - r) * px_mm, at_a, at_b});
         }
       }
@@ -285,7 +284,7 @@ void check_options(const Sheet& sheet, const RasterOptions& options) {
     throw InputError("RasterOptions::px_per_mm",
                      std::to_string(options.px_per_mm) + " gives less than one pixel across the sheet");
   const double pixels = cols * rows;
-  constexpr double max_pixels = 64e6;  // the maps take about 53 bytes a pixel: 3.4 GB at most
+  constexpr double max_pixels = 64e6;  // the maps take about 37 bytes a pixel: 2.4 GB at most
   if (!(pixels <= max_pixels))
   {
     char text[160];
@@ -307,11 +306,9 @@ RasterMaps raster(const RayScene& scene, const Sheet& sheet, const RasterOptions
   maps.kind = Grid<HitKind>::unfilled(cols, rows);
   maps.d_mm = Grid<double>::unfilled(cols, rows);
   maps.h_mm = Grid<double>::unfilled(cols, rows);
-  maps.D = Grid<float>::unfilled(cols, rows);
-  maps.F = Grid<float>::unfilled(cols, rows);
-  maps.T = Grid<float>::unfilled(cols, rows);
   maps.normal = Grid<glm::vec3>::unfilled(cols, rows);
-  maps.primitive = Grid<std::int32_t>::unfilled(cols, rows);
+  // The triangle each ray met (-1 where none), which the breaks between pixels read.
+  Grid<std::int32_t> primitive = Grid<std::int32_t>::unfilled(cols, rows);
 
   const double half = sheet.half_height_mm();
   const bool empty = s.mesh.positions.empty();
@@ -332,9 +329,8 @@ RasterMaps raster(const RayScene& scene, const Sheet& sheet, const RasterOptions
         if (!row_on_sheet || X > sheet.max_X()) {  // past the sheet's edge: the values unset
           maps.kind(col, row) = HitKind::Outside;
           maps.d_mm(col, row) = maps.h_mm(col, row) = std::numeric_limits<double>::quiet_NaN();
-          maps.D(col, row) = maps.F(col, row) = maps.T(col, row) = 1.0f;
           maps.normal(col, row) = glm::vec3(0.0f);
-          maps.primitive(col, row) = -1;
+          primitive(col, row) = -1;
           continue;
         }
         const Traced traced = tracer.trace(X, Y, true, true);
@@ -342,18 +338,29 @@ RasterMaps raster(const RayScene& scene, const Sheet& sheet, const RasterOptions
         maps.kind(col, row) = traced.kind;
         maps.h_mm(col, row) = hit.h;
         maps.d_mm(col, row) = hit.d;
-        maps.D(col, row) = static_cast<float>((ref.diag_mm - (hit.h + hit.d)) / ref.diag_mm);
-        maps.F(col, row) = static_cast<float>((ref.front_d_mm - hit.d) / ref.front_d_mm);
-        maps.T(col, row) = static_cast<float>((ref.top_h_mm - hit.h) / ref.top_h_mm);
         maps.normal(col, row) = traced.normal;
-        maps.primitive(col, row) = traced.primitive;
+        primitive(col, row) = traced.primitive;
       }
     }
   });
-  trace_breaks(tracer, maps);
+  trace_breaks(tracer, primitive, maps);
 
   for (const HitKind k : maps.kind.values) maps.model_pixels += k == HitKind::Model;
   return maps;
+}
+
+NormalisedDepths normalised_depths(const RasterMaps& maps) {
+  const int cols = maps.grid.cols, rows = maps.grid.rows;
+  const DepthReference& ref = maps.reference;
+  NormalisedDepths depths{Grid<float>(cols, rows, 1.0f), Grid<float>(cols, rows, 1.0f), Grid<float>(cols, rows, 1.0f)};
+  for (std::size_t i = 0; i < maps.kind.size(); ++i) {
+    if (maps.kind.values[i] == HitKind::Outside) continue;
+    const double h = maps.h_mm.values[i], d = maps.d_mm.values[i];
+    depths.D.values[i] = static_cast<float>((ref.diag_mm - (h + d)) / ref.diag_mm);
+    depths.F.values[i] = static_cast<float>((ref.front_d_mm - d) / ref.front_d_mm);
+    depths.T.values[i] = static_cast<float>((ref.top_h_mm - h) / ref.top_h_mm);
+  }
+  return depths;
 }
 
 }  // namespace origamic

@@ -83,8 +83,9 @@ SupportFrame first_support_frame(const RasterPlan& raster_plan, const PixelGrid&
 
 // Every map the supports read written once into its mirror image, in parallel (seedlike/chapel's
 // second frame: copying the maps and then reversing them took 3.5% of its samples, now 2.4%, mostly
-// the first touches of their memory). The shading maps, which nothing reads in the mirror image, are
-// left out: peak memory of seedlike/torus, whose supports are chosen there, 213 -> 179 MB. Each
+// the first touches of their memory). The normals, which nothing reads in the mirror image, are left
+// out: with the depth maps the pictures make now (normalised_depths), peak memory of seedlike/torus,
+// whose supports are chosen there, 213 -> 179 MB. Each
 // member is named: a grid added to RasterMaps and left out here is a warning
 // (-Wmissing-field-initializers; not so a member with a default initializer).
 RasterMaps mirror_image(const RasterMaps& maps) {
@@ -104,11 +105,7 @@ RasterMaps mirror_image(const RasterMaps& maps) {
                     .kind = mirrored_copy(maps.kind),
                     .d_mm = mirrored_copy(maps.d_mm),
                     .h_mm = mirrored_copy(maps.h_mm),
-                    .D = {},
-                    .F = {},
-                    .T = {},
                     .normal = {},
-                    .primitive = {},
                     .break_right = std::move(break_right),
                     .break_below = mirrored_copy(maps.break_below),
                     .model_pixels = maps.model_pixels};
