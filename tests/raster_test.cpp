@@ -184,16 +184,17 @@ TEST(Raster, PixelCentresBeyondTheSheetAreOutside) {
   EXPECT_EQ(narrower.kind(100, 5), HitKind::Outside);
   EXPECT_TRUE(std::isnan(narrower.d_mm(100, 5)));
   // Every value of a pixel past the edge is written, though no ray is shot there (the grids are
-  // made unfilled): unset depths, the far reference, no normal, no break beside it.
+  // made unfilled): unset depths, no normal, no break beside it.
   EXPECT_TRUE(std::isnan(narrower.h_mm(100, 5)));
-  const NormalisedDepths depths = normalised_depths(narrower);
-  EXPECT_EQ(depths.D(100, 5), 1.0f);
-  EXPECT_EQ(depths.F(100, 5), 1.0f);
-  EXPECT_EQ(depths.T(100, 5), 1.0f);
   EXPECT_EQ(narrower.normal(100, 5), glm::vec3(0.0f));
   EXPECT_TRUE(std::isnan(narrower.break_right(99, 5)));  // its left neighbour's, towards it
   EXPECT_TRUE(std::isnan(narrower.break_right(100, 5)));
   EXPECT_TRUE(std::isnan(narrower.break_below(100, 5)));
+  // Its normalised depths are the far reference's.
+  const NormalisedDepths depths = normalised_depths(narrower);
+  EXPECT_EQ(depths.D(100, 5), 1.0f);
+  EXPECT_EQ(depths.F(100, 5), 1.0f);
+  EXPECT_EQ(depths.T(100, 5), 1.0f);
 }
 
 TEST(Raster, OutputDoesNotDependOnTheThreadCount) {
@@ -206,10 +207,14 @@ TEST(Raster, OutputDoesNotDependOnTheThreadCount) {
   many = raster(scene, Sheet{}, RasterOptions{});
   ASSERT_EQ(one.d_mm.size(), many.d_mm.size());
   EXPECT_EQ(std::memcmp(one.d_mm.values.data(), many.d_mm.values.data(), one.d_mm.size() * sizeof(double)), 0);
+  EXPECT_EQ(std::memcmp(one.h_mm.values.data(), many.h_mm.values.data(), one.h_mm.size() * sizeof(double)), 0);
   EXPECT_EQ(one.kind.values, many.kind.values);
   EXPECT_EQ(std::memcmp(one.normal.values.data(), many.normal.values.data(), one.normal.size() * sizeof(glm::vec3)), 0);
   EXPECT_EQ(std::memcmp(one.break_right.values.data(), many.break_right.values.data(),
                         one.break_right.size() * sizeof(float)),
+            0);
+  EXPECT_EQ(std::memcmp(one.break_below.values.data(), many.break_below.values.data(),
+                        one.break_below.size() * sizeof(float)),
             0);
 }
 

@@ -184,7 +184,7 @@ TEST(Slice, TheLowestTerraceOfARampStandsAtLeastWAboveTheFloor) {
   TriangleMesh ramp;
   ramp.positions = {{40, 0, 0}, {40, 0, 60}, {40, 35, 0}, {150, 0, 0}, {150, 0, 60}, {150, 35, 0}};
   ramp.triangles = {{0, 1, 2}, {3, 5, 4}, {1, 4, 5}, {1, 5, 2}, {0, 3, 4}, {0, 4, 1}, {0, 2, 5}, {0, 5, 3}};
-  for (const double W : {3.0, 5.0}) {
+  for (const double W : {2.0, 3.0, 5.0}) {
     SCOPED_TRACE(W);
     const Planned p = plan_of_oa_mesh(ramp, W);
     double lowest = 35;

@@ -51,7 +51,7 @@ struct RasterMaps {
   Grid<HitKind> kind;
   Grid<double> d_mm;                // depth in front of the back plane
   Grid<double> h_mm;                // height above the floor; h - d = Y of the pixel centre
-  Grid<glm::vec3> normal;           // unit shading normal, OA axes
+  Grid<glm::vec3> normal;           // unit shading normal, OA axes; empty in the supports' mirror image
   // Where the model's picture breaks between two neighbouring pixel centres (its silhouette against
   // the back plane or floor, one surface passing in front of another, or a sharp crease of its
   // surface): the fraction of the way from the first centre to the second, to 1/1024, found by
@@ -62,14 +62,14 @@ struct RasterMaps {
   std::size_t model_pixels = 0;
 };
 
-/// The normalised depths of §4.1, each 0 nearest the viewer and 1 furthest (and off the sheet), made
-/// from the maps' depths and reference planes when a picture of them is wanted (--dump-maps): kept
-/// as maps, 12 bytes a pixel were first touched for nothing on every design.
+/// The normalised depths of §4.1, each 0 nearest the viewer and 1 furthest.
 struct NormalisedDepths {
   Grid<float> D;  // 45-degree depth
   Grid<float> F;  // front depth: constant on V faces
   Grid<float> T;  // top depth: constant on H faces
 };
+/// The maps' normalised depths, from their d, h and reference planes (1 on Outside pixels): for the
+/// pictures of --dump-maps. \pre kind, d_mm and h_mm are one size.
 NormalisedDepths normalised_depths(const RasterMaps& maps);
 
 struct RasterOptions {

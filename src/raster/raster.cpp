@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <cstdio>
 #include <glm/common.hpp>
@@ -349,7 +350,10 @@ RasterMaps raster(const RayScene& scene, const Sheet& sheet, const RasterOptions
   return maps;
 }
 
+// Made when a picture wants them: kept as maps, their 12 bytes a pixel were first touched on every
+// design for nothing (fresh memory costs about 1.3 ms/MB here; the torus's peak 179 -> 162 MB).
 NormalisedDepths normalised_depths(const RasterMaps& maps) {
+  assert(maps.d_mm.size() == maps.kind.size() && maps.h_mm.size() == maps.kind.size());
   const int cols = maps.grid.cols, rows = maps.grid.rows;
   const DepthReference& ref = maps.reference;
   NormalisedDepths depths{Grid<float>(cols, rows, 1.0f), Grid<float>(cols, rows, 1.0f), Grid<float>(cols, rows, 1.0f)};

@@ -111,11 +111,11 @@ std::vector<Subsegment> level_subsegments(const RasterMaps& maps, const Segmenta
   // stood on a riser as tall as that, a strip between two folds (issue 23). An H part reaching the
   // floor with room for two levels has its levels begin at W / 2, the lowest kept W above the floor.
   // Over the 37 models at W = 2 / 3 / 5 mm: faces between two folds under W apart 557 / 304 / 200 ->
-  // 527 / 288 / 192, all places under W 7,075 / 4,206 / 2,303 -> 7,042 / 4,138 / 2,299; mean p95
-  // 1.976 / 1.799 / 1.879 -> 1.976 / 1.830 / 1.882 W (at 3 mm prim_pyramid's supports land otherwise,
+  // 527 / 288 / 191, all places under W 7,075 / 4,206 / 2,303 -> 7,043 / 4,138 / 2,300; mean p95
+  // 1.976 / 1.799 / 1.879 -> 1.976 / 1.830 / 1.880 W (at 3 mm prim_pyramid's supports land otherwise,
   // 1.92 -> 2.86 W). Parts of one level keep their height: lifted, the castle keep's base plate took
-  // its mean 0.17 -> 1.27 W. V parts at the back plane alike: at 3 mm 4,165 places, res_bunny's p95
-  // 1.50 -> 1.67 W.
+  // its mean 0.17 -> 1.27 W. Tried for V parts at the back plane too (at 3 mm 4,165 places,
+  // res_bunny's p95 1.50 -> 1.67 W): not done.
   std::vector<std::uint8_t> off_the_floor(n, 0);
   for (std::size_t k = 1; k < n; k += 2)  // the H parts
     if (nearest[k] < W / 2 && farthest[k] - W / 2 >= 2 * W) off_the_floor[k] = 1, nearest[k] = W / 2;
@@ -175,8 +175,11 @@ std::vector<Subsegment> level_subsegments(const RasterMaps& maps, const Segmenta
     // 4,730 / 2,440; mean p95 2.06 / 1.78 / 1.97 -> 2.05 / 1.79 / 1.90 W, all standing.
     double depth = base + offset_sum / static_cast<double>(run.size());
     const double centre = nearest[k] + (l + 0.5) * step[k], slack = (step[k] - W) / 2;
-    if (nearer_level || (l == 0 && off_the_floor[k])) depth = std::max(depth, centre - slack);
+    if (nearer_level) depth = std::max(depth, centre - slack);
     if (farther_level) depth = std::min(depth, centre + slack);
+    // Its riser is drawn in the file's coordinates (Y plus half the sheet's height): a hair over W,
+    // so that no rounding there leaves it under W.
+    if (l == 0 && off_the_floor[k]) depth = std::max(depth, W + 1e-6);
     subsegments.push_back({seg.segment.values[i0], depth, part_of[i0] ? Orientation::H : Orientation::V});
     pixels.push_back(static_cast<double>(run.size()));
   }

@@ -25,23 +25,19 @@ Grid<T> columns_reversed(Grid<T> grid) {
   return grid;
 }
 
-// A copy of a grid with its columns in reverse order, each value as `value` makes it from the one
-// it mirrors, written once (bands of rows in parallel), not copied and then reversed.
-template <class T, class Value>
-Grid<T> mirrored_copy(const Grid<T>& grid, Value value) {
+// A copy of a grid with its columns in reverse order, written once (bands of rows in parallel), not
+// copied and then reversed.
+template <class T>
+Grid<T> mirrored_copy(const Grid<T>& grid) {
   Grid<T> out = Grid<T>::unfilled(grid.cols, grid.rows);
   for_bands(grid.rows, [&](int, int row_begin, int row_end) {
     for (int r = row_begin; r < row_end; ++r) {
       const T* from = &grid.values[grid.index(0, r)];
       T* to = &out.values[out.index(0, r)] + grid.cols;
-      for (int c = 0; c < grid.cols; ++c) *--to = value(from[c]);
+      for (int c = 0; c < grid.cols; ++c) *--to = from[c];
     }
   });
   return out;
-}
-template <class T>
-Grid<T> mirrored_copy(const Grid<T>& grid) {
-  return mirrored_copy(grid, [](const T& v) { return v; });
 }
 
 // What a pixel of the raster plan is, whatever the ids: the kind of paper there, its plane, whether
@@ -83,11 +79,11 @@ SupportFrame first_support_frame(const RasterPlan& raster_plan, const PixelGrid&
 
 // Every map the supports read written once into its mirror image, in parallel (seedlike/chapel's
 // second frame: copying the maps and then reversing them took 3.5% of its samples, now 2.4%, mostly
-// the first touches of their memory). The normals, which nothing reads in the mirror image, are left
-// out: with the depth maps the pictures make now (normalised_depths), peak memory of seedlike/torus,
-// whose supports are chosen there, 213 -> 179 MB. Each
-// member is named: a grid added to RasterMaps and left out here is a warning
-// (-Wmissing-field-initializers; not so a member with a default initializer).
+// the first touches of their memory). The normals (12 bytes a pixel), which nothing reads in the
+// mirror image, are left out: with the maps' own 53 -> 37 bytes a pixel (raster.hpp), peak memory
+// of seedlike/torus, whose supports are chosen there, 213 -> 162 MB. Each member is named: a grid
+// added to RasterMaps and left out here is a warning (-Wmissing-field-initializers; not so a member
+// with a default initializer).
 RasterMaps mirror_image(const RasterMaps& maps) {
   // A break between columns c and c + 1, t of the way from c, is between their mirror images, the
   // same distance from the other: in the mirror image's column cols - 2 - c, 1 - t of the way; the

@@ -28,8 +28,8 @@ enum class SupportFrame { Only, Plan, MirrorImage };
 SupportFrame first_support_frame(const RasterPlan& raster_plan, const PixelGrid& grid, const Sheet& sheet);
 
 /// The maps the support stage and the exact plan read (kind, d_mm, h_mm and the breaks), mirrored
-/// along the main fold (X to the sheet's width less X). The normals, which only slicing and
-/// pictures read, are left empty.
+/// along the main fold (X to the sheet's width less X). The normals, which only segmentation,
+/// slicing and pictures read, are left empty.
 RasterMaps mirror_image(const RasterMaps& maps);
 
 /// The raster plan mirrored (face ids kept; block_subsegment, which nothing reads after slicing, as
