@@ -4,5 +4,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/install-deps.sh
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE="${ORIGAMIC_BUILD_TYPE:-Release}" >/dev/null
+# Ninja for a new build directory; one configured already keeps its generator (CMake refuses another).
+generator=()
+[ -f build/CMakeCache.txt ] || generator=(-G Ninja)
+cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE="${ORIGAMIC_BUILD_TYPE:-Release}" >/dev/null
 cmake --build build -j "$(nproc)"
