@@ -185,8 +185,10 @@ TEST(ChainPoints, ARunWhoseJunctionMovedAcrossItTakesItsFoldsEndAlong) {
 
 // Where no model edge passes, a junction where a fold snaps onto its line moves square onto that
 // line, by at most a pixel: the fold ends where the cuts meet. Not where two folds there snap onto
-// two lines, where a chain there keeps its contour, where another leaves along the lattice row
-// (it would tilt), nor where the junction is two corners a pixel edge apart.
+// two lines, where a chain there keeps its contour, nor where the junction is two corners a pixel
+// edge apart. A chain leaving along the lattice row does not hold it; where that chain runs straight
+// along the row to another junction, that one moves square onto the fold's line too (the run stays
+// straight), unless it lies on another fold's line.
 TEST(ChainPoints, AJunctionWhereAFoldSnapsMovesOntoItsLine) {
   const chains::LatticeScale lattice{20, 1.0};
   const Grid<float> none(40, 40, std::numeric_limits<float>::quiet_NaN());
@@ -229,7 +231,29 @@ TEST(ChainPoints, AJunctionWhereAFoldSnapsMovesOntoItsLine) {
   const chains::ChainEnds on_its_row{.fold_Y = {lattice.Y(junction.v), std::nullopt}};
   EXPECT_TRUE(chains::moved_junctions(chains, lattice, no_breaks, {on_its_row, {}, {}}).moved.empty());
   const Chain along_row = path(3, 5, junction, {{2, 10}, {2, 16}});
-  EXPECT_TRUE(chains::moved_junctions({fold, up, along_row}, lattice, no_breaks, {snaps, {}, {}}).moved.empty());
+  const chains::JunctionMoves turning =
+      chains::moved_junctions({fold, up, along_row}, lattice, no_breaks, {snaps, {}, {}});
+  ASSERT_EQ(turning.moved.size(), 1u);
+  EXPECT_EQ(turning.moved[0].Y, fold_Y);
+  // Straight along the row to a junction {2, 10} where a chain leaves down: both move onto the line.
+  const LatticePoint row_end{2, 10};
+  const Chain row_run = path(3, 5, junction, {row_end}), down_from_other = path(5, 6, row_end, {{2, 16}});
+  const chains::JunctionMoves both =
+      chains::moved_junctions({fold, up, row_run, down_from_other}, lattice, no_breaks, {snaps, {}, {}, {}});
+  ASSERT_EQ(both.moved.size(), 2u);
+  for (const chains::MovedJunction& each : both.moved) {
+    EXPECT_EQ(each.Y, fold_Y);
+    EXPECT_EQ(each.on_fold_of, 0);
+    EXPECT_EQ(each.u_on_lattice, each.corner.u);
+    EXPECT_EQ(each.X, lattice.X(each.corner.u));
+  }
+  // Not where a fold snapping at that junction lies on another line: it goes onto its own.
+  const chains::ChainEnds other_line{.fold_Y = {fold_Y + 0.1, std::nullopt}};
+  const chains::JunctionMoves own =
+      chains::moved_junctions({fold, up, row_run, down_from_other}, lattice, no_breaks, {snaps, {}, {}, other_line});
+  ASSERT_EQ(own.moved.size(), 2u);
+  for (const chains::MovedJunction& each : own.moved)
+    EXPECT_EQ(each.Y, each.corner.u == row_end.u ? fold_Y + 0.1 : fold_Y);
   const Chain edge{2, 4, {junction, {10, 8}}}, up_beyond = path(2, 4, {10, 8}, {{10, 2}, {6, 2}});
   const chains::ChainEnds between{.fold_Y = {lattice.Y(junction.v) + 0.3, std::nullopt}};  // within a pixel of both
   EXPECT_TRUE(

@@ -179,6 +179,51 @@ TEST(Plan, ASupportIsDrawnOnItsPixelCornersWhereAFaceWrapsRoundIt) {
   EXPECT_EQ(regions, 1);
 }
 
+// A support whose fold onto its target lies a fraction of a pixel off its top edge, the target over
+// only half of its width and the back plane over the rest: the fold snaps onto its line, and the
+// support's top edge beside the back plane goes along, one straight line, no notch in the support.
+TEST(Plan, ASupportsEdgeFollowsItsFoldOntoTheFoldsLine) {
+  const RayScene scene(test::box({40, 0, 0}, {150, 60, 40}));
+  const Sheet sheet;
+  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
+  RasterPlan s = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const int col = maps.grid.cols / 2, row = maps.grid.rows_above_fold / 4, k = s.block_px;  // above the box
+  ASSERT_EQ(s.face(col, row - 2 * k), kBackFace);
+  const double px = maps.grid.px_per_mm, top = maps.grid.Y(row) + 0.5 / px, fold_Y = top + 0.3 / px;
+  const auto support = static_cast<std::int32_t>(s.faces.size());
+  s.faces.push_back({Orientation::V, 20, 0, 0, true});
+  const auto target = static_cast<std::int32_t>(s.faces.size());
+  const double h = 20 + fold_Y;
+  s.faces.push_back({Orientation::H, h, 0, 0, false});
+  for (int r = row - 2 * k; r < row + 2 * k; ++r)
+    for (int c = col; c < col + 2 * k; ++c)
+      if (r >= row && c < col + k)
+        s.face(c, r) = support;
+      else if (r < row && c >= col + k / 2)
+        s.face(c, r) = target;
+  const Plan plan = build_plan(maps, s, sheet, PlanOptions{});
+  expect_exact_construction(plan);
+  const double fold = h - 20;  // the exact difference, rounded once (IEEE subtraction)
+  const std::vector<FoldAt> folds = folds_of(plan);
+  ASSERT_EQ(std::ranges::count_if(folds, [&](const FoldAt& f) { return f.Y == fold; }), 1);
+  const double left = col / px, right = (col + k) / px, bottom = maps.grid.Y(row + 2 * k - 1) - 0.5 / px;
+  int regions = 0;
+  for (const PlanRegion& region : plan.regions) {
+    if (region.face != support) continue;
+    ++regions;
+    ASSERT_EQ(region.rings.size(), 1u);
+    for (const PlanPoint& p : region.rings.front())  // its top on the fold's line, its sides square
+      EXPECT_TRUE(p.Y == fold || (p.Y == bottom && (p.X == left || p.X == right)))
+          << "a vertex off the support's rectangle at X = " << p.X << ", Y = " << p.Y;
+  }
+  EXPECT_EQ(regions, 1);
+  const PlanAnalysis analysis = analyze_plan(plan.lines, {.min_strip_mm = s.min_strip_mm});
+  for (const PlanProblem& p : analysis.problems)
+    EXPECT_FALSE(p.kind == PlanProblemKind::NarrowStrip && p.at.X >= left && p.at.X <= right && p.at.Y >= bottom &&
+                 p.at.Y <= fold)
+        << p.message;
+}
+
 // A boundary that is no model edge and no level contour (where two subsegments' slices meet) has
 // only its pixel contour to go by. Drawn with the default options it is the line the staircase
 // follows, not its steps: a patch on the back plane whose lower side steps down one pixel every

@@ -103,7 +103,8 @@ struct JunctionMoves {
 /// edge move as one, to one point, and those chains vanish. A straight run down a lattice column
 /// whose one end moved across it takes its other end along the fold line that end lies on, as far.
 /// A junction of one corner that no model edge passes, where the chains that snap onto their folds
-/// all snap onto one line and no other leaves along the lattice row, moves square onto that line.
+/// all snap onto one line, moves square onto that line; a straight run along a lattice row from a
+/// junction moved onto a fold's line takes its other junction onto that line too, square.
 /// Nothing moves where the picture's breaks are not known. `ends` has each chain's rule for its ends.
 /// \pre ends.size() == chains.size().
 JunctionMoves moved_junctions(const std::vector<Chain>& chains, const LatticeScale& lattice,

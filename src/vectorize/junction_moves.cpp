@@ -57,16 +57,17 @@ std::optional<std::pair<double, std::int32_t>> fold_line_of(const std::vector<Le
 // Where no model edge passes a junction of one corner and its folds all snap onto one line, the
 // junction moves square onto that line: the fold ends where the cuts meet, not a connector's length
 // away, beside which a cut drawn slanted left a sliver (res_dragon_full: 0.024 mm wide at (100,
-// -35.5); over the 37 models at W = 3 mm places under 0.1 mm wide 768 -> 454). Not where another
-// chain leaves along the lattice row, which the move would tilt, nor where a cluster of several
-// corners would need one X for all.
+// -35.5); over the 37 models at W = 3 mm places under 0.1 mm wide 768 -> 454). A chain leaving it
+// along the lattice row goes along where it runs straight to another junction (follow_along_rows)
+// or is a support's edge (add_cut in exact_plan_chains.cpp, up to its corner); others tilt by the
+// move. Kept in place for any such chain, as it was, the junction left the 37 models at W = 3 mm
+// 97 places more (4,021 against 3,924). Not where a cluster of several corners would need one X
+// for all.
 std::optional<MovedJunction> onto_the_fold(const std::vector<Leg>& legs, const std::vector<LatticePoint>& members,
                                            const LatticeScale& lattice) {
-  if (members.size() != 1) return std::nullopt;
-  const bool held_in_place =
-      std::ranges::any_of(legs, [](const Leg& leg) { return leg.on_break || (leg.fold_chain < 0 && leg.dy == 0); });
+  if (members.size() != 1 || std::ranges::any_of(legs, &Leg::on_break)) return std::nullopt;
   const auto line = fold_line_of(legs);
-  if (held_in_place || !line) return std::nullopt;
+  if (!line) return std::nullopt;
   const LatticePoint p = members.front();
   return MovedJunction{{}, lattice.X(p.u), line->first, p.u, -1, line->second};
 }
@@ -92,43 +93,89 @@ struct Clusters {
   std::vector<std::optional<MovedJunction>> moved_to;
 };
 
-// A straight run down one lattice column whose junction at one end moved across it onto the model's
-// edge takes its other end along where folds end there (on one line): along that line, as far, so
-// that the run stays straight and square to the fold. A support's side below a wall's edge, ending
-// on the main fold, slanted from the wall's edge to the fold's end on the lattice, a pixel's fraction
-// over, and left slivers either side (the demo house: 11 places narrower than W -> 8; the 37 models
-// at W = 3 mm: 4,390 -> 4,391, their likeness the same). Taking a lattice line's end along too, not
-// only a fold's, made arch_city_block's supports choose otherwise: p95 3.3 -> 4.7 W. Runs that would
-// take one end two ways leave it; each pass decides on the moves before it, so the chains' order
-// does not matter.
-void follow_across_runs(const std::vector<Chain>& chains, const LatticeScale& lattice, Clusters& clusters) {
-  std::vector<std::size_t> runs;  // the chains straight down a column, not loops
+// The chains straight along one lattice column (along_row false) or row, not loops.
+std::vector<std::size_t> straight_runs(const std::vector<Chain>& chains, bool along_row) {
+  std::vector<std::size_t> runs;
   for (std::size_t i = 0; i < chains.size(); ++i) {
     const std::vector<LatticePoint>& corners = chains[i].corners;
-    if (!is_short(chains[i]) && !is_loop(chains[i]) &&
-        std::ranges::all_of(corners, [&](LatticePoint p) { return p.u == corners.front().u; }))
-      runs.push_back(i);
+    const auto on_its_line = [&](LatticePoint p) {
+      return along_row ? p.v == corners.front().v : p.u == corners.front().u;
+    };
+    if (!is_short(chains[i]) && !is_loop(chains[i]) && std::ranges::all_of(corners, on_its_line)) runs.push_back(i);
   }
+  return runs;
+}
+
+// Pass after pass until nothing moves, each run whose junction at one end moved takes the one at its
+// other end where `follow(run, moved end, other end)` says. Each pass decides on the moves before
+// it, so the chains' order does not matter; runs that would take one end two ways leave it.
+template <typename Follow>
+void follow_runs(const std::vector<std::size_t>& runs, Clusters& clusters, Follow follow) {
   for (bool moved = true; moved;) {
     std::map<std::size_t, std::optional<MovedJunction>> proposed;  // nullopt: two ways
     for (const std::size_t i : runs) {
-      const int u = chains[i].corners.front().u;
       const auto [front, back] = clusters.of_chain[i];
       for (const auto& [from, to] : {std::pair{front, back}, std::pair{back, front}}) {
         if (from == to || !clusters.moved_to[from] || clusters.moved_to[to] || clusters.held[to]) continue;
-        const double X = clusters.moved_to[from]->X;
-        const auto line = fold_line_of(clusters.legs[to]);
-        if (std::abs(X - lattice.X(u)) < kLeastMove_mm || !line) continue;
-        const MovedJunction at{{}, X, line->first, -1, -1, line->second};
-        if (!(clusters.moves_by(to, at, lattice) <= kJunctionMove_px * lattice.px_mm)) continue;
-        const auto [it, fresh] = proposed.try_emplace(to, at);
-        if (!fresh && it->second && it->second->X != at.X) it->second.reset();
+        const std::optional<MovedJunction> at = follow(i, *clusters.moved_to[from], to);
+        if (!at) continue;
+        const auto [it, fresh] = proposed.try_emplace(to, *at);
+        if (!fresh && it->second && (it->second->X != at->X || it->second->Y != at->Y)) it->second.reset();
       }
     }
     moved = false;
     for (const auto& [to, at] : proposed)
       if (at) clusters.moved_to[to] = at, moved = true;
   }
+}
+
+// A straight run down one lattice column whose junction at one end moved across it onto the model's
+// edge takes its other end along where folds end there (on one line): along that line, as far, so
+// that the run stays straight and square to the fold. A support's side below a wall's edge, ending
+// on the main fold, slanted from the wall's edge to the fold's end on the lattice, a pixel's fraction
+// over, and left slivers either side (the demo house: 11 places narrower than W -> 8; the 37 models
+// at W = 3 mm: 4,390 -> 4,391, their likeness the same). Taking a lattice line's end along too, not
+// only a fold's, made arch_city_block's supports choose otherwise: p95 3.3 -> 4.7 W.
+void follow_across_runs(const std::vector<Chain>& chains, const LatticeScale& lattice, Clusters& clusters) {
+  follow_runs(straight_runs(chains, false), clusters,
+              [&](std::size_t i, const MovedJunction& moved, std::size_t to) -> std::optional<MovedJunction> {
+                const auto line = fold_line_of(clusters.legs[to]);
+                if (std::abs(moved.X - lattice.X(chains[i].corners.front().u)) < kLeastMove_mm || !line)
+                  return std::nullopt;
+                const MovedJunction at{{}, moved.X, line->first, -1, -1, line->second};
+                if (!(clusters.moves_by(to, at, lattice) <= kJunctionMove_px * lattice.px_mm)) return std::nullopt;
+                return at;
+              });
+}
+
+// A straight run along one lattice row whose junction at one end moved onto a fold's line takes
+// its other junction onto that line too, square above or below it, so that the run stays straight
+// rather than tilt by a pixel's fraction (the 37 models at W = 3 mm: places 3,917 -> 3,903). Not
+// for a run that snaps onto a fold itself, nor where the other junction is on the model's edge, on
+// another fold's line, or where another run leaves it along the row.
+void follow_along_rows(const std::vector<Chain>& chains, const std::vector<ChainEnds>& ends,
+                       const LatticeScale& lattice, Clusters& clusters) {
+  std::vector<std::size_t> runs = straight_runs(chains, true);
+  std::erase_if(runs, [&](std::size_t i) { return ends[i].fold_Y[0] || ends[i].fold_Y[1]; });
+  const auto movable = [&](std::size_t to, double Y) {
+    if (clusters.members[to].size() != 1) return false;
+    int rows = 0;
+    for (const Leg& leg : clusters.legs[to]) {
+      if (leg.on_break || (leg.fold_chain >= 0 && leg.Y != Y)) return false;
+      rows += leg.fold_chain < 0 && leg.dy == 0;
+    }
+    return rows <= 1;
+  };
+  follow_runs(runs, clusters,
+              [&](std::size_t i, const MovedJunction& moved, std::size_t to) -> std::optional<MovedJunction> {
+                const double row_Y = lattice.Y(chains[i].corners.front().v);
+                if (moved.on_fold_of < 0 || std::abs(moved.Y - row_Y) < kLeastMove_mm || !movable(to, moved.Y))
+                  return std::nullopt;
+                const LatticePoint p = clusters.members[to].front();
+                const MovedJunction at{{}, lattice.X(p.u), moved.Y, p.u, -1, moved.on_fold_of};
+                if (!(clusters.moves_by(to, at, lattice) <= kJunctionMove_px * lattice.px_mm)) return std::nullopt;
+                return at;
+              });
 }
 
 }  // namespace
@@ -187,6 +234,7 @@ JunctionMoves moved_junctions(const std::vector<Chain>& chains, const LatticeSca
     const double move = clusters.moves_by(c, *at, lattice);
     if (move > 0 && move <= kJunctionMove_px * lattice.px_mm) clusters.moved_to[c] = at;
   }
+  follow_along_rows(chains, ends, lattice, clusters);
   for (std::size_t j = 0; j < corner_of.size(); ++j)
     if (const auto& at = clusters.moved_to[cluster(corner_of[j])]) {
       MovedJunction moved = *at;
