@@ -247,7 +247,20 @@ TEST(ChainPoints, AJunctionWhereAFoldSnapsMovesOntoItsLine) {
     EXPECT_EQ(each.u_on_lattice, each.corner.u);
     EXPECT_EQ(each.X, lattice.X(each.corner.u));
   }
-  // Not where a fold snapping at that junction lies on another line: it goes onto its own.
+  // Not where another run leaves that junction along the row, nor where a fold snapping there lies
+  // on another line, more than a pixel off (within a pixel, that junction goes onto its own line).
+  const LatticePoint middle{6, 10};
+  const Chain to_middle = path(3, 5, junction, {middle}), on_along_row = path(3, 6, middle, {{2, 10}}),
+              down_from_middle = path(5, 6, middle, {{6, 16}});
+  EXPECT_EQ(chains::moved_junctions({fold, up, to_middle, on_along_row, down_from_middle}, lattice, no_breaks,
+                                    {snaps, {}, {}, {}, {}})
+                .moved.size(),
+            1u);
+  const chains::ChainEnds far_line{.fold_Y = {lattice.Y(row_end.v) - 1.25, std::nullopt}};
+  EXPECT_EQ(
+      chains::moved_junctions({fold, up, row_run, down_from_other}, lattice, no_breaks, {snaps, {}, {}, far_line})
+          .moved.size(),
+      1u);
   const chains::ChainEnds other_line{.fold_Y = {fold_Y + 0.1, std::nullopt}};
   const chains::JunctionMoves own =
       chains::moved_junctions({fold, up, row_run, down_from_other}, lattice, no_breaks, {snaps, {}, {}, other_line});

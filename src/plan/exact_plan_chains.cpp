@@ -113,6 +113,32 @@ bool bounds_support(const Chain& chain, const std::vector<RasterFace>& faces) {
   return support(chain.left) || support(chain.right);
 }
 
+// Per drawn point of a support's edge, the Y it goes to: the straight run along the lattice row from
+// an end whose junction moved off that row (onto its fold's line, or the model's edge) goes along,
+// up to the corner where the edge turns. One straight line, where the fold onto the support's
+// target ends at the target's slanted edge inside its width, with no notch a pixel's fraction deep
+// beside a third face (res_armadillo: 0.19 mm, a place 1.25 mm wide at (146, 80.5)). With the
+// junctions moved so (junction_moves.cpp), places narrower than W over the 37 models at W = 2 / 3
+// / 5 mm 7,043 / 4,138 / 2,300 -> 6,670 / 3,924 / 2,221, the mean p95 the same to 0.003 W. Every
+// chain's run so moved, not only supports', res_bunny_low's supports at W = 2 mm ran to the round
+// bound (p95 1.11 -> 6.82 W).
+std::vector<std::optional<FT>> rows_following_ends(const Chain& piece, const std::vector<ChainPoint>& points,
+                                                   const std::array<std::optional<PieceEnd>, 2>& ends,
+                                                   const Lattice& lattice) {
+  std::vector<std::optional<FT>> run_Y(points.size());
+  for (const bool front : {true, false}) {
+    const std::optional<PieceEnd>& end = ends[front ? 0 : 1];
+    const LatticePoint corner = front ? piece.corners.front() : piece.corners.back();
+    if (!end || end->exact.y() == lattice.exact(corner.u, corner.v).y()) continue;
+    for (std::size_t m = 1; m + 1 < points.size(); ++m) {
+      const std::size_t k = front ? m : points.size() - 1 - m;
+      if (points[k].on_break || points[k].lattice.v != corner.v || run_Y[k]) break;
+      run_Y[k] = end->exact.y();
+    }
+  }
+  return run_Y;
+}
+
 void add_cut(const Chain& chain, CornerSpan span, const ChainDrawing& drawing, Curves& curves,
              std::array<std::optional<PieceEnd>, 2> ends = {}) {
   if (span.to <= span.from) return;
@@ -139,24 +165,8 @@ void add_cut(const Chain& chain, CornerSpan span, const ChainDrawing& drawing, C
     return p.on_break ? lattice.exact(p.X, p.Y, p.on_lattice_u, p.on_lattice_v)
                       : lattice.exact(p.lattice.u, p.lattice.v);
   };
-  // A support's edge along the lattice row from an end whose junction moved off that row (onto its
-  // fold's line, where the fold ends at the model's edge) goes along, up to the corner where it
-  // turns: one straight line, with no notch a pixel's fraction deep beside a third face
-  // (res_armadillo: 0.19 mm, a place 1.25 mm wide at (146, 80.5)). Over the 37 models, places
-  // narrower than W at W = 2 / 3 / 5 mm 7,043 / 4,138 / 2,300 -> 6,670 / 3,924 / 2,221, the same
-  // mean p95 to 0.003 W. Every chain's run so moved, res_bunny_low's supports at W = 2 mm ran to
-  // the round bound (p95 1.11 -> 6.82 W).
-  std::vector<std::optional<FT>> run_Y(points.size());
-  for (const bool front : {true, false}) {
-    const std::optional<PieceEnd>& end = ends[front ? 0 : 1];
-    const LatticePoint corner = front ? piece.corners.front() : piece.corners.back();
-    if (!end || !support_edge || end->exact.y() == lattice.exact(corner.u, corner.v).y()) continue;
-    for (std::size_t m = 1; m + 1 < points.size(); ++m) {
-      const std::size_t k = front ? m : points.size() - 1 - m;
-      if (points[k].on_break || points[k].lattice.v != corner.v || run_Y[k]) break;
-      run_Y[k] = end->exact.y();
-    }
-  }
+  const std::vector<std::optional<FT>> run_Y =
+      support_edge ? rows_following_ends(piece, points, ends, lattice) : std::vector<std::optional<FT>>(points.size());
   const auto drawn_at = [&](std::size_t k) {
     return run_Y[k] ? Point(lattice.exact(points[k].lattice.u, points[k].lattice.v).x(), *run_Y[k]) : exact(k);
   };
