@@ -146,26 +146,39 @@ TEST(Plan, AFacesPieceApartFromItIsFloatingAndACrumbIsCutOut) {
   EXPECT_TRUE(analyze_plan(crumb.lines, AnalysisOptions{}).valid()) << "its lines declare it a hole";
 }
 
+// A box's sliced plan, with a support V(20) to be painted on the back plane above the box, at
+// (col, row) and k = W in pixels.
+struct SupportAboveABox {
+  Sheet sheet;
+  RasterMaps maps = raster(RayScene(test::box({40, 0, 0}, {150, 60, 40})), sheet, RasterOptions{});
+  RasterPlan s = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  int col = maps.grid.cols / 2, row = maps.grid.rows_above_fold / 4, k = s.block_px;
+  std::int32_t support = add_support();
+
+ private:
+  std::int32_t add_support() {
+    s.faces.push_back({Orientation::V, 20, 0, 0, true});
+    return static_cast<std::int32_t>(s.faces.size()) - 1;
+  }
+};
+
 TEST(Plan, ASupportIsDrawnOnItsPixelCornersWhereAFaceWrapsRoundIt) {
   // A support W wide, with a face wrapping round its lower right corner: the chain between the two
   // is an L. Simplified through its pixel edges' midpoints it would cut the corner, and the support
   // would be half a pixel narrower than W beside it.
-  const RayScene scene(test::box({40, 0, 0}, {150, 60, 40}));
-  const Sheet sheet;
-  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
-  RasterPlan s = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
-  const int col = maps.grid.cols / 2, row = maps.grid.rows_above_fold / 4, k = s.block_px;  // above the box
+  SupportAboveABox box;
+  RasterPlan& s = box.s;
+  const int col = box.col, row = box.row, k = box.k;
+  const std::int32_t support = box.support;
   ASSERT_EQ(s.face(col, row), kBackFace);
-  const auto support = static_cast<std::int32_t>(s.faces.size());
-  s.faces.push_back({Orientation::V, 20, 0, 0, true});
   const auto wrapping = static_cast<std::int32_t>(s.faces.size());
   s.faces.push_back({Orientation::V, 30, 0, 0, false});
   for (int r = row; r < row + 2 * k; ++r)
     for (int c = col; c < col + k + 8; ++c) s.face(c, r) = c < col + k && r < row + 2 * k - 8 ? support : wrapping;
-  const Plan plan = build_plan(maps, s, sheet, PlanOptions{});
+  const Plan plan = build_plan(box.maps, s, box.sheet, PlanOptions{});
   expect_exact_construction(plan);
-  const double px = maps.grid.px_per_mm, left = col / px, right = (col + k) / px;
-  const double top = maps.grid.Y(row) + 0.5 / px, bottom = maps.grid.Y(row + 2 * k - 8) + 0.5 / px;
+  const double px = box.maps.grid.px_per_mm, left = col / px, right = (col + k) / px;
+  const double top = box.maps.grid.Y(row) + 0.5 / px, bottom = box.maps.grid.Y(row + 2 * k - 8) + 0.5 / px;
   int regions = 0;
   for (const PlanRegion& region : plan.regions) {
     if (region.face != support) continue;
@@ -183,15 +196,12 @@ TEST(Plan, ASupportIsDrawnOnItsPixelCornersWhereAFaceWrapsRoundIt) {
 // only half of its width and the back plane over the rest: the fold snaps onto its line, and the
 // support's top edge beside the back plane goes along, one straight line, no notch in the support.
 TEST(Plan, ASupportsEdgeFollowsItsFoldOntoTheFoldsLine) {
-  const RayScene scene(test::box({40, 0, 0}, {150, 60, 40}));
-  const Sheet sheet;
-  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
-  RasterPlan s = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
-  const int col = maps.grid.cols / 2, row = maps.grid.rows_above_fold / 4, k = s.block_px;  // above the box
+  SupportAboveABox box;
+  RasterPlan& s = box.s;
+  const int col = box.col, row = box.row, k = box.k;
+  const std::int32_t support = box.support;
   ASSERT_EQ(s.face(col, row - 2 * k), kBackFace);
-  const double px = maps.grid.px_per_mm, top = maps.grid.Y(row) + 0.5 / px, fold_Y = top + 0.3 / px;
-  const auto support = static_cast<std::int32_t>(s.faces.size());
-  s.faces.push_back({Orientation::V, 20, 0, 0, true});
+  const double px = box.maps.grid.px_per_mm, top = box.maps.grid.Y(row) + 0.5 / px, fold_Y = top + 0.3 / px;
   const auto target = static_cast<std::int32_t>(s.faces.size());
   const double h = 20 + fold_Y;
   s.faces.push_back({Orientation::H, h, 0, 0, false});
@@ -201,12 +211,12 @@ TEST(Plan, ASupportsEdgeFollowsItsFoldOntoTheFoldsLine) {
         s.face(c, r) = support;
       else if (r < row && c >= col + k / 2)
         s.face(c, r) = target;
-  const Plan plan = build_plan(maps, s, sheet, PlanOptions{});
+  const Plan plan = build_plan(box.maps, s, box.sheet, PlanOptions{});
   expect_exact_construction(plan);
   const double fold = h - 20;  // the exact difference, rounded once (IEEE subtraction)
   const std::vector<FoldAt> folds = folds_of(plan);
   ASSERT_EQ(std::ranges::count_if(folds, [&](const FoldAt& f) { return f.Y == fold; }), 1);
-  const double left = col / px, right = (col + k) / px, bottom = maps.grid.Y(row + 2 * k - 1) - 0.5 / px;
+  const double left = col / px, right = (col + k) / px, bottom = box.maps.grid.Y(row + 2 * k - 1) - 0.5 / px;
   int regions = 0;
   for (const PlanRegion& region : plan.regions) {
     if (region.face != support) continue;
