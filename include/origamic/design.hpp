@@ -42,6 +42,10 @@ struct DesignOptions {
   // slices given one plane) move to the plane that shows it best, where the plan still stands
   // (refit_planes, src/design/plane_refit.hpp); false leaves the plan as supported.
   bool refit_planes = true;
+  // Then, where a strip lies between two folds closer than W, one of the faces beside it moves its
+  // plane to W from the other's (spread_fold_pairs, src/design/fold_spacing.hpp), where the plan
+  // still stands, shows the model as well and has fewer such strips; false leaves them.
+  bool spread_fold_pairs = true;
   // Told as each stage begins, in words ("slicing"): a terminal shows the run's progress with it.
   std::function<void(std::string_view stage)> on_stage;
 };

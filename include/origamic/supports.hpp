@@ -144,6 +144,7 @@ struct SupportReport {
   std::vector<CutOutFace> cut_out_faces;  // each, with its place and why
   std::vector<JoinedFace> joined_faces;   // faces given to a neighbour instead of cut out
   std::vector<RefitPlane> planes_refit;   // faces moved to a plane that shows the model better
+  std::vector<RefitPlane> planes_spread;  // faces moved to W from a plane across a strip between two folds
   std::vector<NarrowStrip> narrow;        // faces and supports narrower than W, with their place
 };
 

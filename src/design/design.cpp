@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "exact_runs.hpp"
+#include "fold_spacing.hpp"
 #include "number_text.hpp"
 #include "origamic/error.hpp"
 #include "origamic/plan_export.hpp"
@@ -132,6 +133,26 @@ std::vector<PlanProblem> narrow_places(const Plan& plan, double W) {
   for (PlanProblem& problem : analyze_plan(plan_dxf_lines(plan), {.min_strip_mm = W}).problems)
     if (problem.kind == PlanProblemKind::NarrowStrip) narrow.push_back(std::move(problem));
   return narrow;
+}
+
+// The places between two folds under W apart, and all places narrower than W.
+std::pair<std::size_t, std::size_t> fold_pairs_and_places(const std::vector<PlanProblem>& narrow) {
+  return {static_cast<std::size_t>(
+              std::ranges::count_if(narrow, [](const PlanProblem& p) { return p.folds_apart_mm > 0; })),
+          narrow.size()};
+}
+
+// Issue 23: fold pairs under W parted (spread_fold_pairs), kept where the exact plan has fewer
+// places between two folds and no more places narrower than W in all.
+SupportedPlan spread_folds(const RasterMaps& maps, SupportedPlan supported, const DesignOptions& options) {
+  const double W = options.slice.min_strip_mm;
+  const auto keep = [&](const Plan& given, const Plan& parted) {
+    const auto [pairs, places] = fold_pairs_and_places(narrow_places(parted, W));
+    const auto [pairs_before, places_before] = fold_pairs_and_places(narrow_places(given, W));
+    return pairs < pairs_before && places <= places_before;
+  };
+  return spread_fold_pairs(maps, std::move(supported), options.sheet, options.plan, options.supports.allow_dangling,
+                           keep);
 }
 
 // Whether a plan point lies inside a region's rings (even-odd).
@@ -261,10 +282,14 @@ void design_loaded(LoadedMesh loaded, const std::filesystem::path& model_file, c
     if (options.refit_planes)
       supported =
           refit_planes(result.maps, std::move(supported), options.sheet, options.plan, options.supports.allow_dangling);
+    clock.lap("planes refit");
+    if (options.spread_fold_pairs) {
+      supported = spread_folds(result.maps, std::move(supported), options);
+      clock.lap("fold pairs spread");
+    }
     result.raster_plan = std::move(supported.raster_plan);
     result.plan = std::move(supported.plan);
     result.supports = supported.report;
-    clock.lap("planes refit");
   }
   // Seed §4.4: no strip narrower than W. Supports are chosen W wide and slices W deep, but what the
   // plan's folds and cuts leave between them is measured on the plan itself, exactly, both ways.

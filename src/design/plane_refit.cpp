@@ -11,105 +11,11 @@
 #include <vector>
 
 #include "origamic/likeness.hpp"
+#include "raster_card.hpp"
 #include "raster_plan_edits.hpp"
 
 namespace origamic {
 namespace {
-
-// The card's errors, counted in bins of W / 256 (the last bin holds all beyond 64 W), with their sum:
-// the 95th percentile, as likeness() takes it, to a bin, and the mean, as a face's pixels change.
-// A Fenwick tree counts the errors up to a bin in log time.
-class ErrorCounts {
- public:
-  explicit ErrorCounts(double W) : bin_mm_(W / 256), tree_(kBins + 1, 0) { assert(W > 0); }
-
-  void add(double error_mm, int count) {
-    sum_mm_ += count * error_mm;
-    pixels_ += count;
-    for (int i = bin(error_mm) + 1; i <= kBins; i += i & -i) tree_[static_cast<std::size_t>(i)] += count;
-  }
-
-  // The errors in bins 0 .. b.
-  std::int64_t up_to(int b) const {
-    std::int64_t n = 0;
-    for (int i = b + 1; i > 0; i -= i & -i) n += tree_[static_cast<std::size_t>(i)];
-    return n;
-  }
-
-  // The bin of the 95th percentile of these errors and `more` (count_up_to(b): how many of them lie
-  // in bins 0 .. b; `more_pixels` in all, `more_mm` their sum), and the sum of all: less is a better
-  // card, the 95th percentile first.
-  template <typename CountUpTo>
-  std::pair<int, double> fares_with(CountUpTo count_up_to, std::int64_t more_pixels, double more_mm) const {
-    const std::int64_t n = pixels_ + more_pixels;
-    if (n == 0) return {0, 0};
-    const auto k = static_cast<std::int64_t>(0.95 * static_cast<double>(n - 1));  // as likeness() picks it
-    int lo = 0, hi = kBins - 1;  // the first bin with more than k errors up to it
-    while (lo < hi) {
-      const int mid = (lo + hi) / 2;
-      if (up_to(mid) + count_up_to(mid) > k)
-        hi = mid;
-      else
-        lo = mid + 1;
-    }
-    return {lo, sum_mm_ + more_mm};
-  }
-  std::pair<int, double> fares() const {
-    return fares_with([](int) { return std::int64_t{0}; }, 0, 0.0);
-  }
-
-  // The first error past bin b.
-  double past(int b) const { return b + 1 >= kBins ? std::numeric_limits<double>::infinity() : (b + 1) * bin_mm_; }
-
- private:
-  static constexpr int kBins = 1 << 14;
-  int bin(double error_mm) const {
-    return static_cast<int>(std::min<double>(kBins - 1, error_mm / bin_mm_));  // clamped before the cast
-  }
-  double bin_mm_;
-  std::vector<std::int64_t> tree_;
-  double sum_mm_ = 0;
-  std::int64_t pixels_ = 0;
-};
-
-// The finished card, estimated on its raster plan: each model pixel's error and the counts of all.
-class RasterCard {
- public:
-  RasterCard(const RasterMaps& maps, const RasterPlan& raster_plan)
-      : maps_(maps), counts_(raster_plan.min_strip_mm), error_(maps.grid.cols, maps.grid.rows, -1.0) {
-    for (int r = 0; r < maps.grid.rows; ++r)
-      for (int c = 0; c < maps.grid.cols; ++c) update(raster_plan, c, r);
-  }
-
-  // The error of pixel (c, r) shown by a face's plane, as likeness() measures it.
-  double error(const RasterFace& face, int c, int r) const {
-    const double key = shown_key(face.orientation, face.depth_mm, face.hole, maps_.grid.Y(r));
-    return std::abs(key - (maps_.h_mm(c, r) + maps_.d_mm(c, r)));
-  }
-
-  // Pixel (c, r) as the raster plan shows it now (off the sheet: as a hole).
-  void update(const RasterPlan& raster_plan, int c, int r) {
-    if (maps_.kind(c, r) != HitKind::Model) return;
-    double& e = error_(c, r);
-    if (e >= 0) counts_.add(e, -1);
-    const std::int32_t f = raster_plan.face(c, r);
-    e = f < 0 ? std::abs(shown_key(Orientation::V, 0, true, maps_.grid.Y(r)) - (maps_.h_mm(c, r) + maps_.d_mm(c, r)))
-              : error(raster_plan.faces[static_cast<std::size_t>(f)], c, r);
-    counts_.add(e, 1);
-  }
-
-  double error_at(int c, int r) const { return error_(c, r); }
-  ErrorCounts& counts() { return counts_; }
-
- private:
-  const RasterMaps& maps_;
-  ErrorCounts counts_;
-  Grid<double> error_;
-};
-
-struct PixelAt {
-  int c = 0, r = 0;
-};
 
 // The model pixels of each face, in one pass.
 std::vector<std::vector<PixelAt>> model_pixels_of(const RasterMaps& maps, const RasterPlan& raster_plan) {

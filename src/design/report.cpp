@@ -244,6 +244,7 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
         {"cut_out_faces", cut_out_json(result.supports.cut_out_faces)},
         {"joined_to_neighbour", joined_json(result.supports.joined_faces)},
         {"planes_refit", refit_json(result.supports.planes_refit)},
+        {"planes_spread", refit_json(result.supports.planes_spread)},
         {"narrow_strips", narrow_json(result.supports.narrow)},
         {"round_bound", result.supports.round_bound},
         {"orders", result.supports.orders},

@@ -1,0 +1,115 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Folds closer than W parted (issue 23, fold_spacing.hpp): across a strip between two folds they
+// lie the difference of the planes beside it apart, and one of those planes moves to W from the
+// other's.
+#include "fold_spacing.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "helpers.hpp"
+#include "origamic/design.hpp"
+#include "origamic/plan_analysis.hpp"
+#include "raster_plan_edits.hpp"
+
+namespace origamic {
+namespace {
+
+// Two boxes, one behind the other: the rear one's top H(60) over d = 0-30, a riser V(30) 6 mm high,
+// the front one's top H(54) over d = 30-60 and its front V(60).
+struct Staircase {
+  RasterMaps maps;
+  RasterPlan sliced;
+  std::int32_t rear_top = -1, riser = -1, front_top = -1;
+};
+Staircase staircase(const Sheet& sheet) {
+  const RayScene scene(test::merged(test::box({40, 0, 0}, {150, 60, 30}), test::box({40, 0, 30}, {150, 54, 60})));
+  Staircase s{raster(scene, sheet, RasterOptions{}), {}};
+  s.sliced = slice(s.maps, segment(s.maps, SegmentOptions{}), SliceOptions{});
+  for (std::size_t f = kFloorFace + 1; f < s.sliced.faces.size(); ++f) {
+    const RasterFace& face = s.sliced.faces[f];
+    const auto is = [&](Orientation o, double depth) {
+      return face.orientation == o && std::abs(face.depth_mm - depth) < 1e-6;
+    };
+    if (is(Orientation::H, 60)) s.rear_top = static_cast<std::int32_t>(f);
+    if (is(Orientation::V, 30)) s.riser = static_cast<std::int32_t>(f);
+    if (is(Orientation::H, 54)) s.front_top = static_cast<std::int32_t>(f);
+  }
+  return s;
+}
+
+// The places between two folds under W apart that the exact analysis finds on a plan's lines.
+int narrow_between_folds(const Plan& plan, double W) {
+  return analyze_plan(plan.lines, {.min_strip_mm = W}).narrow_between_folds;
+}
+
+// The front top raised to 57.1 mm leaves the riser 2.9 mm high between its two folds, under W =
+// 3 mm; the pair is found, and the front top goes down to 57 mm (W from the rear top's fold), the
+// nearer of the two planes to the model's.
+TEST(FoldSpacing, ARiserUnderWBetweenTwoFoldsGrowsToW) {
+  const Sheet sheet;
+  const Staircase s = staircase(sheet);
+  ASSERT_GE(s.rear_top, 0);
+  ASSERT_GE(s.riser, 0);
+  ASSERT_GE(s.front_top, 0);
+  const PixelGrid& grid = s.maps.grid;
+  const double W = s.sliced.min_strip_mm, tolerance = fold_snap_tolerance_mm(PlanOptions{}, s.sliced, grid);
+  EXPECT_TRUE(fold_pairs_under_W(s.sliced, grid, tolerance).empty());
+
+  const std::optional<RasterPlan> raised = move_plane(s.sliced, grid, s.front_top, 57.1, tolerance, 1);
+  ASSERT_TRUE(raised.has_value());
+  const std::vector<FoldPair> pairs = fold_pairs_under_W(*raised, grid, tolerance);
+  ASSERT_EQ(pairs.size(), 1u);
+  EXPECT_EQ(pairs[0].above, s.rear_top);
+  EXPECT_EQ(pairs[0].strip, s.riser);
+  EXPECT_EQ(pairs[0].below, s.front_top);
+  EXPECT_NEAR(pairs[0].apart_mm, 2.9, 1e-9);
+
+  SupportedPlan supported{*raised, build_plan(s.maps, *raised, sheet, PlanOptions{}), {}};
+  ASSERT_TRUE(plan_stands(supported.plan, false));
+  ASSERT_EQ(narrow_between_folds(supported.plan, W), 1);
+  const SupportedPlan spread = spread_fold_pairs(s.maps, std::move(supported), sheet, PlanOptions{}, false, {});
+  ASSERT_EQ(spread.report.planes_spread.size(), 1u);
+  const RefitPlane& moved = spread.report.planes_spread.front();
+  EXPECT_EQ(moved.orientation, Orientation::H);
+  EXPECT_EQ(moved.from_mm, 57.1);
+  EXPECT_NEAR(moved.to_mm, 57, 1e-5);
+  EXPECT_EQ(spread.raster_plan.faces[s.front_top].depth_mm, moved.to_mm);
+  EXPECT_TRUE(plan_stands(spread.plan, false));
+  EXPECT_EQ(narrow_between_folds(spread.plan, W), 0);
+  EXPECT_TRUE(fold_pairs_under_W(spread.raster_plan, grid, tolerance).empty());
+  // The riser's two folds in the exact plan: the rear top's at Y = 60 - 30, the front top's W below.
+  bool rear_fold = false, front_fold = false;
+  for (const PlanPolyline& line : spread.plan.lines) {
+    if (line.kind != LineKind::Mountain && line.kind != LineKind::Valley) continue;
+    for (const PlanPoint& p : line.points) {
+      rear_fold |= line.kind == LineKind::Mountain && p.Y == 30;
+      front_fold |= line.kind == LineKind::Valley && std::abs(p.Y - (moved.to_mm - 30)) < 1e-9;
+    }
+  }
+  EXPECT_TRUE(rear_fold);
+  EXPECT_TRUE(front_fold);
+  EXPECT_GE(30 - (moved.to_mm - 30), W);
+}
+
+// A check that refuses the plan leaves the plan as it was given.
+TEST(FoldSpacing, APlanTheCheckRefusesIsLeftAsItIs) {
+  const Sheet sheet;
+  const Staircase s = staircase(sheet);
+  const PixelGrid& grid = s.maps.grid;
+  const double tolerance = fold_snap_tolerance_mm(PlanOptions{}, s.sliced, grid);
+  const std::optional<RasterPlan> raised = move_plane(s.sliced, grid, s.front_top, 57.1, tolerance, 1);
+  ASSERT_TRUE(raised.has_value());
+  SupportedPlan supported{*raised, build_plan(s.maps, *raised, sheet, PlanOptions{}), {}};
+  const auto refuse = [](const Plan&, const Plan&) { return false; };
+  const SupportedPlan spread = spread_fold_pairs(s.maps, std::move(supported), sheet, PlanOptions{}, false, refuse);
+  EXPECT_TRUE(spread.report.planes_spread.empty());
+  EXPECT_EQ(spread.raster_plan.faces[s.front_top].depth_mm, 57.1);
+  EXPECT_EQ(spread.raster_plan.face.values, raised->face.values);
+}
+
+}  // namespace
+}  // namespace origamic
