@@ -104,11 +104,68 @@ TEST(FoldSpacing, APlanTheCheckRefusesIsLeftAsItIs) {
   const std::optional<RasterPlan> raised = move_plane(s.sliced, grid, s.front_top, 57.1, tolerance, 1);
   ASSERT_TRUE(raised.has_value());
   SupportedPlan supported{*raised, build_plan(s.maps, *raised, sheet, PlanOptions{}), {}};
-  const auto refuse = [](const Plan&, const Plan&) { return false; };
+  int asked = 0;
+  const auto refuse = [&](const Plan&, const Plan&) { return ++asked, false; };
   const SupportedPlan spread = spread_fold_pairs(s.maps, std::move(supported), sheet, PlanOptions{}, false, refuse);
+  EXPECT_EQ(asked, 1);
   EXPECT_TRUE(spread.report.planes_spread.empty());
   EXPECT_EQ(spread.raster_plan.faces[s.front_top].depth_mm, 57.1);
   EXPECT_EQ(spread.raster_plan.face.values, raised->face.values);
+}
+
+// A tread under W between two folds: a low box before a tall one, its front moved from 40 to 32.9
+// mm deep, leaves its top H(40) 2.9 mm deep between the tall box's front V(30) and its own. The
+// front goes forward to 33 mm (W from V(30)), nearer the model's 40 mm than V(30) moved back.
+TEST(FoldSpacing, ATreadUnderWBetweenTwoFoldsGrowsToW) {
+  const Sheet sheet;
+  const RayScene scene(test::merged(test::box({40, 0, 0}, {150, 60, 30}), test::box({40, 0, 30}, {150, 40, 40})));
+  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
+  const RasterPlan sliced = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  std::int32_t tall_front = -1, tread = -1, low_front = -1;
+  for (std::size_t f = kFloorFace + 1; f < sliced.faces.size(); ++f) {
+    const RasterFace& face = sliced.faces[f];
+    const auto is = [&](Orientation o, double depth) {
+      return face.orientation == o && std::abs(face.depth_mm - depth) < 1e-6;
+    };
+    if (is(Orientation::V, 30)) tall_front = static_cast<std::int32_t>(f);
+    if (is(Orientation::H, 40)) tread = static_cast<std::int32_t>(f);
+    if (is(Orientation::V, 40)) low_front = static_cast<std::int32_t>(f);
+  }
+  ASSERT_GE(tall_front, 0);
+  ASSERT_GE(tread, 0);
+  ASSERT_GE(low_front, 0);
+  const PixelGrid& grid = maps.grid;
+  const double W = sliced.min_strip_mm, tolerance = fold_snap_tolerance_mm(PlanOptions{}, sliced, grid);
+  const std::optional<RasterPlan> back = move_plane(sliced, grid, low_front, 32.9, tolerance, 1);
+  ASSERT_TRUE(back.has_value());
+  const std::vector<FoldPair> pairs = fold_pairs_under_W(*back, grid, tolerance);
+  ASSERT_EQ(pairs.size(), 1u);
+  EXPECT_EQ(pairs[0].above, tall_front);
+  EXPECT_EQ(pairs[0].strip, tread);
+  EXPECT_EQ(pairs[0].below, low_front);
+  EXPECT_NEAR(pairs[0].apart_mm, 2.9, 1e-9);
+
+  SupportedPlan supported{*back, build_plan(maps, *back, sheet, PlanOptions{}), {}};
+  ASSERT_TRUE(plan_stands(supported.plan, false));
+  ASSERT_EQ(narrow_between_folds(supported.plan, W), 1);
+  const SupportedPlan spread = spread_fold_pairs(maps, std::move(supported), sheet, PlanOptions{}, false, {});
+  ASSERT_EQ(spread.report.planes_spread.size(), 1u);
+  const RefitPlane& moved = spread.report.planes_spread.front();
+  EXPECT_EQ(moved.orientation, Orientation::V);
+  EXPECT_EQ(moved.from_mm, 32.9);
+  EXPECT_NEAR(moved.to_mm, 33, 1e-5);
+  EXPECT_GE(moved.to_mm - 30, W);
+  EXPECT_EQ(spread.raster_plan.faces[low_front].depth_mm, moved.to_mm);
+  EXPECT_EQ(spread.raster_plan.faces[tall_front].depth_mm, 30);
+  EXPECT_TRUE(plan_stands(spread.plan, false));
+  EXPECT_EQ(narrow_between_folds(spread.plan, W), 0);
+  // The tread's mountain fold with the low front, W below its valley fold with the tall front at
+  // Y = 40 - 30.
+  bool tread_front = false;
+  for (const PlanPolyline& line : spread.plan.lines)
+    if (line.kind == LineKind::Mountain)
+      for (const PlanPoint& p : line.points) tread_front |= std::abs(p.Y - (40 - moved.to_mm)) < 1e-9;
+  EXPECT_TRUE(tread_front);
 }
 
 }  // namespace

@@ -543,6 +543,7 @@ TEST(Plan, ACrumbCutOutIsARemovedRegionOfTheDesign) {
   DesignOptions options;
   options.placement.up = UpAxis::Z;
   options.refit_planes = false;
+  options.spread_fold_pairs = false;
   const DesignResult r = design(test::models_dir() / "arch_castle_keep.obj", options);
   ASSERT_GE(r.plan.crumbs_cut_out, 1) << "the case this test is about";
   const test::TempDir dir;

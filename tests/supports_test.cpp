@@ -976,6 +976,7 @@ TEST(Supports, WhereSupportsCostOverAStripWidthTheOtherFramesChoiceIsTriedAndThe
   options.placement.up = UpAxis::Y;
   options.tip_rounds = 0;        // the plan as supported: tips parted off later move its picture a hair,
   options.refit_planes = false;  // planes refit more
+  options.spread_fold_pairs = false;
   const DesignResult designed = design(test::models_dir() / "arch_water_tower.obj", options);
   EXPECT_EQ(designed.supports.frames, 2);
   EXPECT_EQ(designed.likeness.p95_W, std::min(frames.first.p95_W, frames.other->p95_W));

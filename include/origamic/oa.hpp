@@ -45,6 +45,7 @@ enum class Orientation : std::uint8_t {
 struct PlanPoint {
   double X = 0;
   double Y = 0;
+  bool operator==(const PlanPoint&) const = default;
 };
 
 /// The plan point of an OA point (x, h, d): (x, h - d).

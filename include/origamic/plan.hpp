@@ -35,6 +35,7 @@ struct PlanPolyline {
   // A fold drawn as perforation cuts (read from PERF_MOUNTAIN / PERF_VALLEY): one of the short cuts
   // that together stand for the fold, which runs on to the cuts they keep clear of.
   bool perforation = false;
+  bool operator==(const PlanPolyline&) const = default;
 };
 
 struct PlanFace {

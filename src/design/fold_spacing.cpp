@@ -17,20 +17,42 @@
 namespace origamic {
 namespace {
 
+using raster_card::ErrorCounts;
+using raster_card::PixelAt;
+using raster_card::RasterCard;
+
 // The plane of a face of orientation `is` that puts its fold with a face of the other orientation
 // and depth `other_mm` on the line Y.
 double plane_for_fold(Orientation is, double other_mm, double Y) {
   return is == Orientation::H ? Y + other_mm : other_mm - Y;
 }
 
-// Two folds are moved this much more than W apart: the new plane is a double, a rounding off the
-// plane exactly W away, and the validator finds a strip narrower than W below W less 1e-6 mm.
+// Two folds are moved this much more than W apart: the new plane is a double, a rounding (about
+// 1e-14 mm) off the plane exactly W away, and the folds must come out W apart or more however it
+// falls.
 constexpr double kPastW_mm = 2 * kFoldLineTolerance_mm;
 
 struct Move {
   std::int32_t face = -1;
   double to_mm = 0;
 };
+
+struct PixelBox {
+  int first_col, last_col, first_row, last_row;
+};
+
+std::vector<PixelBox> face_boxes(const RasterPlan& raster_plan) {
+  const Grid<std::int32_t>& face = raster_plan.face;
+  std::vector<PixelBox> boxes(raster_plan.faces.size(), {face.cols, -1, face.rows, -1});
+  for (int r = 0; r < face.rows; ++r)
+    for (int c = 0; c < face.cols; ++c)
+      if (const std::int32_t f = face(c, r); f >= 0) {
+        PixelBox& b = boxes[static_cast<std::size_t>(f)];
+        b.first_col = std::min(b.first_col, c), b.last_col = std::max(b.last_col, c);
+        b.first_row = std::min(b.first_row, r), b.last_row = std::max(b.last_row, r);
+      }
+  return boxes;
+}
 
 // fold_pairs_under_W in columns first_col .. last_col.
 std::vector<FoldPair> fold_pairs_in_columns(const RasterPlan& raster_plan, const PixelGrid& grid, double tolerance_mm,
@@ -59,7 +81,7 @@ std::vector<FoldPair> fold_pairs_in_columns(const RasterPlan& raster_plan, const
       const std::optional<double> Y = fold_Y(a, b, r);
       if (Y && last && last->below == a) {
         const double apart = last->Y - *Y;
-        if (apart > 0 && apart < W - kFoldLineTolerance_mm) pairs.push_back({last->above, a, b, apart});
+        if (apart > kFoldLineTolerance_mm && apart < W) pairs.push_back({last->above, a, b, apart});
       }
       last = Y ? std::optional<FoldAt>({a, b, *Y}) : std::nullopt;
     }
@@ -69,6 +91,126 @@ std::vector<FoldPair> fold_pairs_in_columns(const RasterPlan& raster_plan, const
   pairs.erase(std::ranges::unique(pairs, {}, key).begin(), pairs.end());
   return pairs;
 }
+
+// The raster plan as the moves so far leave it, the card it shows (estimated on it) and its faces'
+// boxes of pixels.
+class Spreader {
+ public:
+  Spreader(const RasterMaps& maps, RasterPlan raster_plan, double tolerance_mm, bool allow_dangling,
+           const FoldSpacingOptions& options)
+      : maps_(maps),
+        plan_(std::move(raster_plan)),
+        tolerance_mm_(tolerance_mm),
+        allow_dangling_(allow_dangling),
+        options_(options),
+        card_(maps, plan_),
+        start_(card_.counts().fares()),
+        unheld_(faces_unheld_on_raster(maps.grid, plan_, allow_dangling)),
+        boxes_(face_boxes(plan_)) {
+    for (int r = 0; r < maps.grid.rows; ++r)
+      for (int c = 0; c < maps.grid.cols; ++c) model_pixels_ += maps.kind(c, r) == HitKind::Model;
+  }
+
+  const RasterPlan& plan() const { return plan_; }
+
+  // The pair, if the moves so far left it, parted: one of the faces beside the strip moved, the one
+  // whose move the card bears best among those that leave fewer pairs in its columns and no face
+  // unheld on the raster that was held. The move made, if any.
+  std::optional<RefitPlane> part(const FoldPair& pair) {
+    const std::vector<FoldPair> now = pairs_in(plan_, pair.strip);
+    const auto it = std::ranges::find_if(now, [&](const FoldPair& p) {
+      return p.above == pair.above && p.strip == pair.strip && p.below == pair.below;
+    });
+    if (it == now.end()) return std::nullopt;
+    const double W = plan_.min_strip_mm;
+    const RasterFace &strip = face(it->strip), &above = face(it->above), &below = face(it->below);
+    const double above_Y = fold_line_Y(above.orientation, above.depth_mm, strip.depth_mm);
+    const double below_Y = fold_line_Y(strip.orientation, strip.depth_mm, below.depth_mm);
+    std::vector<Tried> tried;
+    for (const Move& move :
+         {Move{it->above, plane_for_fold(above.orientation, strip.depth_mm, below_Y + W + kPastW_mm)},
+          Move{it->below, plane_for_fold(below.orientation, strip.depth_mm, above_Y - W - kPastW_mm)}})
+      if (std::optional<Tried> t = try_move(move)) tried.push_back(std::move(*t));
+    std::ranges::stable_sort(tried, {}, &Tried::fared);
+    const auto made = std::ranges::find_if(tried, [&](const Tried& t) {
+      return std::ranges::includes(unheld_, faces_unheld_on_raster(maps_.grid, t.plan, allow_dangling_));
+    });
+    if (made == tried.end()) return std::nullopt;
+    const RasterFace& f = face(made->move.face);
+    RefitPlane moved{{}, f.orientation, f.support, f.depth_mm, made->move.to_mm};
+    for (const auto [c, r] : made->changed) card_.update(made->plan, c, r);
+    plan_ = std::move(made->plan);
+    boxes_ = face_boxes(plan_);
+    moved.at = first_pixel(made->move.face);
+    return moved;
+  }
+
+ private:
+  // A move tried: the card it would show, the raster plan it makes and the pixels that change.
+  struct Tried {
+    std::pair<int, double> fared;
+    Move move;
+    RasterPlan plan;
+    std::vector<PixelAt> changed;
+  };
+
+  const RasterFace& face(std::int32_t f) const { return plan_.faces[static_cast<std::size_t>(f)]; }
+
+  // The centre of face f's first pixel, row by row.
+  PlanPoint first_pixel(std::int32_t f) const {
+    const PixelBox& box = boxes_[static_cast<std::size_t>(f)];
+    for (int r = box.first_row; r <= box.last_row; ++r)
+      for (int c = box.first_col; c <= box.last_col; ++c)
+        if (plan_.face(c, r) == f) return {maps_.grid.X(c), maps_.grid.Y(r)};
+    return {};
+  }
+
+  std::vector<FoldPair> pairs_in(const RasterPlan& plan, std::int32_t f) const {
+    const PixelBox& box = boxes_[static_cast<std::size_t>(f)];
+    return fold_pairs_in_columns(plan, maps_.grid, tolerance_mm_, box.first_col, box.last_col);
+  }
+
+  // The move, if move_plane makes it, it leaves fewer pairs in the face's columns and the card
+  // bears it; the card is left as it was.
+  std::optional<Tried> try_move(const Move& move) {
+    const RasterFace& f = face(move.face);
+    if (move.face <= kFloorFace || f.hole || !(move.to_mm > 0)) return std::nullopt;
+    std::optional<RasterPlan> moved =
+        move_plane(plan_, maps_.grid, move.face, move.to_mm, tolerance_mm_, plan_.block_px);
+    if (!moved || pairs_in(*moved, move.face).size() >= pairs_in(plan_, move.face).size()) return std::nullopt;
+    // The face's pixels show their new plane, and its folds moved at most as many rows past its box
+    // as the plane moves.
+    PixelBox box = boxes_[static_cast<std::size_t>(move.face)];
+    const int rows = static_cast<int>(std::ceil(std::abs(move.to_mm - f.depth_mm) * maps_.grid.px_per_mm)) + 1;
+    box.first_row = std::max(0, box.first_row - rows);
+    box.last_row = std::min(maps_.grid.rows - 1, box.last_row + rows);
+    Tried t{{}, move, std::move(*moved), {}};
+    for (int r = box.first_row; r <= box.last_row; ++r)
+      for (int c = box.first_col; c <= box.last_col; ++c)
+        if (const std::int32_t g = t.plan.face(c, r); g != plan_.face(c, r) || g == move.face) {
+          t.changed.push_back({c, r});
+          card_.update(t.plan, c, r);
+        }
+    t.fared = card_.counts().fares();
+    for (const auto [c, r] : t.changed) card_.update(plan_, c, r);
+    const double W = plan_.min_strip_mm;
+    const bool bearable =
+        t.fared.first <= start_.first + std::lround(options_.may_add_p95_W * ErrorCounts::kBinsPerW) &&
+        t.fared.second <= start_.second + options_.may_add_mean_W * W * static_cast<double>(model_pixels_);
+    return bearable ? std::optional<Tried>(std::move(t)) : std::nullopt;
+  }
+
+  const RasterMaps& maps_;
+  RasterPlan plan_;
+  double tolerance_mm_;
+  bool allow_dangling_;
+  const FoldSpacingOptions& options_;
+  RasterCard card_;
+  std::pair<int, double> start_;  // the card as the plan was given
+  std::vector<std::int32_t> unheld_;
+  std::vector<PixelBox> boxes_;
+  std::int64_t model_pixels_ = 0;
+};
 
 }  // namespace
 
@@ -81,100 +223,22 @@ SupportedPlan spread_fold_pairs(const RasterMaps& maps, SupportedPlan supported,
                                 const FoldSpacingOptions& options) {
   const double W = supported.raster_plan.min_strip_mm;
   const double tolerance = fold_snap_tolerance_mm(plan_options, supported.raster_plan, maps.grid);
-  RasterPlan raster_plan = supported.raster_plan;
-  std::vector<FoldPair> pairs = fold_pairs_under_W(raster_plan, maps.grid, tolerance);
+  std::vector<FoldPair> pairs = fold_pairs_under_W(supported.raster_plan, maps.grid, tolerance);
   if (pairs.empty()) return supported;
-  // The first and last column of each face: a plane's folds move in its columns only.
-  std::vector<std::pair<int, int>> columns(raster_plan.faces.size(), {maps.grid.cols, -1});
-  std::int64_t model_pixels = 0;
-  for (int r = 0; r < maps.grid.rows; ++r)
-    for (int c = 0; c < maps.grid.cols; ++c) {
-      if (const std::int32_t f = raster_plan.face(c, r); f >= 0) {
-        auto& [first, last] = columns[static_cast<std::size_t>(f)];
-        first = std::min(first, c), last = std::max(last, c);
-      }
-      model_pixels += maps.kind(c, r) == HitKind::Model;
-    }
-  RasterCard card(maps, raster_plan);
-  const std::pair<int, double> start = card.counts().fares();
-  const auto bearable = [&](const std::pair<int, double>& fared) {
-    return fared.first <= start.first + static_cast<int>(options.may_add_p95_W * 256) &&
-           fared.second <= start.second + options.may_add_mean_W * W * static_cast<double>(model_pixels);
-  };
-  const std::vector<std::int32_t> unheld = faces_unheld_on_raster(maps.grid, raster_plan, allow_dangling);
-  std::vector<RefitPlane> spread;
   // The pairs nearest W apart first: their moves are the smallest.
-  std::ranges::sort(pairs, [](const FoldPair& a, const FoldPair& b) { return a.apart_mm > b.apart_mm; });
-  const auto pairs_in = [&](const RasterPlan& plan, std::int32_t f) {
-    const auto [first_col, last_col] = columns[static_cast<std::size_t>(f)];
-    return fold_pairs_in_columns(plan, maps.grid, tolerance, first_col, last_col);
-  };
-  for (const FoldPair& pair : pairs) {
-    // The pair as the moves before left it: gone, or its folds elsewhere.
-    const std::vector<FoldPair> now = pairs_in(raster_plan, pair.strip);
-    const auto it = std::ranges::find_if(now, [&](const FoldPair& p) {
-      return p.above == pair.above && p.strip == pair.strip && p.below == pair.below;
-    });
-    if (it == now.end()) continue;
-    const RasterFace& strip = raster_plan.faces[static_cast<std::size_t>(it->strip)];
-    const RasterFace &above = raster_plan.faces[static_cast<std::size_t>(it->above)],
-                     &below = raster_plan.faces[static_cast<std::size_t>(it->below)];
-    const double above_Y = fold_line_Y(above.orientation, above.depth_mm, strip.depth_mm);
-    const double below_Y = fold_line_Y(strip.orientation, strip.depth_mm, below.depth_mm);
-    const Move candidates[] = {{it->above, plane_for_fold(above.orientation, strip.depth_mm, below_Y + W + kPastW_mm)},
-                               {it->below, plane_for_fold(below.orientation, strip.depth_mm, above_Y - W - kPastW_mm)}};
-    // Each move that leaves fewer pairs in the face's columns, with the card it makes.
-    struct Tried {
-      std::pair<int, double> fared;
-      Move move;
-      RasterPlan plan;
-    };
-    std::vector<Tried> tried;
-    for (const Move& move : candidates) {
-      const RasterFace& f = raster_plan.faces[static_cast<std::size_t>(move.face)];
-      if (move.face <= kFloorFace || f.hole || !(move.to_mm > 0)) continue;
-      std::optional<RasterPlan> moved =
-          move_plane(raster_plan, maps.grid, move.face, move.to_mm, tolerance, raster_plan.block_px);
-      if (!moved || pairs_in(*moved, move.face).size() >= pairs_in(raster_plan, move.face).size()) continue;
-      const auto [first_col, last_col] = columns[static_cast<std::size_t>(move.face)];
-      std::vector<PixelAt> changed;
-      for (int r = 0; r < maps.grid.rows; ++r)
-        for (int c = first_col; c <= last_col; ++c)
-          if (const std::int32_t g = moved->face(c, r); g != raster_plan.face(c, r) || g == move.face) {
-            changed.push_back({c, r});
-            card.update(*moved, c, r);
-          }
-      const std::pair<int, double> fared = card.counts().fares();
-      for (const auto [c, r] : changed) card.update(raster_plan, c, r);
-      if (bearable(fared)) tried.push_back({fared, move, std::move(*moved)});
-    }
-    // The one that shows the model best and, as the raster plan's folds say, leaves none unheld
-    // that was held.
-    std::ranges::sort(tried, {}, &Tried::fared);
-    const auto made = std::ranges::find_if(tried, [&](const Tried& t) {
-      return std::ranges::includes(unheld, faces_unheld_on_raster(maps.grid, t.plan, allow_dangling));
-    });
-    if (made == tried.end()) continue;
-    const RasterFace& f = raster_plan.faces[static_cast<std::size_t>(made->move.face)];
-    PixelAt at{-1, -1};
-    const auto [first_col, last_col] = columns[static_cast<std::size_t>(made->move.face)];
-    for (int r = 0; r < maps.grid.rows; ++r)
-      for (int c = first_col; c <= last_col; ++c) {
-        const std::int32_t g = made->plan.face(c, r);
-        if (g != raster_plan.face(c, r) || g == made->move.face) card.update(made->plan, c, r);
-        if (at.c < 0 && g == made->move.face) at = {c, r};
-      }
-    spread.push_back({{maps.grid.X(at.c), maps.grid.Y(at.r)}, f.orientation, f.support, f.depth_mm, made->move.to_mm});
-    raster_plan = std::move(made->plan);
-  }
+  std::ranges::stable_sort(pairs, [](const FoldPair& a, const FoldPair& b) { return a.apart_mm > b.apart_mm; });
+  Spreader spreader(maps, supported.raster_plan, tolerance, allow_dangling, options);
+  std::vector<RefitPlane> spread;
+  for (const FoldPair& pair : pairs)
+    if (std::optional<RefitPlane> moved = spreader.part(pair)) spread.push_back(*moved);
   if (spread.empty()) return supported;
   const PlanFares before = plan_fares(maps, supported.plan, W, allow_dangling);
-  Plan plan = build_plan(maps, raster_plan, sheet, plan_options);
+  Plan plan = build_plan(maps, spreader.plan(), sheet, plan_options);
   const PlanFares fared = plan_fares(maps, plan, W, allow_dangling);
   if (fared.fails || fared.p95_W > before.p95_W + options.may_add_p95_W ||
       fared.mean_W > before.mean_W + options.may_add_mean_W || (keep && !keep(supported.plan, plan)))
     return supported;
-  supported.raster_plan = std::move(raster_plan);
+  supported.raster_plan = spreader.plan();
   supported.plan = std::move(plan);
   supported.report.drawn_in_mirror_image = false;  // drawn here, from the raster plan moved
   supported.report.narrow = narrow_strips(supported.raster_plan, maps.grid);

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Issue 23: two parallel folds closer than W leave a strip no one can fold. Across a strip between
-// two folds the folds lie the difference of the planes beside it apart: an H(h) strip between V(d1)
-// above and V(d2) below has its folds at h - d1 and h - d2, d2 - d1 apart, however wide its pixels
-// are; a V strip between two H faces, their heights' difference. Supports and refit planes join
-// faces whose planes lie a hair under W apart (prim_torus: 2.9985 mm at W = 3 mm). One of the two
-// faces moves its plane away from the other's, its folds with it (move_plane), to W apart.
+// Issue 23 (seed §4.3.2: no strip under W): two parallel folds closer than W leave a strip no one
+// can fold. Across a strip the two folds lie the difference of the planes beside it apart: an H(h)
+// strip between V(d1) above and V(d2) below folds at h - d1 and h - d2, d2 - d1 apart, however wide
+// its pixels are; a V strip between two H faces, their heights' difference. Supports and refit
+// planes join faces whose planes lie a hair under W apart (prim_torus: 2.9985 mm at W = 3 mm). One
+// of the two faces moves its plane away from the other's, its folds with it, to W apart.
 #pragma once
 
 #include <cstdint>
@@ -30,21 +30,27 @@ struct FoldPair {
 std::vector<FoldPair> fold_pairs_under_W(const RasterPlan& raster_plan, const PixelGrid& grid, double tolerance_mm);
 
 struct FoldSpacingOptions {
-  // The card as estimated on the raster plan may show the model this much worse, in W, at its 95th
-  // percentile and its mean, for a plane moved to part two folds; the exact plan, as much again.
-  double may_add_p95_W = 0.05, may_add_mean_W = 0.02;
+  // The card may show the model this much worse at its 95th percentile of error, in W, for the
+  // planes moved: estimated on the raster plan against the plan given, then on the exact plan.
+  // Over the 37 models at W = 2 / 3 / 5 mm the mean p95 moved by 0.005 / 0.001 / 0 W.
+  double may_add_p95_W = 0.05;
+  // And this much worse at its mean error, in W, likewise.
+  double may_add_mean_W = 0.02;
 };
 
 /// Whether the plan with the fold pairs parted is to be kept instead of the plan given (the design
 /// compares their places narrower than W, measured exactly on their lines).
 using FoldSpacingCheck = std::function<bool(const Plan& given, const Plan& parted)>;
 
-/// For each fold pair, one of the two faces beside the strip (the one that shows the model better
-/// so, not the back plane or the floor) moves its plane to W (and a micrometre) from the other's,
-/// where move_plane can move its folds, no fold pair more is left on the raster plan, and the card
-/// shows the model about as well (options). The exact plan of all moves is kept if it stands, shows
-/// the model within the options' bounds of the plan given, and `keep` accepts it; the moves are
-/// listed in SupportReport::planes_spread. \pre W (the raster plan's min_strip_mm) > 0.
+/// For each fold pair, the nearest W apart first, one of the two faces beside the strip (not the
+/// back plane or the floor) moves its plane to W (and 2 kFoldLineTolerance_mm) from the other's,
+/// its folds with it (move_plane): of the two moves that leave fewer pairs in the face's columns,
+/// no face unheld on the raster plan's folds that was held, and the card estimated on the raster
+/// within the options' bounds of the plan given, the one that shows the model better. A strip
+/// parted by a boundary of two coplanar faces (a support beside a slice in its plane) is not seen.
+/// The exact plan of all moves is kept if it stands, shows the model within the options' bounds of
+/// the plan given, and `keep` accepts it; the moves are listed in SupportReport::planes_spread.
+/// \pre W (the raster plan's min_strip_mm) > 0.
 SupportedPlan spread_fold_pairs(const RasterMaps& maps, SupportedPlan supported, const Sheet& sheet,
                                 const PlanOptions& plan_options, bool allow_dangling, const FoldSpacingCheck& keep,
                                 const FoldSpacingOptions& options = {});

@@ -17,6 +17,10 @@
 namespace origamic {
 namespace {
 
+using raster_card::ErrorCounts;
+using raster_card::PixelAt;
+using raster_card::RasterCard;
+
 // The model pixels of each face, in one pass.
 std::vector<std::vector<PixelAt>> model_pixels_of(const RasterMaps& maps, const RasterPlan& raster_plan) {
   std::vector<std::vector<PixelAt>> pixels(raster_plan.faces.size());

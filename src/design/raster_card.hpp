@@ -17,14 +17,15 @@
 #include "origamic/raster.hpp"
 #include "origamic/slice.hpp"
 
-namespace origamic {
+namespace origamic::raster_card {
 
 // The card's errors, counted in bins of W / 256 (the last bin holds all beyond 64 W), with their sum:
 // the 95th percentile, as likeness() takes it, to a bin, and the mean, as a face's pixels change.
 // A Fenwick tree counts the errors up to a bin in log time.
 class ErrorCounts {
  public:
-  explicit ErrorCounts(double W) : bin_mm_(W / 256), tree_(kBins + 1, 0) { assert(W > 0); }
+  static constexpr int kBinsPerW = 256;
+  explicit ErrorCounts(double W) : bin_mm_(W / kBinsPerW), tree_(kBins + 1, 0) { assert(W > 0); }
 
   void add(double error_mm, int count) {
     sum_mm_ += count * error_mm;
@@ -114,4 +115,4 @@ struct PixelAt {
   int c = 0, r = 0;
 };
 
-}  // namespace origamic
+}  // namespace origamic::raster_card
