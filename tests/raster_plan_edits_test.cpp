@@ -113,6 +113,14 @@ TEST(RasterPlanEdits, APlaneMovedTakesItsFoldsToItsNewLines) {
       EXPECT_EQ(raised->face(c, r), r < 10 ? 2 : r < 28 ? 3 : kFloorFace) << c << ", " << r;
   // A fold that would leave the sheet: the V face 6 mm deep meets the floor 43 rows down.
   EXPECT_FALSE(move_plane(s, grid, 3, 6, 0.3, 1).has_value());
+  // Told the face's columns, the same move; told fewer, its folds move in those only.
+  const std::optional<RasterPlan> told = move_plane(s, grid, 3, 2.5, 0.3, 1, std::pair{0, grid.cols - 1});
+  ASSERT_TRUE(told.has_value());
+  EXPECT_EQ(told->face.values, moved->face.values);
+  const std::optional<RasterPlan> first_column = move_plane(s, grid, 3, 2.5, 0.3, 1, std::pair{0, 0});
+  ASSERT_TRUE(first_column.has_value());
+  for (int c = 0; c < grid.cols; ++c)
+    for (int r = 0; r < grid.rows; ++r) EXPECT_EQ(first_column->face(c, r), (c == 0 ? *moved : s).face(c, r));
 }
 
 // A fold moves only where the face giving rows keeps `min_run_px` of them (a tread no narrower), and

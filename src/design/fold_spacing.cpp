@@ -41,16 +41,17 @@ struct PixelBox {
   int first_col, last_col, first_row, last_row;
 };
 
+void grow(PixelBox& b, int c, int r) {
+  b.first_col = std::min(b.first_col, c), b.last_col = std::max(b.last_col, c);
+  b.first_row = std::min(b.first_row, r), b.last_row = std::max(b.last_row, r);
+}
+
 std::vector<PixelBox> face_boxes(const RasterPlan& raster_plan) {
   const Grid<std::int32_t>& face = raster_plan.face;
   std::vector<PixelBox> boxes(raster_plan.faces.size(), {face.cols, -1, face.rows, -1});
   for (int r = 0; r < face.rows; ++r)
     for (int c = 0; c < face.cols; ++c)
-      if (const std::int32_t f = face(c, r); f >= 0) {
-        PixelBox& b = boxes[static_cast<std::size_t>(f)];
-        b.first_col = std::min(b.first_col, c), b.last_col = std::max(b.last_col, c);
-        b.first_row = std::min(b.first_row, r), b.last_row = std::max(b.last_row, r);
-      }
+      if (const std::int32_t f = face(c, r); f >= 0) grow(boxes[static_cast<std::size_t>(f)], c, r);
   return boxes;
 }
 
@@ -138,9 +139,12 @@ class Spreader {
     if (made == tried.end()) return std::nullopt;
     const RasterFace& f = face(made->move.face);
     RefitPlane moved{{}, f.orientation, f.support, f.depth_mm, made->move.to_mm};
-    for (const auto [c, r] : made->changed) card_.update(made->plan, c, r);
+    for (const auto [c, r] : made->changed) {
+      card_.update(made->plan, c, r);
+      if (const std::int32_t g = made->plan.face(c, r); g >= 0)
+        grow(boxes_[static_cast<std::size_t>(g)], c, r);  // a box may hold more than its face
+    }
     plan_ = std::move(made->plan);
-    boxes_ = face_boxes(plan_);
     moved.at = first_pixel(made->move.face);
     return moved;
   }
@@ -176,7 +180,9 @@ class Spreader {
     const RasterFace& f = face(move.face);
     if (move.face <= kFloorFace || f.hole || !(move.to_mm > 0)) return std::nullopt;
     std::optional<RasterPlan> moved =
-        move_plane(plan_, maps_.grid, move.face, move.to_mm, tolerance_mm_, plan_.block_px);
+        move_plane(plan_, maps_.grid, move.face, move.to_mm, tolerance_mm_, plan_.block_px,
+                   std::pair{boxes_[static_cast<std::size_t>(move.face)].first_col,
+                             boxes_[static_cast<std::size_t>(move.face)].last_col});
     if (!moved || pairs_in(*moved, move.face).size() >= pairs_in(plan_, move.face).size()) return std::nullopt;
     // The face's pixels show their new plane, and its folds moved at most as many rows past its box
     // as the plane moves.

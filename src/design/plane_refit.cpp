@@ -142,8 +142,8 @@ std::vector<PlaneMove> find_planes(const RasterMaps& maps, RasterPlan raster_pla
       const RasterFace& face = raster_plan.faces[static_cast<std::size_t>(f)];
       const std::optional<double> depth = best_plane(maps, face, own, card);
       if (!depth) break;
-      std::optional<RasterPlan> moved =
-          move_plane(raster_plan, maps.grid, f, *depth, fold_tolerance_mm, raster_plan.block_px);
+      std::optional<RasterPlan> moved = move_plane(raster_plan, maps.grid, f, *depth, fold_tolerance_mm,
+                                                   raster_plan.block_px, columns[static_cast<std::size_t>(f)]);
       if (!moved || !std::ranges::includes(unheld, faces_unheld_on_raster(maps.grid, *moved, allow_dangling))) break;
       // The pixels that changed face, and the face's own, show their new plane; with its folds
       // moved, the card must still fare better, or the move is undone.

@@ -313,7 +313,7 @@ std::vector<int> align_sweep(RasterPlan& result, const FoldRows& folds) {
 }  // namespace
 
 std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& grid, std::int32_t f, double depth_mm,
-                                     double tolerance_mm, int min_run_px) {
+                                     double tolerance_mm, int min_run_px, std::optional<std::pair<int, int>> columns) {
   assert(f > kFloorFace && static_cast<std::size_t>(f) < plan.faces.size() && !plan.faces[f].hole);
   // The folds are found on the planes as they are, then moved to the new plane's lines: first each
   // move is checked (most that fail, fail here), then the plan copied and the moves made.
@@ -329,7 +329,8 @@ std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& gr
   };
   std::vector<Rows> given;
   const Grid<std::int32_t>& face = plan.face;
-  for (int col = 0; col < face.cols; ++col)
+  const auto [first_col, last_col] = columns.value_or(std::pair{0, face.cols - 1});
+  for (int col = first_col; col <= last_col; ++col)
     for (int r = 0; r + 1 < face.rows; ++r) {
       const std::int32_t a = face(col, r), b = face(col, r + 1);  // a above, b below
       if (a != f && b != f) continue;

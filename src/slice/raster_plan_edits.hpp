@@ -57,9 +57,11 @@ RasterPlan align_folds_to_lines(RasterPlan raster_plan, const PixelGrid& grid, d
 /// Nothing where a fold cannot move so: a face giving pixels would keep fewer than `min_run_px`
 /// rows (one at least) of its run in the column, or a third face lies between the old and the new
 /// line, or the new line lies off the sheet; or where the move leaves a face in more 4-connected
-/// parts than it was. \pre f is a face of the plan, not the back plane, the floor or a hole.
+/// parts than it was. `columns` (first, last), if given, holds every column of f: only those are
+/// searched for its folds. \pre f is a face of the plan, not the back plane, the floor or a hole.
 std::optional<RasterPlan> move_plane(const RasterPlan& raster_plan, const PixelGrid& grid, std::int32_t f,
-                                     double depth_mm, double tolerance_mm, int min_run_px);
+                                     double depth_mm, double tolerance_mm, int min_run_px,
+                                     std::optional<std::pair<int, int>> columns = std::nullopt);
 
 /// The smaller side, in pixels, of the oriented bounding box (principal axes) of a pixel set.
 double oriented_box_min_side_px(const std::vector<std::pair<int, int>>& pixels);
