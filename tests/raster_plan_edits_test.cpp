@@ -123,6 +123,29 @@ TEST(RasterPlanEdits, APlaneMovedTakesItsFoldsToItsNewLines) {
     for (int r = 0; r < grid.rows; ++r) EXPECT_EQ(first_column->face(c, r), (c == 0 ? *moved : s).face(c, r));
 }
 
+// The face moved gives rows at one fold as it takes as many at the other: its run is counted as the
+// move leaves it. H(4) rows 0-21, V(2) rows 22-37 (16 rows), the floor below; the V face half a
+// millimetre back takes rows 20-21 and gives rows 36-37, keeping 16 (14 beyond the rows it gives on
+// the plan before the move).
+TEST(RasterPlanEdits, AFaceMovedKeepsItsRunAsTheMoveLeavesIt) {
+  PixelGrid grid;
+  grid.cols = 3, grid.rows = 60, grid.px_per_mm = 4, grid.rows_above_fold = 30;
+  RasterPlan s;
+  s.face = Grid<std::int32_t>(grid.cols, grid.rows, kFloorFace);
+  s.faces = {{Orientation::V, 0}, {Orientation::H, 0}, {Orientation::H, 4}, {Orientation::V, 2}};
+  for (int c = 0; c < grid.cols; ++c) {
+    for (int r = 0; r < 22; ++r) s.face(c, r) = 2;
+    for (int r = 22; r < 38; ++r) s.face(c, r) = 3;
+  }
+  s.faces[1].pixels = 22 * grid.cols, s.faces[2].pixels = 22 * grid.cols, s.faces[3].pixels = 16 * grid.cols;
+  const std::optional<RasterPlan> moved = move_plane(s, grid, 3, 1.5, 0.3, 16);
+  ASSERT_TRUE(moved.has_value());
+  for (int c = 0; c < grid.cols; ++c)
+    for (int r = 0; r < grid.rows; ++r)
+      EXPECT_EQ(moved->face(c, r), r < 20 ? 2 : r < 36 ? 3 : kFloorFace) << c << ", " << r;
+  EXPECT_FALSE(move_plane(s, grid, 3, 1.5, 0.3, 17).has_value());  // it keeps 16 of 17
+}
+
 // A fold moves only where the face giving rows keeps `min_run_px` of them (a tread no narrower), and
 // only where no face is parted; a boundary off its fold line is no fold and stays.
 TEST(RasterPlanEdits, APlaneMovesOnlyWhereTheFacesGivingRowsKeepTheirRunAndStayWhole) {
