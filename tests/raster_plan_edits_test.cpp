@@ -68,33 +68,47 @@ TEST(RasterPlanEdits, AFoldMovesToThePixelEdgeNearestItsLine) {
   EXPECT_EQ(far.face.values, s.face.values);
 }
 
-// A V face between an H face above and the floor below, 16 rows tall (4 px a mm, Y = (20 - row) / 4
-// at the edge above row `row`): H(4) rows 0-11, V(2) rows 12-27 (folds at Y = 2 and -2), the floor
-// below.
+// A sheet three pixels wide at 4 px a mm.
+PixelGrid three_columns(int rows, int rows_above_fold) {
+  PixelGrid grid;
+  grid.cols = 3, grid.rows = rows, grid.px_per_mm = 4, grid.rows_above_fold = rows_above_fold;
+  return grid;
+}
+
+// A V face between an H face above and the floor below, 16 rows tall (4 px a mm, Y = (F - row) / 4
+// at the edge above row `row`, F = grid.rows_above_fold): H(4) rows 0 to F - 9, V(2) the next 16
+// rows (folds at Y = 2 and -2), the floor below. At F = 20: H rows 0-11, V rows 12-27.
 RasterPlan v_between_h_and_floor(const PixelGrid& grid) {
+  const int top = grid.rows_above_fold - 8;
   RasterPlan s;
   s.face = Grid<std::int32_t>(grid.cols, grid.rows, kFloorFace);
   s.faces = {{Orientation::V, 0}, {Orientation::H, 0}, {Orientation::H, 4}, {Orientation::V, 2}};
   for (int c = 0; c < grid.cols; ++c) {
-    for (int r = 0; r < 12; ++r) s.face(c, r) = 2;
-    for (int r = 12; r < 28; ++r) s.face(c, r) = 3;
+    for (int r = 0; r < top; ++r) s.face(c, r) = 2;
+    for (int r = top; r < top + 16; ++r) s.face(c, r) = 3;
   }
-  s.faces[1].pixels = 12 * grid.cols, s.faces[2].pixels = 12 * grid.cols, s.faces[3].pixels = 16 * grid.cols;
+  s.faces[1].pixels = (grid.rows - top - 16) * grid.cols, s.faces[2].pixels = top * grid.cols;
+  s.faces[3].pixels = 16 * grid.cols;
   return s;
+}
+
+// Every column of a plan of v_between_h_and_floor's faces: the H face's rows above h_end, the V
+// face's above v_end, the floor's below.
+void expect_columns(const RasterPlan& plan, const PixelGrid& grid, int h_end, int v_end) {
+  for (int c = 0; c < grid.cols; ++c)
+    for (int r = 0; r < grid.rows; ++r)
+      EXPECT_EQ(plan.face(c, r), r < h_end ? 2 : r < v_end ? 3 : kFloorFace) << c << ", " << r;
 }
 
 // A plane moved carries its folds: the V face half a millimetre forward meets the H face and the
 // floor 2 rows lower, giving the H face its top 2 rows and taking the floor's 2; its height stays.
 TEST(RasterPlanEdits, APlaneMovedTakesItsFoldsToItsNewLines) {
-  PixelGrid grid;
-  grid.cols = 3, grid.rows = 40, grid.px_per_mm = 4, grid.rows_above_fold = 20;
+  const PixelGrid grid = three_columns(40, 20);
   const RasterPlan s = v_between_h_and_floor(grid);
   const std::optional<RasterPlan> moved = move_plane(s, grid, 3, 2.5, 0.3, 1);
   ASSERT_TRUE(moved.has_value());
   EXPECT_EQ(moved->faces[3].depth_mm, 2.5);
-  for (int c = 0; c < grid.cols; ++c)
-    for (int r = 0; r < grid.rows; ++r)
-      EXPECT_EQ(moved->face(c, r), r < 14 ? 2 : r < 30 ? 3 : kFloorFace) << c << ", " << r;
+  expect_columns(*moved, grid, 14, 30);
   EXPECT_EQ(moved->faces[2].pixels, 14 * grid.cols);
   EXPECT_EQ(moved->faces[3].pixels, 16 * grid.cols);
   EXPECT_EQ(moved->faces[kFloorFace].pixels, 10 * grid.cols);
@@ -108,9 +122,7 @@ TEST(RasterPlanEdits, APlaneMovedTakesItsFoldsToItsNewLines) {
   // takes its rows 10-11.
   const std::optional<RasterPlan> raised = move_plane(s, grid, 2, 4.5, 0.3, 1);
   ASSERT_TRUE(raised.has_value());
-  for (int c = 0; c < grid.cols; ++c)
-    for (int r = 0; r < grid.rows; ++r)
-      EXPECT_EQ(raised->face(c, r), r < 10 ? 2 : r < 28 ? 3 : kFloorFace) << c << ", " << r;
+  expect_columns(*raised, grid, 10, 28);
   // A fold that would leave the sheet: the V face 6 mm deep meets the floor 43 rows down.
   EXPECT_FALSE(move_plane(s, grid, 3, 6, 0.3, 1).has_value());
   // Told the face's columns, the same move; told fewer, its folds move in those only.
@@ -128,29 +140,18 @@ TEST(RasterPlanEdits, APlaneMovedTakesItsFoldsToItsNewLines) {
 // millimetre back takes rows 20-21 and gives rows 36-37, keeping 16 (14 beyond the rows it gives on
 // the plan before the move).
 TEST(RasterPlanEdits, AFaceMovedKeepsItsRunAsTheMoveLeavesIt) {
-  PixelGrid grid;
-  grid.cols = 3, grid.rows = 60, grid.px_per_mm = 4, grid.rows_above_fold = 30;
-  RasterPlan s;
-  s.face = Grid<std::int32_t>(grid.cols, grid.rows, kFloorFace);
-  s.faces = {{Orientation::V, 0}, {Orientation::H, 0}, {Orientation::H, 4}, {Orientation::V, 2}};
-  for (int c = 0; c < grid.cols; ++c) {
-    for (int r = 0; r < 22; ++r) s.face(c, r) = 2;
-    for (int r = 22; r < 38; ++r) s.face(c, r) = 3;
-  }
-  s.faces[1].pixels = 22 * grid.cols, s.faces[2].pixels = 22 * grid.cols, s.faces[3].pixels = 16 * grid.cols;
+  const PixelGrid grid = three_columns(60, 30);
+  const RasterPlan s = v_between_h_and_floor(grid);
   const std::optional<RasterPlan> moved = move_plane(s, grid, 3, 1.5, 0.3, 16);
   ASSERT_TRUE(moved.has_value());
-  for (int c = 0; c < grid.cols; ++c)
-    for (int r = 0; r < grid.rows; ++r)
-      EXPECT_EQ(moved->face(c, r), r < 20 ? 2 : r < 36 ? 3 : kFloorFace) << c << ", " << r;
+  expect_columns(*moved, grid, 20, 36);
   EXPECT_FALSE(move_plane(s, grid, 3, 1.5, 0.3, 17).has_value());  // it keeps 16 of 17
 }
 
 // A fold moves only where the face giving rows keeps `min_run_px` of them (a tread no narrower), and
 // only where no face is parted; a boundary off its fold line is no fold and stays.
 TEST(RasterPlanEdits, APlaneMovesOnlyWhereTheFacesGivingRowsKeepTheirRunAndStayWhole) {
-  PixelGrid grid;
-  grid.cols = 3, grid.rows = 40, grid.px_per_mm = 4, grid.rows_above_fold = 20;
+  const PixelGrid grid = three_columns(40, 20);
   const RasterPlan s = v_between_h_and_floor(grid);
   // Half a millimetre back, the V face's folds rise 2 rows: it takes rows 10-11 of the H face,
   // which keeps 10, and gives rows 26-27 to the floor.
