@@ -273,6 +273,41 @@ TEST(ChainPoints, AJunctionWhereAFoldSnapsMovesOntoItsLine) {
       chains::moved_junctions({fold, edge, up_beyond, down}, lattice, no_breaks, {between, {}, {}, {}}).moved.empty());
 }
 
+// A loop (a slice's level contour closing round a dome, no junction on it) drawn on the picture's
+// breaks all round: it starts and ends on its first edge's point, not on the lattice corner it was
+// traced from, which the drawing went out to and back from in a spike.
+TEST(ChainPoints, ALoopOnTheBreaksClosesOnTheBreaks) {
+  const chains::LatticeScale lattice{20, 1.0};
+  Grid<float> right(40, 40, std::numeric_limits<float>::quiet_NaN()), below = right;
+  // A rectangle of 6 x 4 pixels, each pixel edge broken a quarter pixel inside it.
+  Chain loop{2, 3, {{4, 4}}};
+  const auto to = [&](LatticePoint corner) {
+    while (loop.corners.back().u != corner.u || loop.corners.back().v != corner.v) {
+      const LatticePoint a = loop.corners.back();
+      const LatticePoint b{a.u + 2 * ((corner.u > a.u) - (corner.u < a.u)),
+                           a.v + 2 * ((corner.v > a.v) - (corner.v < a.v))};
+      if (a.v == b.v)  // between pixel rows v / 2 - 1 and v / 2: inside is below the top side
+        below((a.u + b.u) / 4, a.v / 2 - 1) = a.v == 4 ? 0.75f : 0.25f;
+      else  // between pixel columns u / 2 - 1 and u / 2: inside is right of the left side
+        right(a.u / 2 - 1, (a.v + b.v) / 4) = a.u == 4 ? 0.75f : 0.25f;
+      loop.corners.push_back(b);
+    }
+  };
+  to({16, 4}), to({16, 12}), to({4, 12}), to({4, 4});
+  ASSERT_EQ(loop.corners.size(), 21u);
+  const chains::DrawnChain drawn = chains::simplified(loop, lattice, {right, below}, {0.1, 0.02});
+  ASSERT_GE(drawn.points.size(), 5u);
+  for (const chains::ChainPoint& p : drawn.points) {
+    EXPECT_TRUE(p.on_break) << "a point on the lattice at u = " << p.lattice.u << ", v = " << p.lattice.v;
+    // A quarter pixel inside the rectangle's sides.
+    const bool on_side = std::abs(p.X - 2.25) < 1e-9 || std::abs(p.X - 7.75) < 1e-9 ||
+                         std::abs(p.Y - lattice.Y(4) + 0.25) < 1e-9 || std::abs(p.Y - lattice.Y(12) - 0.25) < 1e-9;
+    EXPECT_TRUE(on_side) << "X = " << p.X << ", Y = " << p.Y;
+  }
+  EXPECT_EQ(drawn.points.front().X, drawn.points.back().X);
+  EXPECT_EQ(drawn.points.front().Y, drawn.points.back().Y);
+}
+
 // A lattice row whose pixel edges the picture breaks across on the row itself (a slice ending on a
 // crease of the model) is still that row beside the junction: the staircase's corner moves along
 // it as it does beside a row with no breaks.

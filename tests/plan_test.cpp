@@ -719,6 +719,38 @@ TEST(Plan, TwoDesignsAtOnceTakeTurnsAndGetTheirOwnPlans) {
   }
 }
 
+// Where a slice's boundary runs along its fold line and then on as a cut, slanted across the
+// lattice (a dome's level contour leaving the line), the fold ends where the cut as drawn meets the
+// line. A connector from the fold's end up or down the lattice column to the corner the cut was
+// traced from made a notch a fraction of a pixel deep there, and a strip as narrow beside it: on
+// this sphere 10 of them, beside 10 cuts leaving their folds slanted at once (now 14).
+TEST(Plan, AFoldEndsWhereTheSlantedCutLeavingItMeetsItsLine) {
+  const Plan plan = plan_of_oa_mesh(test::sphere({105, 40, 40}, 35, 96, 48));
+  expect_exact_construction(plan);
+  const double px_mm = 0.25;
+  std::map<std::pair<double, double>, int> fold_ends;
+  for (const PlanPolyline& line : plan.lines)
+    if (line.kind == LineKind::Mountain || line.kind == LineKind::Valley)
+      for (const PlanPoint& p : {line.points.front(), line.points.back()}) ++fold_ends[{p.X, p.Y}];
+  ASSERT_GT(fold_ends.size(), 20u);
+  // A notch: a cut leaves a fold's end square along the lattice column for under a pixel, then turns.
+  int notches = 0, slanted = 0;
+  for (const PlanPolyline& line : plan.lines) {
+    if (line.kind != LineKind::Cut) continue;
+    const std::vector<PlanPoint>& q = line.points;
+    for (std::size_t k = 0; k + 2 < q.size(); ++k)
+      for (const bool forward : {true, false}) {
+        const PlanPoint &end = forward ? q[k] : q[q.size() - 1 - k], &a = forward ? q[k + 1] : q[q.size() - 2 - k],
+                        &b = forward ? q[k + 2] : q[q.size() - 3 - k];
+        if (!fold_ends.contains({end.X, end.Y})) continue;
+        slanted += a.X != end.X && a.Y != end.Y;
+        notches += a.X == end.X && std::abs(a.Y - end.Y) < px_mm && b.X != a.X;
+      }
+  }
+  EXPECT_GE(slanted, 10) << "cuts leaving folds slanted";
+  EXPECT_EQ(notches, 0);
+}
+
 // A model already read designs as its file does: a caller that pictures the model reads it once.
 TEST(Plan, AModelReadOnceDesignsAsItsFile) {
   const std::filesystem::path house = std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj";

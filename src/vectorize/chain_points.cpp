@@ -347,6 +347,16 @@ DrawnChain simplified(const Chain& chain, const LatticeScale& lattice, const Pic
   c.fixed.assign(c.points.size(), false);
   c.fixed.front() = c.fixed.back() = true;
   insert_corners(lattice, c.points, c.fixed);
+  // A loop has no junction to hold its first corner: drawn there, a contour on the picture's break
+  // went out to the lattice corner and back, a spike a fraction of a pixel long (seedlike/sphere:
+  // one on each ring). It starts and ends on its first edge's point instead.
+  if (is_loop(chain) && !moved_ends[0] && !moved_ends[1] && c.points.size() > 3 && c.points[1].on_break &&
+      !c.fixed[1]) {
+    c.points.erase(c.points.begin());
+    c.fixed.erase(c.fixed.begin());
+    c.points.back() = c.points.front();
+    c.fixed.front() = c.fixed.back() = true;
+  }
   for (const ChainPoint& p : c.points)
     c.at.push_back(p.on_break ? std::array{p.X, p.Y} : std::array{lattice.X(p.lattice.u), lattice.Y(p.lattice.v)});
   move_ends(moved_ends, c);

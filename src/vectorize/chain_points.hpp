@@ -70,8 +70,9 @@ struct DrawTolerance {
 /// `tolerance.lattice_mm`. Where such a run meets a straight lattice run, the corner between them
 /// moves to where their lines meet and is kept. Ends whose junctions moved are measured where they
 /// moved to, and a midpoint beyond such an end (its last pixel edge ran past where the model edge
-/// meets the other line) is dropped. `tolerance.lattice_mm` <= 0 gives the chain's pixel contour,
-/// each straight run one segment.
+/// meets the other line) is dropped. A loop whose first pixel edge is on the picture's break starts
+/// and ends on that edge's point: no junction holds its first corner. `tolerance.lattice_mm` <= 0
+/// gives the chain's pixel contour, each straight run one segment.
 /// \pre the chain has at least 2 corners.
 DrawnChain simplified(const Chain& chain, const LatticeScale& lattice, const PictureBreaks& breaks,
                       DrawTolerance tolerance, const MovedEnds& moved_ends = {});
