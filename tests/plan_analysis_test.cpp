@@ -356,6 +356,7 @@ TEST(PlanAnalysis, TheStripUnderANotchIsNarrowWhereOnlyItsCornersAreVertices) {
   EXPECT_EQ(narrow[0].from.Y, b.h - b.d);
   EXPECT_EQ(narrow[0].to.Y, floor_Y);
   EXPECT_NE(narrow[0].message.find("(2 such places)"), std::string::npos) << "one at each corner";
+  EXPECT_EQ(narrow[0].narrow_chords, 2);
 }
 
 TEST(PlanAnalysis, AStripNarrowerThanWBetweenAFoldAndACutIsNoFoldPair) {
@@ -398,6 +399,7 @@ TEST(PlanAnalysis, AStripUpToACrossingOfTwoCutsIsMeasuredExactly) {
   EXPECT_NEAR(narrow[0].to.Y, crossing_Y, 1e-12);
   EXPECT_NEAR(narrow[0].value_mm, crossing_Y - fold_Y, 1e-12);
   EXPECT_EQ(narrow[0].message.find("such places"), std::string::npos) << "both sides of the line hold one chord";
+  EXPECT_EQ(narrow[0].narrow_chords, 1);
   // At W under it, no place: the hole's other corners lie farther from the fold.
   EXPECT_TRUE(problems_of(analyze_plan(lines, {.min_strip_mm = 2}), PlanProblemKind::NarrowStrip).empty());
 }

@@ -7,7 +7,9 @@
 // (in W), the sliced p95, coverage, support and cut-out shares, faces, folds, whether it stands,
 // its places narrower than W (read back, as `origamic validate --min-strip W` counts them), the
 // time of the design and, of those places, the ones between two parallel folds less than W apart
-// (PlanProblem::folds_apart_mm), then the means;
+// (PlanProblem::folds_apart_mm), then the means, and the chords narrower than W across all the
+// places (PlanProblem::narrow_chords), which falls where a face loses a notch but stays narrow
+// elsewhere;
 // writes OUT_DIR/contact_sheet.png (per model: the model, the pop-up, the plan) and each model's
 // pictures and DXF under OUT_DIR/models/.
 #include <cairo.h>
@@ -85,6 +87,7 @@ struct Row {
   bool stands = false, read_back_stands = false;  // as designed and as read back
   int narrow = 0;                                 // places narrower than W, read back
   int parallel = 0;                               // of them, between two parallel folds under W apart
+  int chords = 0;                                 // the chords narrower than W across those places
   double design_s = 0;
   // Where the card is more than 2 W off its model: shares of the model's pixels showing a face of
   // the model, a support, the back plane or floor, or a hole (the finished card, as designed).
@@ -245,6 +248,7 @@ Row measure(const Model& model, const DesignOptions& base, const fs::path& out, 
   row.narrow =
       static_cast<int>(std::ranges::count(analysis.problems, PlanProblemKind::NarrowStrip, &PlanProblem::kind));
   row.parallel = analysis.narrow_between_folds;
+  for (const PlanProblem& p : analysis.problems) row.chords += p.narrow_chords;
   row.read_back_stands = analysis.errors == row.narrow;  // a narrow strip is an error; it stands if only those
   row.read_back = likeness(result.maps, card_view(result.maps.grid, analysis.regions, {}), options.slice.min_strip_mm);
 
@@ -372,12 +376,12 @@ int main(int argc, char** argv) {
   const int clean = static_cast<int>(std::ranges::count(rows, 0, &Row::narrow));
   int narrow = 0;
   for (const Row& r : rows) narrow += r.narrow;
-  int parallel = 0;
-  for (const Row& r : rows) parallel += r.parallel;
+  int parallel = 0, chords = 0;
+  for (const Row& r : rows) parallel += r.parallel, chords += r.chords;
   std::printf(
       "no place narrower than W, read back: %d of %zu; places narrower than W: %d in all, %d of them between two "
-      "parallel folds\n",
-      clean, rows.size(), narrow, parallel);
+      "parallel folds; %d chords narrower than W across them\n",
+      clean, rows.size(), narrow, parallel, chords);
   std::printf("design time: mean %.2f s, total %.1f s\n", mean([](const Row& r) { return r.design_s; }),
               mean([](const Row& r) { return r.design_s; }) * n);
   write_contact_sheet(cells, out / "contact_sheet.png");

@@ -69,6 +69,9 @@ struct PlanProblem {
   // NarrowStrip along Y: how far apart the face's two nearest parallel folds lie, one below it and
   // one above, where that is under W (the strip between them cannot be folded); 0 for none.
   double folds_apart_mm = 0;
+  // NarrowStrip: how many of the face's chords through its vertices along that axis are under W
+  // (the narrowest is the one described): a face narrow in one place, or along a tip.
+  int narrow_chords = 0;
 };
 
 /// The sheet, in plan mm: the bounding box of the outline, or of every line when there is none.

@@ -115,6 +115,7 @@ nlohmann::json narrow_places_json(const std::vector<PlanProblem>& narrow) {
                     {"to_XY", {p.to.X, p.to.Y}},
                     {"message", p.message}});
     if (p.folds_apart_mm > 0) list.back()["folds_apart_mm"] = p.folds_apart_mm;
+    list.back()["narrow_chords"] = p.narrow_chords;
   }
   return list;
 }

@@ -405,6 +405,7 @@ void Analyzer::check_strips() {
                               point_text(result.regions[r].inside) + " is " + num(width) + " mm wide along " +
                               (along_Y ? "Y " : "X ") + where + ", under W = " + num(options.min_strip_mm) + " mm" +
                               (narrow > 1 ? " (" + std::to_string(narrow) + " such places)" : "")};
+      problem.narrow_chords = narrow;
       if (const std::optional<FoldPair> pair = along_Y ? nearest_fold_pair(r) : std::nullopt) {
         const PlanPoint lo = plan_point(Point(pair->X, pair->lo)), hi = plan_point(Point(pair->X, pair->hi));
         problem.folds_apart_mm = nearest_double(pair->hi - pair->lo);

@@ -102,6 +102,7 @@ std::string analysis_json(const PlanAnalysis& analysis, const std::string& file_
                         {"value_mm", p.value_mm},
                         {"message", p.message}});
     if (p.folds_apart_mm > 0) problems.back()["folds_apart_mm"] = p.folds_apart_mm;
+    if (p.kind == PlanProblemKind::NarrowStrip) problems.back()["narrow_chords"] = p.narrow_chords;
   }
   nlohmann::json faces = nlohmann::json::array();
   for (std::size_t r = 0; r < analysis.regions.size(); ++r) {
