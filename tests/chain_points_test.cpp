@@ -273,6 +273,27 @@ TEST(ChainPoints, AJunctionWhereAFoldSnapsMovesOntoItsLine) {
       chains::moved_junctions({fold, edge, up_beyond, down}, lattice, no_breaks, {between, {}, {}, {}}).moved.empty());
 }
 
+// Beside a third face a level contour keeps to the pixel edges for a pixel: here the staircase's last
+// two pixel edges are off the picture's break. Its leg reaches past them to the model's edge, and the
+// junction moves onto it as where the break runs to the end; not where a support's side ends there
+// (W wide on the lattice, it would tilt and be narrower than W).
+TEST(ChainPoints, AJunctionsLegReachesPastTheContoursLastPixelEdgesUnlessBesideASupport) {
+  StaircaseOnAnEdge s;
+  s.right(s.steps, s.steps) = s.below(s.steps, s.steps - 1) = std::numeric_limits<float>::quiet_NaN();
+  const std::vector<Chain> chains = {s.stairs, s.row};
+  const chains::JunctionMoves moves = chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}});
+  ASSERT_EQ(moves.moved.size(), 1u);
+  const chains::MovedJunction& m = moves.moved[0];
+  EXPECT_EQ(m.corner.u, s.row.corners.front().u);
+  EXPECT_EQ(m.corner.v, s.row.corners.front().v);
+  EXPECT_EQ(m.v_on_lattice, m.corner.v);
+  EXPECT_NEAR(m.X, s.c - s.lattice.Y(m.corner.v), 1e-9);
+  EXPECT_TRUE(chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {.beside_support = true}}).moved.empty());
+  // Three edges off the break are more than a contour keeps beside a third face: no leg, no move.
+  s.right(s.steps - 1, s.steps - 1) = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_TRUE(chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}}).moved.empty());
+}
+
 // A loop (a slice's level contour closing round a dome, no junction on it) drawn on the picture's
 // breaks all round: it starts and ends on its first edge's point, not on the lattice corner it was
 // traced from, which the drawing went out to and back from in a spike.

@@ -184,12 +184,13 @@ TEST(DesignTips, TipsNarrowerThanWArePartedOffAndThePlanStillStands) {
 }
 
 // A round of tips where some tips leave their faces, or the faces given them, more places narrower
-// than W than before is tried again without those: on the 48 x 24 sphere at W = 3 mm the first
-// round's cuts leave more places than they part, and are all refused.
+// than W than before is tried again without those: on the 48 x 24 sphere at W = 4 mm the first
+// round's cuts leave more places than they part, and are all refused (at W = 3 mm, since junctions
+// move onto level contours past the pixel edges beside a third face, the whole round is taken).
 TEST(DesignTips, ARoundWhoseTipsMakeNarrowPlacesIsTriedAgainWithoutThem) {
   DesignOptions options;
   options.tip_rounds = 0;
-  options.slice.min_strip_mm = 3;
+  options.slice.min_strip_mm = 4;
   const DesignResult supported =
       design(LoadedMesh{.mesh = test::sphere({0, 0, 0}, 1, 48, 24), .format = "obj"}, options);
   const double W = options.slice.min_strip_mm;

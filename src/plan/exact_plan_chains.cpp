@@ -205,8 +205,8 @@ std::optional<PieceEnd> fold_end_on_edge(const Chain& chain, CornerSpan span, bo
 }
 
 // A fold's end slides along its line at most this far to where the cut piece leaving it, as drawn,
-// meets the line (half a pixel, one or two leave the 37 models' sliced plans the same to 3 narrow
-// chords in 61,000).
+// meets the line. Slides of at most 0.5, 1 and 2 px left the 37 models' sliced plans at W = 3 mm the
+// same to 3 of their 61,000 chords under W.
 constexpr double kFoldEndSlide_px = 1.0;
 
 // Where the cut piece `span` of a chain, leaving a fold run at its front end (front) or its back
@@ -215,10 +215,11 @@ constexpr double kFoldEndSlide_px = 1.0;
 // corner to the line (a cut arriving slanted at the corner met the connector in a notch). Not where
 // the cut turns back over the fold (the run goes `forward`, +1 or -1 along X, towards the piece's
 // front end or from its back end): the two would meet at an acute corner, a tip of the face there.
-// With loops closed on their breaks (chain_points.cpp), the 37 models' sliced plans (no supports)
-// at W = 3 mm: places narrower than W 4,540 -> 4,515, the chords narrower than W across them (the
-// validator's "such places") 63,772 -> 60,913; as finished, 3,909 -> 3,921 and 49,500 -> 46,673,
-// the likeness the same (without the tips parted, 4,141 -> 4,143 places).
+// Only at a run's ends inside the chain (a junction's moves are junction_moves.cpp's). With this
+// and loops closed on their breaks (chain_points.cpp), the 37 models' sliced plans (no supports)
+// at W = 3 mm: places narrower than W 4,540 -> 4,515, the chords under W across them 63,772 ->
+// 60,913; as finished, 3,909 -> 3,921 and 49,500 -> 46,673, the likeness the same (without the
+// tips parted, 4,141 -> 4,143 places): most faces that lose a notch stay narrow elsewhere.
 std::optional<PieceEnd> fold_end_along_cut(const Chain& chain, CornerSpan span, bool front, int forward,
                                            const FoldAt& fold, const ChainDrawing& drawing,
                                            std::optional<PieceEnd> far_end) {
@@ -238,9 +239,13 @@ std::optional<PieceEnd> fold_end_along_cut(const Chain& chain, CornerSpan span, 
   const std::array<double, 2> q = at(front ? 0 : points.size() - 1), p = at(front ? 1 : points.size() - 2);
   const double dy = q[1] - p[1];
   if (dy == 0 || (front ? p[0] - q[0] : q[0] - p[0]) * forward < 0) return std::nullopt;
-  const double t = (fold.Y - q[1]) / dy;
-  const double X = q[0] + t * (q[0] - p[0]);
-  if (!(t > -1) || !(std::abs(X - q[0]) <= kFoldEndSlide_px * lattice.px_mm)) return std::nullopt;
+  const double back = (fold.Y - q[1]) / dy;  // how far back along the segment, in its lengths
+  const double X = q[0] + back * (q[0] - p[0]);
+  if (!(back > -1) || !(std::abs(X - q[0]) <= kFoldEndSlide_px * lattice.px_mm)) return std::nullopt;
+  // A slide under a micrometre (a cut square to the fold) keeps the corner's own X, exactly.
+  const LatticePoint corner = front ? piece.corners.front() : piece.corners.back();
+  if (std::abs(X - lattice.X(corner.u)) < chains::kLeastMove_mm)
+    return PieceEnd{Point(lattice.exact(corner.u, corner.v).x(), fold.exact_Y), {lattice.X(corner.u), fold.Y}};
   return PieceEnd{Point(FT(X), fold.exact_Y), {X, fold.Y}};
 }
 
@@ -342,6 +347,7 @@ std::vector<chains::ChainEnds> chain_ends(const ArrangementInput& in, const std:
     const Chain& chain = in.chains[i];
     const RasterFace &a = in.faces[static_cast<std::size_t>(chain.left)],
                      &b = in.faces[static_cast<std::size_t>(chain.right)];
+    ends[i].beside_support = bounds_support(chain, in.faces);
     if (fallback[i] != Fallback::None || in.simplify_mm <= 0) {
       ends[i].pinned = true;
     } else if (a.orientation != b.orientation && !a.hole && !b.hole) {

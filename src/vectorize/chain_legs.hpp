@@ -31,7 +31,10 @@ struct Leg {
 
 // The chain's leg at its front (or back): its first edges along one lattice line, or else their
 // points on the picture's break, if they lie on one line (a model edge).
-std::optional<Leg> leg_of(const Chain& chain, bool front, const LatticeScale& lattice, const PictureBreaks& breaks);
+// Past up to `lattice_edges` edges at the end off the break (a level contour stays on the pixel edges
+// within a pixel of a third face), the leg is the run on the break after them.
+std::optional<Leg> leg_of(const Chain& chain, bool front, const LatticeScale& lattice, const PictureBreaks& breaks,
+                          std::size_t lattice_edges = 0);
 
 // Whether two lattice points are one; whether a chain closes on itself (no junctions); whether it
 // is a single pixel edge (its junctions one place on the model's edge).

@@ -45,7 +45,8 @@ ChainPoint edge_point(LatticePoint a, LatticePoint b, const LatticeScale& lattic
 
 // The chain's leg at its front (or back): its first edges along one lattice line, or else their
 // points on the picture's break, if they lie on one line (a model edge).
-std::optional<Leg> leg_of(const Chain& chain, bool front, const LatticeScale& lattice, const PictureBreaks& breaks) {
+std::optional<Leg> leg_of(const Chain& chain, bool front, const LatticeScale& lattice, const PictureBreaks& breaks,
+                          std::size_t lattice_edges) {
   constexpr std::size_t kEdges = 3;  // 0.75 mm at 4 px/mm: a curve of radius 70 mm bends 0.001 mm in it
   const std::size_t n = chain.corners.size();
   const auto corner = [&](std::size_t k) { return chain.corners[front ? k : n - 1 - k]; };
@@ -62,11 +63,17 @@ std::optional<Leg> leg_of(const Chain& chain, bool front, const LatticeScale& la
   };
   if ((along_u || along_v) && std::ranges::none_of(points, off_line))
     return Leg{lattice.X(j.u), lattice.Y(j.v), along_u ? 1.0 : 0.0, along_u ? 0.0 : 1.0, false, j};
-  if (!std::ranges::all_of(points, &ChainPoint::on_break)) return std::nullopt;
+  std::size_t skip = 0;
+  while (skip < lattice_edges && skip < points.size() && !points[skip].on_break) ++skip;
   // On the model's edge only as simplified draws it: a run of kMinBreakRun edges from the end.
-  if (n - 1 < kMinBreakRun) return std::nullopt;
-  for (std::size_t k = 0; k < kMinBreakRun; ++k)
+  if (n - 1 < skip + kMinBreakRun) return std::nullopt;
+  for (std::size_t k = skip; k < skip + kMinBreakRun; ++k)
     if (!edge_point(corner(k), corner(k + 1), lattice, breaks).on_break) return std::nullopt;
+  if (skip > 0) {
+    points.clear();
+    for (std::size_t k = skip; k < skip + kEdges; ++k)
+      points.push_back(edge_point(corner(k), corner(k + 1), lattice, breaks));
+  }
   const ChainPoint &a = points.front(), &b = points.back();
   const double length = std::hypot(b.X - a.X, b.Y - a.Y);
   if (!(length > 0)) return std::nullopt;
@@ -351,7 +358,7 @@ DrawnChain simplified(const Chain& chain, const LatticeScale& lattice, const Pic
   // went out to the lattice corner and back, a spike a fraction of a pixel long (seedlike/sphere:
   // one on each ring). It starts and ends on its first edge's point instead.
   if (is_loop(chain) && !moved_ends[0] && !moved_ends[1] && c.points.size() > 3 && c.points[1].on_break &&
-      !c.fixed[1]) {
+      c.points[c.points.size() - 2].on_break && !c.fixed[1]) {
     c.points.erase(c.points.begin());
     c.fixed.erase(c.fixed.begin());
     c.points.back() = c.points.front();

@@ -91,6 +91,7 @@ struct MovedJunction {
 /// contour); an end that snaps onto the chain's fold line (at plan Y) moves only along that line.
 struct ChainEnds {
   bool pinned = false;
+  bool beside_support = false;  // a support's side, W wide on the lattice: its junctions stay on it
   std::array<std::optional<double>, 2> fold_Y = {};  // front, back
 };
 
@@ -99,14 +100,14 @@ struct JunctionMoves {
   std::vector<bool> collapsed;  // per chain: a short chain whose ends moved to one point: no line
 };
 
-/// Junctions moved less than a pixel: those that chains on breaks place on the model's edge, and
-/// those that folds snapping there place on their line. Junctions joined by chains of one pixel
-/// edge move as one, to one point, and those chains vanish. A straight run down a lattice column
-/// whose one end moved across it takes its other end along the fold line that end lies on, as far.
-/// A junction of one corner that no model edge passes, where the chains that snap onto their folds
-/// all snap onto one line, moves square onto that line; a straight run along a lattice row from a
-/// junction moved onto a fold's line takes its other junction onto that line too, square.
-/// Nothing moves where the picture's breaks are not known. `ends` has each chain's rule for its ends.
+/// Junctions moved less than a pixel: those that chains on breaks place on the model's edge (a level
+/// contour's leg taken past the two pixel edges it keeps on the lattice beside a third face, except
+/// where a support's side ends), and those that folds snapping there place on their line. Junctions joined by chains of
+/// one pixel edge move as one, to one point, and those chains vanish. A straight run down a lattice column whose one
+/// end moved across it takes its other end along the fold line that end lies on, as far. A junction of one corner that
+/// no model edge passes, where the chains that snap onto their folds all snap onto one line, moves square onto that
+/// line; a straight run along a lattice row from a junction moved onto a fold's line takes its other junction onto that
+/// line too, square. Nothing moves where the picture's breaks are not known. `ends` has each chain's rule for its ends.
 /// \pre ends.size() == chains.size().
 JunctionMoves moved_junctions(const std::vector<Chain>& chains, const LatticeScale& lattice,
                               const PictureBreaks& breaks, const std::vector<ChainEnds>& ends);
