@@ -42,6 +42,15 @@ struct StaircaseOnAnEdge {
   }
   chains::PictureBreaks breaks() const { return {right, below}; }
   double off_edge(double X, double Y) const { return std::abs(X + Y - c) / std::sqrt(2.0); }
+  // The junction where the row leaves the staircase moved, alone, along the row onto the edge.
+  void expect_row_start_moved_onto_edge(const chains::JunctionMoves& moves) const {
+    ASSERT_EQ(moves.moved.size(), 1u);
+    const chains::MovedJunction& m = moves.moved[0];
+    EXPECT_EQ(m.corner.u, row.corners.front().u);
+    EXPECT_EQ(m.corner.v, row.corners.front().v);
+    EXPECT_EQ(m.v_on_lattice, m.corner.v);
+    EXPECT_NEAR(m.X, c - lattice.Y(m.corner.v), 1e-9);
+  }
   // A corner moved across to the edge, along X.
   std::array<double, 2> on_edge(LatticePoint corner) const {
     const double Y = lattice.Y(corner.v);
@@ -130,12 +139,7 @@ TEST(ChainPoints, AJunctionMovesToWhereTheModelsEdgeMeetsTheLineBesideIt) {
   const StaircaseOnAnEdge s;
   const std::vector<Chain> chains = {s.stairs, s.row};
   const chains::JunctionMoves moves = chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}});
-  ASSERT_EQ(moves.moved.size(), 1u);
-  const chains::MovedJunction& m = moves.moved[0];
-  EXPECT_EQ(m.corner.u, s.row.corners.front().u);
-  EXPECT_EQ(m.corner.v, s.row.corners.front().v);
-  EXPECT_EQ(m.v_on_lattice, m.corner.v);
-  EXPECT_NEAR(m.X, s.c - s.lattice.Y(m.corner.v), 1e-9);
+  s.expect_row_start_moved_onto_edge(moves);
   EXPECT_EQ(moves.collapsed, (std::vector<bool>{false, false}));
   const chains::JunctionMoves pinned = chains::moved_junctions(chains, s.lattice, s.breaks(), {{.pinned = true}, {}});
   EXPECT_TRUE(pinned.moved.empty());
@@ -281,13 +285,7 @@ TEST(ChainPoints, AJunctionsLegReachesPastTheContoursLastPixelEdgesUnlessBesideA
   StaircaseOnAnEdge s;
   s.right(s.steps, s.steps) = s.below(s.steps, s.steps - 1) = std::numeric_limits<float>::quiet_NaN();
   const std::vector<Chain> chains = {s.stairs, s.row};
-  const chains::JunctionMoves moves = chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}});
-  ASSERT_EQ(moves.moved.size(), 1u);
-  const chains::MovedJunction& m = moves.moved[0];
-  EXPECT_EQ(m.corner.u, s.row.corners.front().u);
-  EXPECT_EQ(m.corner.v, s.row.corners.front().v);
-  EXPECT_EQ(m.v_on_lattice, m.corner.v);
-  EXPECT_NEAR(m.X, s.c - s.lattice.Y(m.corner.v), 1e-9);
+  s.expect_row_start_moved_onto_edge(chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}}));
   EXPECT_TRUE(chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {.beside_support = true}}).moved.empty());
   // Three edges off the break are more than a contour keeps beside a third face: no leg, no move.
   s.right(s.steps - 1, s.steps - 1) = std::numeric_limits<float>::quiet_NaN();

@@ -28,6 +28,7 @@ struct PieceEnd {
   Point exact;
   std::array<double, 2> near;  // its nearest doubles
 };
+using PieceEnds = std::array<std::optional<PieceEnd>, 2>;  // a piece's front and back
 
 // Junctions moved onto the model's edges or their folds' lines (chains::moved_junctions), exactly,
 // by their corner.
@@ -123,8 +124,7 @@ bool bounds_support(const Chain& chain, const std::vector<RasterFace>& faces) {
 // chain's run so moved, not only supports', res_bunny_low's supports at W = 2 mm ran to the round
 // bound (p95 1.11 -> 6.82 W).
 std::vector<std::optional<FT>> rows_following_ends(const Chain& piece, const std::vector<ChainPoint>& points,
-                                                   const std::array<std::optional<PieceEnd>, 2>& ends,
-                                                   const Lattice& lattice) {
+                                                   const PieceEnds& ends, const Lattice& lattice) {
   std::vector<std::optional<FT>> run_Y(points.size());
   for (const bool front : {true, false}) {
     const std::optional<PieceEnd>& end = ends[front ? 0 : 1];
@@ -139,12 +139,16 @@ std::vector<std::optional<FT>> rows_following_ends(const Chain& piece, const std
   return run_Y;
 }
 
-// A cut piece of a chain as simplified draws it, its ends where given or where their junctions moved
-// (`ends` are filled in so).
-chains::DrawnChain drawn_piece(const Chain& piece, const ChainDrawing& drawing,
-                               std::array<std::optional<PieceEnd>, 2>& ends) {
+// Where a cut piece's ends are drawn: where given, else where their junctions moved (none: on their
+// corners).
+PieceEnds piece_ends(const Chain& piece, const ChainDrawing& drawing, PieceEnds ends) {
   if (!ends[0]) ends[0] = drawing.junctions.moved(piece.corners.front());
   if (!ends[1]) ends[1] = drawing.junctions.moved(piece.corners.back());
+  return ends;
+}
+
+// A cut piece of a chain as simplified draws it, its ends at `ends` (piece_ends).
+chains::DrawnChain drawn_piece(const Chain& piece, const ChainDrawing& drawing, const PieceEnds& ends) {
   const auto near = [](const std::optional<PieceEnd>& end) { return end ? std::optional(end->near) : std::nullopt; };
   // A support is W wide on the pixel lattice. Simplified through its pixel edges' midpoints, a side
   // meeting a staircase lost half a pixel at the corner (the sphere's supports 2.875 mm wide at W =
@@ -156,11 +160,12 @@ chains::DrawnChain drawn_piece(const Chain& piece, const ChainDrawing& drawing,
 }
 
 void add_cut(const Chain& chain, CornerSpan span, const ChainDrawing& drawing, Curves& curves,
-             std::array<std::optional<PieceEnd>, 2> ends = {}) {
+             const PieceEnds& given = {}) {
   if (span.to <= span.from) return;
   const Chain piece = piece_of(chain, span);
   const Lattice& lattice = drawing.lattice;
   const bool support_edge = bounds_support(chain, drawing.faces);
+  const PieceEnds ends = piece_ends(piece, drawing, given);
   const chains::DrawnChain drawn = drawn_piece(piece, drawing, ends);
   const std::vector<ChainPoint>& points = drawn.points;
   curves.off_model_edges_mm = std::max(curves.off_model_edges_mm, drawn.off_edge_mm);
@@ -226,8 +231,9 @@ std::optional<PieceEnd> fold_end_along_cut(const Chain& chain, CornerSpan span, 
   if (span.to <= span.from) return std::nullopt;
   const Chain piece = piece_of(chain, span);
   const Lattice& lattice = drawing.lattice;
-  std::array<std::optional<PieceEnd>, 2> ends;
-  ends[front ? 1 : 0] = std::move(far_end);
+  PieceEnds given;
+  given[front ? 1 : 0] = std::move(far_end);
+  const PieceEnds ends = piece_ends(piece, drawing, given);
   const std::vector<ChainPoint> points = drawn_piece(piece, drawing, ends).points;
   if (points.size() < 2) return std::nullopt;
   const auto at = [&](std::size_t k) {
