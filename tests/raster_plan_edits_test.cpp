@@ -138,14 +138,35 @@ TEST(RasterPlanEdits, APlaneMovedTakesItsFoldsToItsNewLines) {
 // The face moved gives rows at one fold as it takes as many at the other: its run is counted as the
 // move leaves it. H(4) rows 0-21, V(2) rows 22-37 (16 rows), the floor below; the V face half a
 // millimetre back takes rows 20-21 and gives rows 36-37, keeping 16 (14 beyond the rows it gives on
-// the plan before the move).
+// the plan before the move). Its run was 16 before too: asked to keep 17, it is narrower than that
+// already, and the move leaves it no narrower.
 TEST(RasterPlanEdits, AFaceMovedKeepsItsRunAsTheMoveLeavesIt) {
   const PixelGrid grid = three_columns(60, 30);
   const RasterPlan s = v_between_h_and_floor(grid);
   const std::optional<RasterPlan> moved = move_plane(s, grid, 3, 1.5, 0.3, 16);
   ASSERT_TRUE(moved.has_value());
   expect_columns(*moved, grid, 20, 36);
-  EXPECT_FALSE(move_plane(s, grid, 3, 1.5, 0.3, 17).has_value());  // it keeps 16 of 17
+  const std::optional<RasterPlan> narrow_before = move_plane(s, grid, 3, 1.5, 0.3, 17);
+  ASSERT_TRUE(narrow_before.has_value());
+  EXPECT_EQ(narrow_before->face.values, moved->face.values);
+}
+
+// A face whose run in a column is shorter than `min_run_px` before the move is a place narrower than
+// W already: it may give rows there, keeping one at least. H(4) rows 0-11 (12 rows): the V face half
+// a millimetre back takes its rows 10-11.
+TEST(RasterPlanEdits, AFaceNarrowerThanTheRunAlreadyMayGiveRows) {
+  const PixelGrid grid = three_columns(40, 20);
+  const RasterPlan s = v_between_h_and_floor(grid);
+  EXPECT_FALSE(move_plane(s, grid, 3, 1.5, 0.3, 12).has_value());                // 12 rows before: it would keep 10
+  const std::optional<RasterPlan> moved = move_plane(s, grid, 3, 1.5, 0.3, 13);  // 12 of 13 before
+  ASSERT_TRUE(moved.has_value());
+  expect_columns(*moved, grid, 10, 26);
+  // Its rows all given, it would keep none: the V face 1.75 mm back would take 7 rows of the H
+  // face, which has 6 (rows 6-11).
+  RasterPlan thin = s;
+  for (int c = 0; c < grid.cols; ++c)
+    for (int r = 0; r < 6; ++r) thin.face(c, r) = kBackFace;
+  EXPECT_FALSE(move_plane(thin, grid, 3, 0.25, 0.3, 13).has_value());
 }
 
 // A fold moves only where the face giving rows keeps `min_run_px` of them (a tread no narrower), and

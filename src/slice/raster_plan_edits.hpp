@@ -55,8 +55,9 @@ RasterPlan align_folds_to_lines(RasterPlan raster_plan, const PixelGrid& grid, d
 /// it lay on the one nearest the old, as many rows off it where it lay off it), f taking the
 /// other's pixels or giving it its own.
 /// Nothing where a fold cannot move so: a face giving pixels would keep fewer than `min_run_px`
-/// rows (one at least) of its run in the column, counted as all the folds' moves leave it (f gives
-/// rows at one fold as it takes as many at the other), or a third face lies between the old and the new
+/// rows of its run in the column, counted as all the folds' moves leave it (f gives rows at one
+/// fold as it takes as many at the other), where its run there had as many before; or no row at
+/// all; or a third face lies between the old and the new
 /// line, or the new line lies off the sheet; or where the move leaves a face in more 4-connected
 /// parts than it was. `columns` (first, last), if given, holds every column of f: only those are
 /// searched for its folds. \pre f is a face of the plan, not the back plane, the floor or a hole.
