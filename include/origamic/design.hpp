@@ -40,7 +40,8 @@ struct DesignOptions {
   int tip_rounds = 3;
   // Once supports hold every face, faces whose planes show the model far off (a round shaft's
   // slices given one plane) move to the plane that shows it best, where the plan still stands
-  // (refit_planes, src/design/plane_refit.hpp); false leaves the plan as supported.
+  // (refit_planes, src/design/plane_refit.hpp), pass after pass, each frame's plan (supports.hpp)
+  // before the frames are compared; false leaves the plan as supported.
   bool refit_planes = true;
   // Then, where a strip lies between two folds closer than W, one of the faces beside it moves its
   // plane to W from the other's (spread_fold_pairs, src/design/fold_spacing.hpp), where the plan

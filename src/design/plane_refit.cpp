@@ -182,14 +182,18 @@ PlanFares plan_fares(const RasterMaps& maps, const Plan& plan, double W, bool al
   return {!plan_stands(plan, allow_dangling), l.p95_W, l.mean_W};
 }
 
-SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, const Sheet& sheet,
-                           const PlanOptions& plan_options, bool allow_dangling, const PlaneRefitOptions& options) {
+namespace {
+
+// One pass: the planes found on the plan as given, their exact plan kept where it stands and shows
+// the model better. Returns whether it was.
+bool refit_pass(const RasterMaps& maps, SupportedPlan& supported, const Sheet& sheet, const PlanOptions& plan_options,
+                bool allow_dangling, const PlaneRefitOptions& options) {
   const double W = supported.raster_plan.min_strip_mm;
   const auto fares = [&](const Plan& plan) { return plan_fares(maps, plan, W, allow_dangling); };
   // A boundary the exact plan snaps onto its fold line is a fold to move (exact_plan.cpp).
   const double fold_tolerance = fold_snap_tolerance_mm(plan_options, supported.raster_plan, maps.grid);
   std::vector<PlaneMove> moves = find_planes(maps, supported.raster_plan, fold_tolerance, allow_dangling, options);
-  if (moves.empty()) return supported;
+  if (moves.empty()) return false;
   const auto before = fares(supported.plan);
   for (int build = 0; build < options.exact_builds && !moves.empty(); ++build) {
     // The moves again from the plan as supported, one after another as they were found.
@@ -216,7 +220,7 @@ SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, cons
         const RasterFace& face = supported.raster_plan.faces[static_cast<std::size_t>(made[i].face)];
         report.planes_refit.push_back({made[i].at, face.orientation, face.support, made[i].from_mm, made[i].to_mm});
       }
-      return supported;
+      return true;
     }
     // Where the plan no longer stands, each face moved that it leaves unheld takes back its last
     // move (the exact plan's faces are the raster plan's, by index), and the rest is tried again:
@@ -234,6 +238,15 @@ SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, cons
     if (kept.size() == made.size()) break;
     moves = std::move(kept);
   }
+  return false;
+}
+
+}  // namespace
+
+SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, const Sheet& sheet,
+                           const PlanOptions& plan_options, bool allow_dangling, const PlaneRefitOptions& options) {
+  for (int pass = 0; pass < options.passes; ++pass)
+    if (!refit_pass(maps, supported, sheet, plan_options, allow_dangling, options)) break;
   return supported;
 }
 
