@@ -460,7 +460,7 @@ TEST(Cli, TheReportSaysWhichFramesTheSupportsWereChosenIn) {
   const CommandRun tower =
       run("design " + quoted(test::models_dir() / "arch_water_tower.obj") + " --up y --out " + quoted(dir.path));
   ASSERT_EQ(tower.status, 0) << tower.output;
-  EXPECT_EQ(nlohmann::json::parse(std::ifstream(dir / "arch_water_tower.json"))["supports"]["frames"], 2);
+  EXPECT_GE(nlohmann::json::parse(std::ifstream(dir / "arch_water_tower.json"))["supports"]["frames"], 2);
   const CommandRun chapel =
       run("design " + quoted(test::models_dir() / "seedlike/chapel.stl") + " --up z --out " + quoted(dir.path));
   ASSERT_EQ(chapel.status, 0) << chapel.output;

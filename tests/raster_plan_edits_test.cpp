@@ -161,12 +161,18 @@ TEST(RasterPlanEdits, AFaceNarrowerThanTheRunAlreadyMayGiveRows) {
   const std::optional<RasterPlan> moved = move_plane(s, grid, 3, 1.5, 0.3, 13);  // 12 of 13 before
   ASSERT_TRUE(moved.has_value());
   expect_columns(*moved, grid, 10, 26);
-  // Its rows all given, it would keep none: the V face 1.75 mm back would take 7 rows of the H
-  // face, which has 6 (rows 6-11).
+  // It keeps one row at least: of an H face of 6 rows (6-11), the V face 1.25 mm back takes 5 and
+  // leaves row 6; 1.5 mm back it would take all 6.
   RasterPlan thin = s;
   for (int c = 0; c < grid.cols; ++c)
     for (int r = 0; r < 6; ++r) thin.face(c, r) = kBackFace;
-  EXPECT_FALSE(move_plane(thin, grid, 3, 0.25, 0.3, 13).has_value());
+  const std::optional<RasterPlan> one_left = move_plane(thin, grid, 3, 0.75, 0.3, 13);
+  ASSERT_TRUE(one_left.has_value());
+  for (int c = 0; c < grid.cols; ++c) {
+    EXPECT_EQ(one_left->face(c, 6), 2);
+    EXPECT_EQ(one_left->face(c, 7), 3);
+  }
+  EXPECT_FALSE(move_plane(thin, grid, 3, 0.5, 0.3, 13).has_value());
 }
 
 // A fold moves only where the face giving rows keeps `min_run_px` of them (a tread no narrower), and

@@ -67,7 +67,8 @@ constexpr double kTipsMayAddP95_W = 0.05, kTipsMayAddMean_W = 0.02;
 // seedlike/chapel 3.03 -> 3.62 W). Capped by the error the join leaves rather than the error it
 // adds, res_knot went to 2.06 W but arch_city_block to 4.75 W, arch_pavilion_csg to 3.17 W. Tried
 // without the model faces' condition, seedlike/chapel (its p95 a support's: the door's slot) took a
-// third try that gained nothing, and 0.5 s.
+// third try that gained nothing, and 0.5 s. The joins are the supports' (before the planes are
+// refit), the p95 the refit plan's: a refit moves planes, it joins no face.
 constexpr double kCappedJoin_W = 3.0, kCascadeShare = 0.01;
 
 // The share of the model covered by a plan's faces whose joins to neighbours added more than

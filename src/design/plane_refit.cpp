@@ -184,53 +184,45 @@ PlanFares plan_fares(const RasterMaps& maps, const Plan& plan, double W, bool al
 
 namespace {
 
-// One pass: the planes found on the plan as given, their exact plan kept where it stands and shows
-// the model better. Returns whether it was.
-bool refit_pass(const RasterMaps& maps, SupportedPlan& supported, const Sheet& sheet, const PlanOptions& plan_options,
-                bool allow_dangling, const PlaneRefitOptions& options) {
-  const double W = supported.raster_plan.min_strip_mm;
+// A pass's plan: the raster plan with the planes moved, its exact plan, and the moves made, in order.
+struct RefitPass {
+  RasterPlan raster_plan;
+  Plan plan;
+  std::vector<PlaneMove> made;
+};
+
+// One pass: the planes found on the plan given, the exact plan of their moves if it stands and shows
+// the model better than the plan given; none else.
+std::optional<RefitPass> refit_pass(const RasterMaps& maps, const SupportedPlan& given, const Sheet& sheet,
+                                    const PlanOptions& plan_options, bool allow_dangling,
+                                    const PlaneRefitOptions& options) {
+  const double W = given.raster_plan.min_strip_mm;
   const auto fares = [&](const Plan& plan) { return plan_fares(maps, plan, W, allow_dangling); };
   // A boundary the exact plan snaps onto its fold line is a fold to move (exact_plan.cpp).
-  const double fold_tolerance = fold_snap_tolerance_mm(plan_options, supported.raster_plan, maps.grid);
-  std::vector<PlaneMove> moves = find_planes(maps, supported.raster_plan, fold_tolerance, allow_dangling, options);
-  if (moves.empty()) return false;
-  const auto before = fares(supported.plan);
+  const double fold_tolerance = fold_snap_tolerance_mm(plan_options, given.raster_plan, maps.grid);
+  std::vector<PlaneMove> moves = find_planes(maps, given.raster_plan, fold_tolerance, allow_dangling, options);
+  if (moves.empty()) return std::nullopt;
+  const auto before = fares(given.plan);
   for (int build = 0; build < options.exact_builds && !moves.empty(); ++build) {
-    // The moves again from the plan as supported, one after another as they were found.
-    RasterPlan raster_plan = supported.raster_plan;
-    std::vector<PlaneMove> made;
+    // The moves again from the plan given, one after another as they were found.
+    RefitPass pass{given.raster_plan, {}, {}};
     for (const PlaneMove& move : moves)
       if (std::optional<RasterPlan> moved =
-              move_plane(raster_plan, maps.grid, move.face, move.to_mm, fold_tolerance, raster_plan.block_px))
-        raster_plan = std::move(*moved), made.push_back(move);
-    Plan plan = build_plan(maps, raster_plan, sheet, plan_options);
-    const auto fared = fares(plan);
-    if (!fared.fails && fared < before) {
-      supported.raster_plan = std::move(raster_plan);
-      supported.plan = std::move(plan);
-      SupportReport& report = supported.report;
-      report.drawn_in_mirror_image = false;  // drawn here, from the raster plan refit
-      report.narrow = narrow_strips(supported.raster_plan, maps.grid);
-      for (std::size_t i = 0; i < made.size(); ++i) {
-        if (i > 0 && made[i].face == made[i - 1].face) {  // the same face's next turn
-          report.planes_refit.back().to_mm = made[i].to_mm;
-          report.planes_refit.back().at = made[i].at;
-          continue;
-        }
-        const RasterFace& face = supported.raster_plan.faces[static_cast<std::size_t>(made[i].face)];
-        report.planes_refit.push_back({made[i].at, face.orientation, face.support, made[i].from_mm, made[i].to_mm});
-      }
-      return true;
-    }
+              move_plane(pass.raster_plan, maps.grid, move.face, move.to_mm, fold_tolerance, pass.raster_plan.block_px))
+        pass.raster_plan = std::move(*moved), pass.made.push_back(move);
+    pass.plan = build_plan(maps, pass.raster_plan, sheet, plan_options);
+    const auto fared = fares(pass.plan);
+    if (!fared.fails && fared < before) return pass;
     // Where the plan no longer stands, each face moved that it leaves unheld takes back its last
     // move (the exact plan's faces are the raster plan's, by index), and the rest is tried again:
     // the exact plan snaps folds the raster plan's do not show (res_dragon_full: a fold 0.5 mm long
     // under one face moved 0.6 mm; a face moved 3.2 mm, then 1.2 mm more, floated).
     const auto unheld = [&](std::int32_t f) {
-      return needs_support(plan.faces[static_cast<std::size_t>(f)].status, allow_dangling);
+      return needs_support(pass.plan.faces[static_cast<std::size_t>(f)].status, allow_dangling);
     };
     if (!fared.fails) break;
     std::vector<PlaneMove> kept;
+    const std::vector<PlaneMove>& made = pass.made;
     for (std::size_t i = 0; i < made.size(); ++i) {
       const bool last_of_face = i + 1 == made.size() || made[i + 1].face != made[i].face;
       if (!(last_of_face && unheld(made[i].face))) kept.push_back(made[i]);
@@ -238,15 +230,36 @@ bool refit_pass(const RasterMaps& maps, SupportedPlan& supported, const Sheet& s
     if (kept.size() == made.size()) break;
     moves = std::move(kept);
   }
-  return false;
+  return std::nullopt;
 }
 
 }  // namespace
 
 SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, const Sheet& sheet,
                            const PlanOptions& plan_options, bool allow_dangling, const PlaneRefitOptions& options) {
-  for (int pass = 0; pass < options.passes; ++pass)
-    if (!refit_pass(maps, supported, sheet, plan_options, allow_dangling, options)) break;
+  // Per entry of the report's planes_refit, the face it tells of: a face moved again (a later turn
+  // or pass) has its one entry brought up to date.
+  std::vector<std::int32_t> listed;
+  const std::size_t first = supported.report.planes_refit.size();
+  for (int pass = 0; pass < options.passes; ++pass) {
+    std::optional<RefitPass> refit = refit_pass(maps, supported, sheet, plan_options, allow_dangling, options);
+    if (!refit) break;
+    supported.raster_plan = std::move(refit->raster_plan);
+    supported.plan = std::move(refit->plan);
+    SupportReport& report = supported.report;
+    report.drawn_in_mirror_image = false;  // drawn here, from the raster plan refit
+    report.narrow = narrow_strips(supported.raster_plan, maps.grid);
+    for (const PlaneMove& move : refit->made) {
+      if (const auto at = std::ranges::find(listed, move.face); at != listed.end()) {
+        RefitPlane& entry = report.planes_refit[first + static_cast<std::size_t>(at - listed.begin())];
+        entry.to_mm = move.to_mm, entry.at = move.at;
+        continue;
+      }
+      const RasterFace& face = supported.raster_plan.faces[static_cast<std::size_t>(move.face)];
+      report.planes_refit.push_back({move.at, face.orientation, face.support, move.from_mm, move.to_mm});
+      listed.push_back(move.face);
+    }
+  }
   return supported;
 }
 

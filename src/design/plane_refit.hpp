@@ -33,9 +33,9 @@ struct PlaneRefitOptions {
   int exact_builds = 3;
   // Passes, each finding planes on the plan the one before left, until one moves none: faces whose
   // neighbours moved may show the model better from another plane, or move now where a neighbour's
-  // run had refused it. On the 37 models at W = 3 mm, one pass gave a mean p95 of 1.826 W, two 1.808
-  // (seedlike/chapel 1.98 -> 1.80 W, arch_pavilion_csg 2.91 -> 2.73 W), four 1.801 (the pavilion
-  // 2.57 W), eight the same as four; places narrower than W 3,879 -> 3,898.
+  // run had refused it. On the 37 models at W = 3 mm, refit once the frames were chosen, one pass
+  // gave a mean p95 of 1.826 W, two 1.808 (arch_pavilion_csg 2.91 -> 2.73 W), four 1.801 (the
+  // pavilion 2.57 W), eight the same as four; places narrower than W 3,879 -> 3,898.
   int passes = 8;
 };
 

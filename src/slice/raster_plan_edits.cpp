@@ -364,13 +364,14 @@ std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& gr
   // Each face that gave rows keeps min_run_px of its run there, counted as the move leaves it: f
   // moving gives rows at one fold as it takes as many at the other (a support W wide keeps W; on
   // the plan before the move, 107 of the 434 moves refused over the 37 models at W = 3 mm). A face
-  // whose run there was shorter than that before the move is a place narrower than W already, and
-  // keeps a row (above): refused too, the refits and fold spreads of the 37 models at W = 3 mm left
-  // res_knot at 2.13 W (1.99 W so, 15 planes refit against 10) and 183 faces between two folds
-  // closer than W (178 so; 3,880 and 3,879 places narrower than W in all).
+  // whose run there was shorter than min_run_px before the move is a place narrower than W
+  // already: it need only keep a row (kept_row, above). Refusing those too, the refits and fold
+  // spreads of the 37 models at W = 3 mm left res_knot at 2.13 W with 10 planes refit (now 1.99 W,
+  // 15) and 183 faces between two folds closer than W (now 178; places in all 3,880 and 3,879).
   for (const auto& [col, first, last, taker, giver, kept_row, away] : given) {
-    int run_before = 0;
-    for (int row = away > 0 ? first : last; 0 <= row && row < face.rows && plan.face(col, row) == giver; row += away)
+    int run_before = 0;  // from its row beside the old boundary on, up to min_run_px
+    for (int row = away > 0 ? first : last;
+         run_before < min_run_px && 0 <= row && row < face.rows && face(col, row) == giver; row += away)
       ++run_before;
     if (run_before < min_run_px) continue;
     for (int k = 1; k < min_run_px; ++k) {
