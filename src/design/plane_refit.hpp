@@ -45,9 +45,10 @@ struct PlaneRefitOptions {
 /// 95th percentile of error most, or else (a face of the model, not a support) its mean by half a
 /// percent at least, both estimated on the raster plan; its folds move with it (move_plane, no
 /// strip under W left beside them).
-/// The exact plan of the moves is kept where it stands and shows the model better than the plan as
-/// supported (the 95th percentile first, then the mean); then again on the plan kept, up to
-/// options.passes times; the report lists them (SupportReport::planes_refit).
+/// The exact plan of the moves is kept where it stands and shows the model better than the plan it
+/// starts from (the 95th percentile first, then the mean); then planes are found again on the plan
+/// kept, up to options.passes times; the report lists each face moved once
+/// (SupportReport::planes_refit).
 /// \pre W (the raster plan's min_strip_mm) > 0.
 SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, const Sheet& sheet,
                            const PlanOptions& plan_options, bool allow_dangling, const PlaneRefitOptions& options = {});
