@@ -723,7 +723,8 @@ TEST(Plan, TwoDesignsAtOnceTakeTurnsAndGetTheirOwnPlans) {
 // lattice (a dome's level contour leaving the line), the fold ends where the cut as drawn meets the
 // line. A connector from the fold's end up or down the lattice column to the corner the cut was
 // traced from made a notch a fraction of a pixel deep there, and a strip as narrow beside it: on
-// this sphere 10 of them, beside 10 cuts leaving their folds slanted at once (now 14).
+// this sphere 10 of them, beside 10 cuts leaving their folds slanted at once. At least 10 cuts still
+// leave folds slanted (the case is there), and none leaves one by such a notch.
 TEST(Plan, AFoldEndsWhereTheSlantedCutLeavingItMeetsItsLine) {
   const Plan plan = plan_of_oa_mesh(test::sphere({105, 40, 40}, 35, 96, 48));
   expect_exact_construction(plan);

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <set>
 
 #include "helpers.hpp"
 #include "origamic/design.hpp"
@@ -138,8 +139,15 @@ TEST(PlaneRefit, ASecondPassFindsPlanesTheFirstLeft) {
   };
   const SupportedPlan once = refit(supported, 1), twice = refit(supported, 2), all = refit(supported, 8);
   EXPECT_LT(p95_W(once), p95_W(supported));
-  // One entry per face moved, however many passes moved it.
+  // More faces move, each listed once however many passes moved it.
   EXPECT_GT(twice.report.planes_refit.size(), once.report.planes_refit.size());
+  std::set<std::int32_t> listed;
+  const PixelGrid& grid = designed.maps.grid;
+  for (const RefitPlane& moved : twice.report.planes_refit) {
+    const int col = static_cast<int>(moved.at.X * grid.px_per_mm);
+    const int row = static_cast<int>(std::lround(grid.rows_above_fold - 0.5 - moved.at.Y * grid.px_per_mm));
+    EXPECT_TRUE(listed.insert(twice.raster_plan.face(col, row)).second) << moved.at.X << ", " << moved.at.Y;
+  }
   EXPECT_LT(p95_W(twice), p95_W(once));
   EXPECT_LE(p95_W(all), p95_W(twice));
   EXPECT_TRUE(plan_stands(all.plan, dangling));

@@ -184,17 +184,19 @@ PlanFares plan_fares(const RasterMaps& maps, const Plan& plan, double W, bool al
 
 namespace {
 
-// A pass's plan: the raster plan with the planes moved, its exact plan, and the moves made, in order.
+// A pass's plan: the raster plan with the planes moved, its exact plan and how it fares, and the
+// moves made, in order.
 struct RefitPass {
   RasterPlan raster_plan;
   Plan plan;
+  PlanFares fares;
   std::vector<PlaneMove> made;
 };
 
-// One pass: the planes found on the plan given, the exact plan of their moves if it stands and shows
-// the model better than the plan given; none else.
-std::optional<RefitPass> refit_pass(const RasterMaps& maps, const SupportedPlan& given, const Sheet& sheet,
-                                    const PlanOptions& plan_options, bool allow_dangling,
+// One pass: the planes found on the plan given (how it fares, if known), the exact plan of their
+// moves if it stands and shows the model better; none else.
+std::optional<RefitPass> refit_pass(const RasterMaps& maps, const SupportedPlan& given, std::optional<PlanFares> known,
+                                    const Sheet& sheet, const PlanOptions& plan_options, bool allow_dangling,
                                     const PlaneRefitOptions& options) {
   const double W = given.raster_plan.min_strip_mm;
   const auto fares = [&](const Plan& plan) { return plan_fares(maps, plan, W, allow_dangling); };
@@ -202,16 +204,17 @@ std::optional<RefitPass> refit_pass(const RasterMaps& maps, const SupportedPlan&
   const double fold_tolerance = fold_snap_tolerance_mm(plan_options, given.raster_plan, maps.grid);
   std::vector<PlaneMove> moves = find_planes(maps, given.raster_plan, fold_tolerance, allow_dangling, options);
   if (moves.empty()) return std::nullopt;
-  const auto before = fares(given.plan);
+  const PlanFares before = known ? *known : fares(given.plan);
   for (int build = 0; build < options.exact_builds && !moves.empty(); ++build) {
     // The moves again from the plan given, one after another as they were found.
-    RefitPass pass{given.raster_plan, {}, {}};
+    RefitPass pass{given.raster_plan, {}, {}, {}};
     for (const PlaneMove& move : moves)
       if (std::optional<RasterPlan> moved =
               move_plane(pass.raster_plan, maps.grid, move.face, move.to_mm, fold_tolerance, pass.raster_plan.block_px))
         pass.raster_plan = std::move(*moved), pass.made.push_back(move);
     pass.plan = build_plan(maps, pass.raster_plan, sheet, plan_options);
-    const auto fared = fares(pass.plan);
+    pass.fares = fares(pass.plan);
+    const PlanFares& fared = pass.fares;
     if (!fared.fails && fared < before) return pass;
     // Where the plan no longer stands, each face moved that it leaves unheld takes back its last
     // move (the exact plan's faces are the raster plan's, by index), and the rest is tried again:
@@ -240,15 +243,15 @@ SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, cons
   // Per entry of the report's planes_refit, the face it tells of: a face moved again (a later turn
   // or pass) has its one entry brought up to date.
   std::vector<std::int32_t> listed;
-  const std::size_t first = supported.report.planes_refit.size();
+  SupportReport& report = supported.report;
+  const std::size_t first = report.planes_refit.size();
+  std::optional<PlanFares> fares;  // the plan's, once a pass has built it
   for (int pass = 0; pass < options.passes; ++pass) {
-    std::optional<RefitPass> refit = refit_pass(maps, supported, sheet, plan_options, allow_dangling, options);
+    std::optional<RefitPass> refit = refit_pass(maps, supported, fares, sheet, plan_options, allow_dangling, options);
     if (!refit) break;
     supported.raster_plan = std::move(refit->raster_plan);
     supported.plan = std::move(refit->plan);
-    SupportReport& report = supported.report;
-    report.drawn_in_mirror_image = false;  // drawn here, from the raster plan refit
-    report.narrow = narrow_strips(supported.raster_plan, maps.grid);
+    fares = refit->fares;
     for (const PlaneMove& move : refit->made) {
       if (const auto at = std::ranges::find(listed, move.face); at != listed.end()) {
         RefitPlane& entry = report.planes_refit[first + static_cast<std::size_t>(at - listed.begin())];
@@ -259,6 +262,10 @@ SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, cons
       report.planes_refit.push_back({move.at, face.orientation, face.support, move.from_mm, move.to_mm});
       listed.push_back(move.face);
     }
+  }
+  if (!listed.empty()) {
+    report.drawn_in_mirror_image = false;  // drawn here, from the raster plan refit
+    report.narrow = narrow_strips(supported.raster_plan, maps.grid);
   }
   return supported;
 }

@@ -91,7 +91,9 @@ struct MovedJunction {
 /// contour); an end that snaps onto the chain's fold line (at plan Y) moves only along that line.
 struct ChainEnds {
   bool pinned = false;
-  bool beside_support = false;  // a support's side, W wide on the lattice: its junctions stay on it
+  // A support's side ends here (W wide on the lattice): a leg on a level contour does not reach
+  // past the contour's last pixel edges (junction_moves.cpp), which tilted the support.
+  bool beside_support = false;
   std::array<std::optional<double>, 2> fold_Y = {};  // front, back
 };
 
