@@ -142,5 +142,25 @@ TEST(Likeness, RemovedAndUnplacedRegionsAreHoles) {
   EXPECT_DOUBLE_EQ(l.coverage, 0.0);
 }
 
+TEST(Likeness, AFaceNarrowerThanWEverywhereHoldsNoDiscWAcross) {
+  // At 4 px/mm, W = 3 mm is 12 pixels: a face 3 mm wide holds a disc 12 pixels across, one 2.5 mm
+  // wide does not, however long, and one with a 2 mm tip beside a 5 mm body does.
+  const PixelGrid grid{.cols = 200, .rows = 200, .px_per_mm = 4, .rows_above_fold = 100};
+  const auto box = [](double X0, double X1, double Y0, double Y1) {
+    PlanRegion region;
+    region.rings = {{{X0, Y0}, {X1, Y0}, {X1, Y1}, {X0, Y1}}};
+    region.placed = true;
+    return region;
+  };
+  PlanRegion tipped;
+  tipped.rings = {{{10, -20}, {15, -20}, {15, -10}, {12, -10}, {12, 10}, {10, 10}}};
+  const std::vector<PlanRegion> regions = {box(10, 13, 1, 21), box(20, 22.5, 1, 41), tipped};
+  const std::vector<double> discs = widest_discs_px(grid, regions);
+  ASSERT_EQ(discs.size(), 3u);
+  EXPECT_DOUBLE_EQ(discs[0], 12);
+  EXPECT_DOUBLE_EQ(discs[1], 10);
+  EXPECT_GE(discs[2], 20);
+}
+
 }  // namespace
 }  // namespace origamic

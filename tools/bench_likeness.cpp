@@ -9,7 +9,8 @@
 // time of the design and, of those places, the ones between two parallel folds less than W apart
 // (PlanProblem::folds_apart_mm), then the means, and the chords narrower than W across all the
 // places (PlanProblem::narrow_chords), which falls where a face loses a notch but stays narrow
-// elsewhere;
+// elsewhere, and the faces narrower than W everywhere (`thin`: no disc W across fits in them, to a
+// pixel, widest_discs_px: slivers and strips, not faces narrow only at a tip or a notch);
 // writes OUT_DIR/contact_sheet.png (per model: the model, the pop-up, the plan) and each model's
 // pictures and DXF under OUT_DIR/models/.
 #include <cairo.h>
@@ -88,6 +89,7 @@ struct Row {
   int narrow = 0;                                 // places narrower than W, read back
   int parallel = 0;                               // of them, between two parallel folds under W apart
   int chords = 0;                                 // the chords narrower than W across those places
+  int thin = 0;  // faces (regions, read back) narrower than W everywhere: no disc W across fits, to a pixel
   double design_s = 0;
   // Where the card is more than 2 W off its model: shares of the model's pixels showing a face of
   // the model, a support, the back plane or floor, or a hole (the finished card, as designed).
@@ -251,6 +253,12 @@ Row measure(const Model& model, const DesignOptions& base, const fs::path& out, 
   for (const PlanProblem& p : analysis.problems) row.chords += p.narrow_chords;
   row.read_back_stands = analysis.errors == row.narrow;  // a narrow strip is an error; it stands if only those
   row.read_back = likeness(result.maps, card_view(result.maps.grid, analysis.regions, {}), options.slice.min_strip_mm);
+  const std::vector<double> discs = widest_discs_px(result.maps.grid, analysis.regions);
+  for (std::size_t i = 0; i < discs.size(); ++i) {
+    const PlanRegion& region = analysis.regions[i];
+    row.thin += region.placed && region.status != FaceStatus::Removed &&
+                discs[i] < options.slice.min_strip_mm * result.maps.grid.px_per_mm;
+  }
 
   if (where_maps) write_where_map(model, options, result, error, far, out / (stem + "_where.png"));
 
@@ -299,8 +307,9 @@ int main(int argc, char** argv) {
   fs::create_directories(out / "models");
   std::vector<Row> rows;
   std::vector<Cell> cells;
-  std::printf("%-30s %7s %7s %7s %7s %7s %7s %7s %5s %5s %5s %-9s %6s %6s %5s\n", "model", "p95 W", "mean W", "sliced",
-              "p95 rb", "cover", "suppt", "cutout", "faces", "folds", "rm", "stands", "narrow", "time s", "folds<W");
+  std::printf("%-30s %7s %7s %7s %7s %7s %7s %7s %5s %5s %5s %-9s %6s %6s %5s %5s\n", "model", "p95 W", "mean W",
+              "sliced", "p95 rb", "cover", "suppt", "cutout", "faces", "folds", "rm", "stands", "narrow", "time s",
+              "folds<W", "thin");
   for (const Model& model : models_in(models_dir)) {
     const std::string name = name_of(model.file);
     if (!only.empty() && std::ranges::find(only, name) == only.end()) continue;
@@ -324,14 +333,14 @@ int main(int argc, char** argv) {
         row.finished.p95_W, row.sliced.p95_W, row.finished.mean_W, 100 * row.finished.coverage,
         100 * row.finished.support_share, 100 * row.finished.cut_out_share, row.stands ? "stands" : "does not stand");
     cell.numbers = numbers;
-    std::printf("%-30s %7.2f %7.2f %7.2f %7.2f %6.1f%% %6.1f%% %6.2f%% %5d %5d %5d %-9s %6d %6.2f %5d\n", name.c_str(),
-                row.finished.p95_W, row.finished.mean_W, row.sliced.p95_W, row.read_back.p95_W,
+    std::printf("%-30s %7.2f %7.2f %7.2f %7.2f %6.1f%% %6.1f%% %6.2f%% %5d %5d %5d %-9s %6d %6.2f %5d %5d\n",
+                name.c_str(), row.finished.p95_W, row.finished.mean_W, row.sliced.p95_W, row.read_back.p95_W,
                 100 * row.finished.coverage, 100 * row.finished.support_share, 100 * row.finished.cut_out_share,
                 row.faces, row.folds, row.removed,
                 row.stands && row.read_back_stands ? "yes"
                 : row.stands                       ? "rb-NO"
                                                    : "NO",
-                row.narrow, row.design_s, row.parallel);
+                row.narrow, row.design_s, row.parallel, row.thin);
     std::fflush(stdout);
     rows.push_back(row);
     cells.push_back(cell);
@@ -376,12 +385,14 @@ int main(int argc, char** argv) {
   const int clean = static_cast<int>(std::ranges::count(rows, 0, &Row::narrow));
   int narrow = 0;
   for (const Row& r : rows) narrow += r.narrow;
-  int parallel = 0, chords = 0;
-  for (const Row& r : rows) parallel += r.parallel, chords += r.chords;
+  int parallel = 0, chords = 0, thin = 0;
+  for (const Row& r : rows) parallel += r.parallel, chords += r.chords, thin += r.thin;
   std::printf(
       "no place narrower than W, read back: %d of %zu; places narrower than W: %d in all, %d of them between two "
       "parallel folds; %d chords narrower than W across them\n",
       clean, rows.size(), narrow, parallel, chords);
+  std::printf("faces narrower than W everywhere (no disc W across fits in them, to a pixel), read back: %d in all\n",
+              thin);
   std::printf("design time: mean %.2f s, total %.1f s\n", mean([](const Row& r) { return r.design_s; }),
               mean([](const Row& r) { return r.design_s; }) * n);
   write_contact_sheet(cells, out / "contact_sheet.png");

@@ -47,6 +47,11 @@ CardView card_view(const PixelGrid& grid, std::span<const PlanRegion> regions, c
 /// A designed plan's card: its regions, its supports known from its faces.
 CardView card_view(const PixelGrid& grid, const Plan& plan);
 
+/// Per region, the widest disc it holds, in pixels, to a pixel (its pixel centres as card_view
+/// finds them; 0 for a region that holds none): a face under W * px_per_mm is narrower than W
+/// everywhere, a strip or a sliver, where a face narrow only at a tip or a notch is not.
+std::vector<double> widest_discs_px(const PixelGrid& grid, std::span<const PlanRegion> regions);
+
 /// The likeness of a card to its model, over the model's pixels.
 struct Likeness {
   double mean_mm = 0, p95_mm = 0;  // |card key - model key|, mean and 95th percentile

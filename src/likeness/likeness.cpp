@@ -7,6 +7,9 @@
 #include <cassert>
 #include <cmath>
 #include <utility>
+#include <vector>
+
+#include "disc_width.hpp"
 
 namespace origamic {
 namespace {
@@ -38,48 +41,72 @@ CardView card_view(const PixelGrid& grid, const Grid<std::int32_t>& face, const 
   return card;
 }
 
+namespace {
+
+// Calls fill(row, first, end) for each run of pixels [first, end) of a row whose centres lie in the
+// region's rings (even-odd, edges half-open): the rings' crossings with the rows of pixel centres,
+// taken in pairs.
+template <typename Fill>
+void for_each_run(const PixelGrid& grid, const PlanRegion& region, Fill fill) {
+  const double px = grid.px_per_mm;
+  std::vector<std::pair<int, double>> crossings;  // (row, X)
+  for (const std::vector<PlanPoint>& ring : region.rings)
+    for (std::size_t k = 0; k < ring.size(); ++k) {
+      const PlanPoint &a = ring[k], &b = ring[(k + 1) % ring.size()];
+      if (a.Y == b.Y) continue;
+      const auto [lo, hi] = std::minmax(a.Y, b.Y);
+      // Rows whose centre Y lies in [lo, hi): row r has centre (rows_above_fold - r - 0.5) / px.
+      const int first = std::max(0, static_cast<int>(std::floor(grid.rows_above_fold - hi * px - 0.5)));
+      const int last = std::min(grid.rows - 1, static_cast<int>(std::ceil(grid.rows_above_fold - lo * px - 0.5)));
+      for (int row = first; row <= last; ++row) {
+        const double Y = grid.Y(row);
+        if (Y < lo || Y >= hi) continue;
+        crossings.emplace_back(row, a.X + (Y - a.Y) * (b.X - a.X) / (b.Y - a.Y));
+      }
+    }
+  std::ranges::sort(crossings);
+  for (std::size_t k = 0; k + 1 < crossings.size(); k += 2) {
+    const auto [row, x0] = crossings[k];
+    const double x1 = crossings[k + 1].second;
+    assert(crossings[k + 1].first == row);
+    // Centres X = (col + 0.5) / px in [x0, x1).
+    const int c0 = std::max(0, static_cast<int>(std::ceil(x0 * px - 0.5)));
+    const int c1 = std::min(grid.cols, static_cast<int>(std::ceil(x1 * px - 0.5)));
+    if (c0 < c1) fill(row, c0, c1);
+  }
+}
+
+}  // namespace
+
 CardView card_view(const PixelGrid& grid, std::span<const PlanRegion> regions, const std::vector<bool>& support) {
   CardView card = empty_view(grid);
-  const double px = grid.px_per_mm;
-  // Region by region, its rings' crossings with the rows of pixel centres, filled between pairs.
   tbb::parallel_for(std::size_t{0}, regions.size(), [&](std::size_t i) {
     const PlanRegion& region = regions[i];
     const bool hole = !region.placed || region.status == FaceStatus::Removed;
     const bool is_support =
         region.face >= 0 && static_cast<std::size_t>(region.face) < support.size() && support[region.face];
     const CardSurface surface = hole ? CardSurface::Hole : surface_of(region.orientation, region.depth_mm, is_support);
-    std::vector<std::pair<int, double>> crossings;  // (row, X)
-    for (const std::vector<PlanPoint>& ring : region.rings)
-      for (std::size_t k = 0; k < ring.size(); ++k) {
-        const PlanPoint &a = ring[k], &b = ring[(k + 1) % ring.size()];
-        if (a.Y == b.Y) continue;
-        const auto [lo, hi] = std::minmax(a.Y, b.Y);
-        // Rows whose centre Y lies in [lo, hi): row r has centre (rows_above_fold - r - 0.5) / px.
-        const int first = std::max(0, static_cast<int>(std::floor(grid.rows_above_fold - hi * px - 0.5)));
-        const int last = std::min(grid.rows - 1, static_cast<int>(std::ceil(grid.rows_above_fold - lo * px - 0.5)));
-        for (int row = first; row <= last; ++row) {
-          const double Y = grid.Y(row);
-          if (Y < lo || Y >= hi) continue;
-          crossings.emplace_back(row, a.X + (Y - a.Y) * (b.X - a.X) / (b.Y - a.Y));
-        }
-      }
-    std::ranges::sort(crossings);
-    for (std::size_t k = 0; k + 1 < crossings.size(); k += 2) {
-      const auto [row, x0] = crossings[k];
-      const double x1 = crossings[k + 1].second;
-      assert(crossings[k + 1].first == row);
-      const double Y = grid.Y(row);
-      const double key = shown_key(region.orientation, region.depth_mm, hole, Y);
-      // Centres X = (col + 0.5) / px in [x0, x1).
-      const int c0 = std::max(0, static_cast<int>(std::ceil(x0 * px - 0.5)));
-      const int c1 = std::min(grid.cols, static_cast<int>(std::ceil(x1 * px - 0.5)));
+    for_each_run(grid, region, [&](int row, int c0, int c1) {
+      const double key = shown_key(region.orientation, region.depth_mm, hole, grid.Y(row));
       for (int col = c0; col < c1; ++col) {
         card.surface(col, row) = surface;
         card.key_mm(col, row) = key;
       }
-    }
+    });
   });
   return card;
+}
+
+std::vector<double> widest_discs_px(const PixelGrid& grid, std::span<const PlanRegion> regions) {
+  std::vector<double> widths(regions.size());
+  tbb::parallel_for(std::size_t{0}, regions.size(), [&](std::size_t i) {
+    std::vector<std::pair<int, int>> pixels;
+    for_each_run(grid, regions[i], [&](int row, int c0, int c1) {
+      for (int col = c0; col < c1; ++col) pixels.emplace_back(col, row);
+    });
+    widths[i] = widest_disc_px(pixels);
+  });
+  return widths;
 }
 
 CardView card_view(const PixelGrid& grid, const Plan& plan) {

@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "disc_width.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+namespace origamic {
+namespace {
+
+// One line of the squared distance transform: out[q] = min over p of (q - p)^2 + f[p], the lower
+// envelope of the parabolas rooted at each p (f[p] infinite: none there).
+class LineTransform {
+ public:
+  void run(const std::vector<double>& f, std::vector<double>& out) {
+    const int n = static_cast<int>(f.size());
+    root_.assign(f.size(), 0);
+    from_.assign(f.size() + 1, 0);
+    out.assign(f.size(), kInf);
+    int k = -1;  // the envelope's last parabola
+    for (int q = 0; q < n; ++q) {
+      if (f[at(q)] == kInf) continue;
+      double s = -kInf;
+      while (k >= 0) {
+        const int r = root_[at(k)];
+        s = ((f[at(q)] + q * q) - (f[at(r)] + r * r)) / (2.0 * (q - r));  // where q's parabola passes r's
+        if (s > from_[at(k)]) break;
+        --k;
+      }
+      ++k;
+      root_[at(k)] = q, from_[at(k)] = k == 0 ? -kInf : s;
+    }
+    if (k < 0) return;  // nothing outside: every distance infinite
+    from_[at(k + 1)] = kInf;
+    for (int q = 0, j = 0; q < n; ++q) {
+      while (from_[at(j + 1)] < q) ++j;
+      const int r = root_[at(j)];
+      out[at(q)] = (q - r) * (q - r) + f[at(r)];
+    }
+  }
+
+ private:
+  static constexpr double kInf = std::numeric_limits<double>::infinity();
+  static std::size_t at(int i) { return static_cast<std::size_t>(i); }
+  std::vector<int> root_;
+  std::vector<double> from_;
+};
+
+}  // namespace
+
+double widest_disc_px(const std::vector<std::pair<int, int>>& pixels) {
+  if (pixels.empty()) return 0;
+  auto [x0, x1] = std::ranges::minmax(pixels, {}, &std::pair<int, int>::first);
+  auto [y0, y1] = std::ranges::minmax(pixels, {}, &std::pair<int, int>::second);
+  // The set's box and a ring of outside pixels round it.
+  const int left = x0.first - 1, top = y0.second - 1;
+  const auto cols = static_cast<std::size_t>(x1.first - left + 2), rows = static_cast<std::size_t>(y1.second - top + 2);
+  std::vector<double> squared(cols * rows, 0);
+  for (const auto& [x, y] : pixels)
+    squared[static_cast<std::size_t>(y - top) * cols + static_cast<std::size_t>(x - left)] =
+        std::numeric_limits<double>::infinity();
+  LineTransform transform;
+  std::vector<double> line, out;
+  for (std::size_t c = 0; c < cols; ++c) {
+    line.resize(rows);
+    for (std::size_t r = 0; r < rows; ++r) line[r] = squared[r * cols + c];
+    transform.run(line, out);
+    for (std::size_t r = 0; r < rows; ++r) squared[r * cols + c] = out[r];
+  }
+  double farthest = 0;
+  for (std::size_t r = 0; r < rows; ++r) {
+    line.assign(squared.begin() + static_cast<std::ptrdiff_t>(r * cols),
+                squared.begin() + static_cast<std::ptrdiff_t>((r + 1) * cols));
+    transform.run(line, out);
+    farthest = std::max(farthest, *std::ranges::max_element(out));
+  }
+  return 2 * std::sqrt(farthest);
+}
+
+}  // namespace origamic

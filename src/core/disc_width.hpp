@@ -1,0 +1,17 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Internal: how wide a set of pixels is at its widest, by the largest disc it holds (a Euclidean
+// distance transform, Felzenszwalb and Huttenlocher 2012).
+#pragma once
+
+#include <utility>
+#include <vector>
+
+namespace origamic {
+
+/// Twice the largest distance from the centre of a pixel of the set to the centre of the nearest
+/// pixel outside it: the diameter of the widest disc the set holds, to a pixel. A strip k pixels
+/// wide (along a row, a column or a diagonal) gives about k (k + 1 for odd k along an axis); a
+/// crescent as narrow as a strip gives the strip's width, however wide its bounding box. 0 for none.
+double widest_disc_px(const std::vector<std::pair<int, int>>& pixels);
+
+}  // namespace origamic
