@@ -447,6 +447,22 @@ TEST(Cli, TheDesignsPopUpIsTheFoldOfItsPlan) {
 // one frame; the water tower's first choice, refit, costs it over 1 W of p95, so both were tried.
 // The chapel's first choice costs 1.98 W as supported, 1.02 W over its slices, under 1 W once its
 // planes are refit: one frame.
+TEST(Cli, MergeThinSlicesReachesTheSlicingAndTheReport) {
+  const test::TempDir dir;
+  test::write_obj(dir / "ball.obj", test::sphere({0, 0, 0}, 1, 96, 48));
+  std::array<nlohmann::json, 2> plans;
+  for (const bool merge : {false, true}) {
+    const CommandRun r = run("design " + quoted(dir / "ball.obj") + " --no-supports --out " +
+                             quoted(dir / (merge ? "merged" : "kept")) + (merge ? " --merge-thin-slices" : ""));
+    ASSERT_EQ(r.status, 0) << r.output;
+    plans[merge] = nlohmann::json::parse(std::ifstream(dir / (merge ? "merged" : "kept") / "ball.json"))["raster_plan"];
+  }
+  EXPECT_EQ(plans[0]["merge_thin_slices"], false);
+  EXPECT_EQ(plans[1]["merge_thin_slices"], true);
+  // The crescents where the ball turns sideways join their neighbours.
+  EXPECT_LT(plans[1]["subsegments"].get<int>(), plans[0]["subsegments"].get<int>());
+}
+
 TEST(Cli, TheReportSaysWhichFramesTheSupportsWereChosenIn) {
   const test::TempDir dir;
   const CommandRun house = run("design " + quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") +

@@ -8,6 +8,7 @@
 #include <map>
 #include <set>
 
+#include "disc_width.hpp"
 #include "helpers.hpp"
 #include "origamic/design.hpp"
 #include "origamic/likeness.hpp"
@@ -23,12 +24,13 @@ struct Planned {
   RasterPlan raster_plan;
 };
 
-Planned plan_of_oa_mesh(TriangleMesh oa_mesh, double W = 3.0) {
+Planned plan_of_oa_mesh(TriangleMesh oa_mesh, double W = 3.0, bool merge_thin_slices = false) {
   Planned p;
   const RayScene scene(std::move(oa_mesh));
   p.maps = raster(scene, Sheet{}, RasterOptions{});
   p.segmentation = segment(p.maps, SegmentOptions{});
-  p.raster_plan = slice(p.maps, p.segmentation, SliceOptions{.min_strip_mm = W});
+  p.raster_plan =
+      slice(p.maps, p.segmentation, SliceOptions{.min_strip_mm = W, .merge_thin_slices = merge_thin_slices});
   return p;
 }
 
@@ -307,6 +309,31 @@ TEST(Slice, TouchingSlicesOfASphereLieAtLeastWApart) {
     }
     EXPECT_GE(same_orientation, 10);
   }
+}
+
+// Where a sphere turns sideways its levels crowd into crescents narrower than W, though their
+// boxes are wide; merged, none is left but where no neighbour of its segment takes it.
+TEST(Slice, ThinSlicesMergedLeaveNoCrescentNarrowerThanW) {
+  const TriangleMesh sphere = test::sphere({105, 50, 50}, 44, 96, 48);
+  const auto thin_faces = [](const Planned& p) {
+    std::vector<std::vector<std::pair<int, int>>> pixels(p.raster_plan.faces.size());
+    for (int row = 0; row < p.raster_plan.face.rows; ++row)
+      for (int col = 0; col < p.raster_plan.face.cols; ++col)
+        if (const std::int32_t f = p.raster_plan.face(col, row); f >= 2)
+          pixels[static_cast<std::size_t>(f)].emplace_back(col, row);
+    int thin = 0, boxed = 0;  // narrower than W everywhere; of them, with no side of their box under W
+    const double W_px = p.raster_plan.min_strip_mm * p.maps.grid.px_per_mm;
+    for (const auto& of_face : pixels)
+      if (!of_face.empty() && widest_disc_px(of_face) < W_px)
+        ++thin, boxed += oriented_box_min_side_px(of_face) >= W_px;
+    return std::pair{thin, boxed};
+  };
+  const auto [thin, boxed] = thin_faces(plan_of_oa_mesh(sphere));
+  EXPECT_GE(boxed, 4);  // crescents
+  EXPECT_EQ(thin, boxed);
+  const auto [merged_thin, merged_boxed] = thin_faces(plan_of_oa_mesh(sphere, 3.0, true));
+  EXPECT_EQ(merged_thin, 0);
+  EXPECT_EQ(merged_boxed, 0);
 }
 
 TEST(Slice, SameInputGivesByteIdenticalFaceMaps) {

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Likeness benchmark: bench_likeness MODELS_DIR OUT_DIR [--only NAME]... [--seed N] [--min-strip W]
+// [--where yes] [--merge-thin-slices yes]
 // Designs every model of MODELS_DIR (MANIFEST.tsv's files at their up axis, then seedlike/*.stl up
 // z) at the default options, and measures each finished plan as the user gets it: its DXF written,
 // read back and analysed by `origamic validate`'s reader, its regions seen along the 45-degree view
@@ -285,8 +286,9 @@ Row measure(const Model& model, const DesignOptions& base, const fs::path& out, 
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(
-        stderr, "usage: bench_likeness MODELS_DIR OUT_DIR [--only NAME]... [--seed N] [--min-strip W] [--where yes]\n");
+    std::fprintf(stderr,
+                 "usage: bench_likeness MODELS_DIR OUT_DIR [--only NAME]... [--seed N] [--min-strip W] [--where yes] "
+                 "[--merge-thin-slices yes]\n");
     return 2;
   }
   const fs::path models_dir = argv[1], out = argv[2];
@@ -301,6 +303,8 @@ int main(int argc, char** argv) {
       where_maps = true;
     else if (std::strcmp(argv[i], "--min-strip") == 0)
       options.slice.min_strip_mm = std::stod(argv[i + 1]);
+    else if (std::strcmp(argv[i], "--merge-thin-slices") == 0 && std::strcmp(argv[i + 1], "yes") == 0)
+      options.slice.merge_thin_slices = true;
     else
       return std::fprintf(stderr, "bench_likeness: unknown option %s\n", argv[i]), 2;
   }

@@ -34,6 +34,7 @@ struct DesignArgs {
   bool no_supports = false;
   bool allow_dangling = false;
   bool allow_narrow = false;
+  bool merge_thin_slices = false;
   std::uint32_t seed = origamic::SupportOptions{}.seed;
   int orders = origamic::SupportOptions{}.orders;
   std::string colours = "laser";

@@ -207,6 +207,10 @@ void add_design_options(CLI::App& design, DesignArgs& args) {
                   "keep dangling faces (windows, balconies) instead of supporting them; the report lists them");
   design.add_flag("--allow-narrow", args.allow_narrow,
                   "a plan with places narrower than W (--min-strip) is valid all the same; the report lists them");
+  design.add_flag("--merge-thin-slices", args.merge_thin_slices,
+                  "also merge each slice narrower than W everywhere (a crescent where a curved surface turns "
+                  "sideways) into its neighbour: about half as many faces narrower than W, such slopes in coarser "
+                  "steps");
   design.add_option("--seed", args.seed, "the order in which invalid faces choose their supports")
       ->capture_default_str();
   design
@@ -241,6 +245,7 @@ int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const
   options.placement.margin_mm = args.margin_mm;
   options.raster.px_per_mm = args.px_per_mm;
   options.slice.min_strip_mm = args.min_strip_mm;
+  options.slice.merge_thin_slices = args.merge_thin_slices;
   options.supports.enabled = !args.no_supports;
   options.supports.allow_dangling = args.allow_dangling;
   options.allow_narrow = args.allow_narrow;

@@ -347,6 +347,7 @@ std::string settings_text(const DesignOptions& options) {
   text += options.supports.enabled ? ", supports seed " + std::to_string(options.supports.seed) : ", no supports";
   if (options.supports.allow_dangling) text += ", dangling allowed";
   if (options.allow_narrow) text += ", narrow places allowed";
+  if (options.slice.merge_thin_slices) text += ", thin slices merged";
   return text;
 }
 

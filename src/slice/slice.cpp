@@ -79,8 +79,9 @@ struct Blocks {
 // (Y = h - d changes by at least as much as d). Point sampling W x W blocks instead aliases: on a
 // dome, neighbouring rows of blocks sample the same level or skip one, and slivers result.
 std::vector<Subsegment> level_subsegments(const RasterMaps& maps, const Segmentation& seg,
-                                          const std::vector<Orientation>& orientation, double W,
+                                          const std::vector<Orientation>& orientation, const SliceOptions& options,
                                           Grid<std::int32_t>& subsegment) {
+  const double W = options.min_strip_mm;
   // A curved segment is sliced where it is steep into V slices (levels of d) and where it is flat
   // into H slices (levels of h): a slice is then at least 2 W tall in the plan, room for the support
   // that joins it to the next. Within 10 degrees of 45 the segment's own orientation holds.
@@ -183,8 +184,8 @@ std::vector<Subsegment> level_subsegments(const RasterMaps& maps, const Segmenta
     subsegments.push_back({seg.segment.values[i0], depth, part_of[i0] ? Orientation::H : Orientation::V});
     pixels.push_back(static_cast<double>(run.size()));
   }
-  return merge_thin_subsegments(seg.segment, W * maps.grid.px_per_mm, {std::move(subsegments), std::move(pixels)},
-                                subsegment);
+  return merge_thin_subsegments(seg.segment, W * maps.grid.px_per_mm, options.merge_thin_slices,
+                                {std::move(subsegments), std::move(pixels)}, subsegment);
 }
 
 // Pixels the slicing left without a face (removed thin faces, segments the sampling missed) take a
@@ -459,7 +460,7 @@ RasterPlan slice(const RasterMaps& maps, const Segmentation& seg, const SliceOpt
   result.segment_orientation = choose_orientations(maps, seg);
   const Blocks blocks(maps.grid, result.block_px);
   const std::vector<Subsegment> subsegments =
-      level_subsegments(maps, seg, result.segment_orientation, W, result.subsegment);
+      level_subsegments(maps, seg, result.segment_orientation, options, result.subsegment);
   // SDS, for the maps: the subsegment at each block's centre.
   result.block_subsegment = Grid<std::int32_t>(blocks.cols, blocks.rows, -1);
   for (int br = 0; br < blocks.rows; ++br)

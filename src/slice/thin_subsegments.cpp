@@ -8,6 +8,7 @@
 #include <numeric>
 #include <tuple>
 
+#include "disc_width.hpp"
 #include "four_neighbours.hpp"
 #include "raster_plan_edits.hpp"
 
@@ -24,9 +25,16 @@ struct SubsegmentSet {
   std::vector<std::uint8_t> thin;
 };
 
-bool is_thin(const std::vector<std::pair<int, int>>& pixels_of, double min_side_px) {
-  return !pixels_of.empty() && oriented_box_min_side_px(pixels_of) < min_side_px;
-}
+// Whether a subsegment is too thin to be a face (merge_thin_subsegments).
+struct Thinness {
+  double min_side_px;
+  bool by_widest_disc;
+
+  bool operator()(const std::vector<std::pair<int, int>>& pixels_of) const {
+    return !pixels_of.empty() && (oriented_box_min_side_px(pixels_of) < min_side_px ||
+                                  (by_widest_disc && widest_disc_px(pixels_of) < min_side_px));
+  }
+};
 
 // Each thin subsegment's neighbour nearest in depth (ties: the larger, then the lower id: two levels
 // kept W apart from it are as near, and ids follow the scan, which a mirror image reverses), into[k],
@@ -73,7 +81,8 @@ std::vector<std::int32_t> thin_pairs(const SubsegmentSet& set, const Grid<std::i
 // Merges each subsegment k into into[k]; returns the new id of each old one (-1: none). A part of
 // another orientation takes the plane of the subsegment it joins: its depth does not count in the
 // mean, its pixels do in the size.
-std::vector<std::int32_t> merge_pairs(SubsegmentSet& set, const std::vector<std::int32_t>& into, double min_side_px) {
+std::vector<std::int32_t> merge_pairs(SubsegmentSet& set, const std::vector<std::int32_t>& into,
+                                      const Thinness& is_thin) {
   const std::size_t n = set.subsegments.size();
   std::vector<double> sum(n, 0), count(n, 0), size(n, 0);
   for (std::size_t k = 0; k < n; ++k) {
@@ -111,7 +120,7 @@ std::vector<std::int32_t> merge_pairs(SubsegmentSet& set, const std::vector<std:
     }
   }
   for (std::size_t r = 0; r < next.subsegments.size(); ++r)
-    if (grown[r]) next.thin[r] = is_thin(next.members[r], min_side_px);
+    if (grown[r]) next.thin[r] = is_thin(next.members[r]);
   std::vector<std::int32_t> new_id(n, -1);
   for (std::size_t k = 0; k < n; ++k) new_id[k] = renumber[static_cast<std::size_t>(into[k])];
   set = std::move(next);
@@ -121,7 +130,9 @@ std::vector<std::int32_t> merge_pairs(SubsegmentSet& set, const std::vector<std:
 }  // namespace
 
 std::vector<Subsegment> merge_thin_subsegments(const Grid<std::int32_t>& segment, double min_side_px,
-                                               SizedSubsegments sized, Grid<std::int32_t>& subsegment) {
+                                               bool by_widest_disc, SizedSubsegments sized,
+                                               Grid<std::int32_t>& subsegment) {
+  const Thinness is_thin{min_side_px, by_widest_disc};
   SubsegmentSet set{std::move(sized.subsegments), std::move(sized.pixels), {}, {}};
   set.members.assign(set.subsegments.size(), {});
   for (int row = 0; row < subsegment.rows; ++row)
@@ -129,7 +140,7 @@ std::vector<Subsegment> merge_thin_subsegments(const Grid<std::int32_t>& segment
       if (const std::int32_t k = subsegment(col, row); k >= 0)
         set.members[static_cast<std::size_t>(k)].emplace_back(col, row);
   set.thin.resize(set.subsegments.size());
-  for (std::size_t k = 0; k < set.subsegments.size(); ++k) set.thin[k] = is_thin(set.members[k], min_side_px);
+  for (std::size_t k = 0; k < set.subsegments.size(); ++k) set.thin[k] = is_thin(set.members[k]);
   // The grid keeps its first ids until the end; `current` maps them to the ids of this pass.
   std::vector<std::int32_t> current(set.subsegments.size());
   std::iota(current.begin(), current.end(), 0);
@@ -142,7 +153,7 @@ std::vector<Subsegment> merge_thin_subsegments(const Grid<std::int32_t>& segment
     bool merged = false;
     for (std::size_t k = 0; k < into.size(); ++k) merged = merged || into[k] != static_cast<std::int32_t>(k);
     if (!merged) break;
-    const std::vector<std::int32_t> new_id = merge_pairs(set, into, min_side_px);
+    const std::vector<std::int32_t> new_id = merge_pairs(set, into, is_thin);
     for (auto& k : current)
       if (k >= 0) k = new_id[static_cast<std::size_t>(k)];
   }

@@ -26,9 +26,12 @@ struct SizedSubsegments {
 // Where a surface runs steeper than 45 degrees across the slicing direction, its levels are strips
 // narrower than W: each joins the neighbouring subsegment of its segment nearest in depth, pass after
 // pass, until it is W wide or has no such neighbour. Levels thus merge into wider steps exactly where
-// the surface is steep: the quantization adapts to it (seed Figure 4.6). Returns the merged
-// subsegments; `subsegment`, the map of their ids, is renumbered to them.
+// the surface is steep: the quantization adapts to it (seed Figure 4.6). A level is thin where its
+// oriented box has a side under min_side_px, and, with `by_widest_disc`, also where the widest disc
+// it holds is under it (disc_width.hpp). Returns the merged subsegments; `subsegment`, the map of
+// their ids, is renumbered to them.
 std::vector<Subsegment> merge_thin_subsegments(const Grid<std::int32_t>& segment, double min_side_px,
-                                               SizedSubsegments sized, Grid<std::int32_t>& subsegment);
+                                               bool by_widest_disc, SizedSubsegments sized,
+                                               Grid<std::int32_t>& subsegment);
 
 }  // namespace origamic
