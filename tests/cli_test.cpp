@@ -443,10 +443,6 @@ TEST(Cli, TheDesignsPopUpIsTheFoldOfItsPlan) {
   EXPECT_EQ(faces_of(dir / "chapel_popup.obj"), faces_of(dir / "folded.obj"));
 }
 
-// The report says which frames the supports were chosen in: the house's cost it under the bounds,
-// one frame; the water tower's first choice, refit, costs it over 1 W of p95, so both were tried.
-// The chapel's first choice costs 1.98 W as supported, 1.02 W over its slices, under 1 W once its
-// planes are refit: one frame.
 TEST(Cli, MergeThinSlicesReachesTheSlicingAndTheReport) {
   const test::TempDir dir;
   test::write_obj(dir / "ball.obj", test::sphere({0, 0, 0}, 1, 96, 48));
@@ -463,6 +459,10 @@ TEST(Cli, MergeThinSlicesReachesTheSlicingAndTheReport) {
   EXPECT_LT(plans[1]["subsegments"].get<int>(), plans[0]["subsegments"].get<int>());
 }
 
+// The report says which frames the supports were chosen in: the house's cost it under the bounds,
+// one frame; the water tower's first choice, refit, costs it over 1 W of p95, so both were tried.
+// The chapel's first choice costs 1.98 W as supported, 1.02 W over its slices, under 1 W once its
+// planes are refit: one frame.
 TEST(Cli, TheReportSaysWhichFramesTheSupportsWereChosenIn) {
   const test::TempDir dir;
   const CommandRun house = run("design " + quoted(std::filesystem::path(ORIGAMIC_FIXTURES_DIR) / "house.obj") +

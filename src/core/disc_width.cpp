@@ -18,25 +18,28 @@ class LineTransform {
     root_.assign(f.size(), 0);
     from_.assign(f.size() + 1, 0);
     out.assign(f.size(), kInf);
+    // In doubles: a line may be longer than an int's square root (46,341 pixels).
+    const auto square = [](int i) { return static_cast<double>(i) * i; };
     int k = -1;  // the envelope's last parabola
     for (int q = 0; q < n; ++q) {
       if (f[at(q)] == kInf) continue;
-      double s = -kInf;
+      double s = -kInf;  // where q's parabola passes the envelope's last; the first holds from -inf
       while (k >= 0) {
         const int r = root_[at(k)];
-        s = ((f[at(q)] + q * q) - (f[at(r)] + r * r)) / (2.0 * (q - r));  // where q's parabola passes r's
+        s = ((f[at(q)] + square(q)) - (f[at(r)] + square(r))) / (2.0 * (q - r));
         if (s > from_[at(k)]) break;
         --k;
       }
       ++k;
-      root_[at(k)] = q, from_[at(k)] = k == 0 ? -kInf : s;
+      root_[at(k)] = q;
+      from_[at(k)] = s;
     }
     if (k < 0) return;  // nothing outside: every distance infinite
     from_[at(k + 1)] = kInf;
     for (int q = 0, j = 0; q < n; ++q) {
       while (from_[at(j + 1)] < q) ++j;
       const int r = root_[at(j)];
-      out[at(q)] = (q - r) * (q - r) + f[at(r)];
+      out[at(q)] = square(q - r) + f[at(r)];
     }
   }
 
@@ -51,11 +54,12 @@ class LineTransform {
 
 double widest_disc_px(const std::vector<std::pair<int, int>>& pixels) {
   if (pixels.empty()) return 0;
-  auto [x0, x1] = std::ranges::minmax(pixels, {}, &std::pair<int, int>::first);
-  auto [y0, y1] = std::ranges::minmax(pixels, {}, &std::pair<int, int>::second);
+  const auto [leftmost, rightmost] = std::ranges::minmax(pixels, {}, &std::pair<int, int>::first);
+  const auto [topmost, bottommost] = std::ranges::minmax(pixels, {}, &std::pair<int, int>::second);
   // The set's box and a ring of outside pixels round it.
-  const int left = x0.first - 1, top = y0.second - 1;
-  const auto cols = static_cast<std::size_t>(x1.first - left + 2), rows = static_cast<std::size_t>(y1.second - top + 2);
+  const int left = leftmost.first - 1, top = topmost.second - 1;
+  const auto cols = static_cast<std::size_t>(rightmost.first - left + 2);
+  const auto rows = static_cast<std::size_t>(bottommost.second - top + 2);
   std::vector<double> squared(cols * rows, 0);
   for (const auto& [x, y] : pixels)
     squared[static_cast<std::size_t>(y - top) * cols + static_cast<std::size_t>(x - left)] =

@@ -10,8 +10,9 @@ namespace origamic {
 
 /// Twice the largest distance from the centre of a pixel of the set to the centre of the nearest
 /// pixel outside it: the diameter of the widest disc the set holds, to a pixel. A strip k pixels
-/// wide (along a row, a column or a diagonal) gives about k (k + 1 for odd k along an axis); a
-/// crescent as narrow as a strip gives the strip's width, however wide its bounding box. 0 for none.
+/// wide along a row or a column gives k (k + 1 for odd k: never less than the strip), one along a
+/// diagonal about its width across; a crescent as narrow as a strip gives the strip's width,
+/// however wide its bounding box. 0 for none. Memory: a double per pixel of the set's box.
 double widest_disc_px(const std::vector<std::pair<int, int>>& pixels);
 
 }  // namespace origamic
