@@ -52,8 +52,14 @@ std::optional<Leg> leg_of(const Chain& chain, bool front, const LatticeScale& la
   const auto corner = [&](std::size_t k) { return chain.corners[front ? k : n - 1 - k]; };
   const std::size_t edges = std::min(kEdges, n - 1);
   if (edges < 2) return std::nullopt;
+  std::vector<ChainPoint> from_end;  // the chain's edges' points from this end, each found once
+  const auto edge = [&](std::size_t k) {
+    for (std::size_t m = from_end.size(); m <= k; ++m)
+      from_end.push_back(edge_point(corner(m), corner(m + 1), lattice, breaks));
+    return from_end[k];
+  };
   std::vector<ChainPoint> points;
-  for (std::size_t k = 0; k < edges; ++k) points.push_back(edge_point(corner(k), corner(k + 1), lattice, breaks));
+  for (std::size_t k = 0; k < edges; ++k) points.push_back(edge(k));
   const LatticePoint j = corner(0);
   const bool along_u = std::ranges::all_of(points, [&](const ChainPoint& p) { return p.lattice.v == j.v; });
   const bool along_v = std::ranges::all_of(points, [&](const ChainPoint& p) { return p.lattice.u == j.u; });
@@ -68,11 +74,10 @@ std::optional<Leg> leg_of(const Chain& chain, bool front, const LatticeScale& la
   // On the model's edge only as simplified draws it: a run of kMinBreakRun edges from the end.
   if (n - 1 < skip + kMinBreakRun) return std::nullopt;
   for (std::size_t k = skip; k < skip + kMinBreakRun; ++k)
-    if (!edge_point(corner(k), corner(k + 1), lattice, breaks).on_break) return std::nullopt;
+    if (!edge(k).on_break) return std::nullopt;
   if (skip > 0) {
     points.clear();
-    for (std::size_t k = skip; k < skip + kEdges; ++k)
-      points.push_back(edge_point(corner(k), corner(k + 1), lattice, breaks));
+    for (std::size_t k = skip; k < skip + kEdges; ++k) points.push_back(edge(k));
   }
   const ChainPoint &a = points.front(), &b = points.back();
   const double length = std::hypot(b.X - a.X, b.Y - a.Y);
