@@ -50,5 +50,27 @@ TEST(DiscWidth, ACrescentIsAsNarrowAsItsStripThoughItsBoxIsWide) {
   EXPECT_LE(widest, 8);
 }
 
+TEST(DiscWidth, ASquareIsFoundWhereTheSetHoldsOne) {
+  EXPECT_TRUE(holds_square_px(rectangle(40, 12), 12));
+  EXPECT_FALSE(holds_square_px(rectangle(40, 12), 13));
+  EXPECT_FALSE(holds_square_px(rectangle(40, 11), 12));
+  EXPECT_FALSE(holds_square_px({}, 1));
+  // Two 6-row strips, one row apart: no square of 12 reaches across the gap, as the disc does not.
+  std::vector<std::pair<int, int>> split;
+  for (int y = 0; y < 13; ++y)
+    for (int x = 0; x < 30; ++x)
+      if (y != 6) split.emplace_back(x, y);
+  EXPECT_FALSE(holds_square_px(split, 7));
+  EXPECT_TRUE(holds_square_px(split, 6));
+  EXPECT_LT(widest_disc_px(split), 12);
+  // An L of two arms 8 wide holds a square of 8 where they meet, not of 9.
+  std::vector<std::pair<int, int>> ell;
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 30; ++x)
+      if (x < 8 || y >= 22) ell.emplace_back(x, y);
+  EXPECT_TRUE(holds_square_px(ell, 8));
+  EXPECT_FALSE(holds_square_px(ell, 9));
+}
+
 }  // namespace
 }  // namespace origamic

@@ -82,4 +82,29 @@ double widest_disc_px(const std::vector<std::pair<int, int>>& pixels) {
   return 2 * std::sqrt(farthest);
 }
 
+// The side of the largest square ending at each pixel, row after row: one more than the least of
+// its left, upper and upper-left neighbours'.
+bool holds_square_px(const std::vector<std::pair<int, int>>& pixels, int k) {
+  if (pixels.empty()) return false;
+  const auto [leftmost, rightmost] = std::ranges::minmax(pixels, {}, &std::pair<int, int>::first);
+  const int left = leftmost.first;
+  const auto cols = static_cast<std::size_t>(rightmost.first - left + 1);
+  std::vector<int> above(cols + 1, 0), here(cols + 1, 0);  // per column + 1; 0 before the first
+  int row = pixels.front().second;
+  std::size_t next = 0;
+  while (next < pixels.size()) {
+    std::ranges::fill(here, 0);
+    for (; next < pixels.size() && pixels[next].second == row; ++next) {
+      const auto c = static_cast<std::size_t>(pixels[next].first - left) + 1;
+      here[c] = 1 + std::min({here[c - 1], above[c], above[c - 1]});
+      if (here[c] >= k) return true;
+    }
+    std::swap(above, here);
+    if (next == pixels.size()) break;
+    if (pixels[next].second != row + 1) std::ranges::fill(above, 0);  // a row of none between
+    row = pixels[next].second;
+  }
+  return false;
+}
+
 }  // namespace origamic

@@ -15,4 +15,9 @@ namespace origamic {
 /// however wide its bounding box. 0 for none. Memory: a double per pixel of the set's box.
 double widest_disc_px(const std::vector<std::pair<int, int>>& pixels);
 
+/// Whether the set holds a square of k by k of its pixels. A square of side ceil(w) holds a disc w
+/// across (widest_disc_px >= w), and finding one is far cheaper than the distance transform: most
+/// sets that are wide are found so at once. \pre pixels listed row by row, each row left to right.
+bool holds_square_px(const std::vector<std::pair<int, int>>& pixels, int k);
+
 }  // namespace origamic

@@ -26,32 +26,6 @@ struct SubsegmentSet {
   std::vector<std::uint8_t> thin;
 };
 
-// Whether a set of pixels, listed in row-major order, holds a square of side k of them: the side of
-// the largest square ending at each pixel, row after row (a pixel's is one more than the least of
-// its left, upper and upper-left neighbours'). Cheaper than the distance transform, and a square of
-// side ceil(W) holds a disc W across (widest_disc_px >= W): most levels are wide so, at once.
-bool holds_square(const std::vector<std::pair<int, int>>& pixels, int k) {
-  const auto [leftmost, rightmost] = std::ranges::minmax(pixels, {}, &std::pair<int, int>::first);
-  const int left = leftmost.first;
-  const auto cols = static_cast<std::size_t>(rightmost.first - left + 1);
-  std::vector<int> above(cols + 1, 0), here(cols + 1, 0);  // per column + 1; 0 before the first
-  int row = pixels.front().second;
-  std::size_t next = 0;
-  while (next < pixels.size()) {
-    std::ranges::fill(here, 0);
-    for (; next < pixels.size() && pixels[next].second == row; ++next) {
-      const auto c = static_cast<std::size_t>(pixels[next].first - left) + 1;
-      here[c] = 1 + std::min({here[c - 1], above[c], above[c - 1]});
-      if (here[c] >= k) return true;
-    }
-    std::swap(above, here);
-    // A row with none of the set between: no square reaches across it.
-    if (next < pixels.size() && pixels[next].second != row + 1) std::ranges::fill(above, 0);
-    if (next < pixels.size()) row = pixels[next].second;
-  }
-  return false;
-}
-
 // Whether a subsegment is too thin to be a face (merge_thin_subsegments).
 struct Thinness {
   double min_side_px;
@@ -60,7 +34,7 @@ struct Thinness {
   bool operator()(const std::vector<std::pair<int, int>>& pixels_of) const {
     if (pixels_of.empty()) return false;
     if (oriented_box_min_side_px(pixels_of) < min_side_px) return true;
-    return by_widest_disc && !holds_square(pixels_of, static_cast<int>(std::ceil(min_side_px))) &&
+    return by_widest_disc && !holds_square_px(pixels_of, static_cast<int>(std::ceil(min_side_px))) &&
            widest_disc_px(pixels_of) < min_side_px;
   }
 };
