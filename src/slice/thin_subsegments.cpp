@@ -27,15 +27,19 @@ struct SubsegmentSet {
 };
 
 // Whether a subsegment is too thin to be a face (merge_thin_subsegments).
+enum Thin : std::uint8_t { kWide, kThinBox, kThinDisc };  // kThinDisc: its box W wide, no disc W across
+
 struct Thinness {
   double min_side_px;
   bool by_widest_disc;
 
-  bool operator()(const std::vector<std::pair<int, int>>& pixels_of) const {
-    if (pixels_of.empty()) return false;
-    if (oriented_box_min_side_px(pixels_of) < min_side_px) return true;
+  std::uint8_t operator()(const std::vector<std::pair<int, int>>& pixels_of) const {
+    if (pixels_of.empty()) return kWide;
+    if (oriented_box_min_side_px(pixels_of) < min_side_px) return kThinBox;
     return by_widest_disc && !holds_square_px(pixels_of, static_cast<int>(std::ceil(min_side_px))) &&
-           widest_disc_px(pixels_of) < min_side_px;
+                   widest_disc_px(pixels_of) < min_side_px
+               ? kThinDisc
+               : kWide;
   }
 };
 
@@ -70,6 +74,11 @@ std::vector<std::int32_t> thin_pairs(const SubsegmentSet& set, const Grid<std::i
         const std::int32_t j = id_at(col + dc, row + dr);
         if (j < 0 || static_cast<std::size_t>(j) == k || paired[static_cast<std::size_t>(j)] ||
             segment(col + dc, row + dr) != subsegments[k].segment)
+          continue;
+        // A crescent taking the other orientation's plane stood off its surface as a fin where the
+        // surface turns away (seedlike/sphere, prim_cone): it joins a level of its own or stays.
+        if (set.thin[k] == kThinDisc &&
+            subsegments[static_cast<std::size_t>(j)].orientation != subsegments[k].orientation)
           continue;
         if (best < 0 || std::tuple(gap(j), -set.pixels[static_cast<std::size_t>(j)], j) <
                             std::tuple(gap(best), -set.pixels[static_cast<std::size_t>(best)], best))

@@ -28,8 +28,8 @@ struct SizedSubsegments {
 // pass, until it is W wide or has no such neighbour. Levels thus merge into wider steps exactly where
 // the surface is steep: the quantization adapts to it (seed Figure 4.6). A level is thin where its
 // oriented box has a side under min_side_px, and, with `by_widest_disc`, also where the widest disc
-// it holds is under it (disc_width.hpp). Returns the merged subsegments; `subsegment`, the map of
-// their ids, is renumbered to them.
+// it holds is under it (disc_width.hpp); such a level joins only a neighbour of its orientation.
+// Returns the merged subsegments; `subsegment`, the map of their ids, is renumbered to them.
 std::vector<Subsegment> merge_thin_subsegments(const Grid<std::int32_t>& segment, double min_side_px,
                                                bool by_widest_disc, SizedSubsegments sized,
                                                Grid<std::int32_t>& subsegment);
