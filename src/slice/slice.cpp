@@ -337,13 +337,10 @@ std::vector<ThinPiece> join_coplanar_thin_pieces(std::vector<ThinPiece> thin, in
 }
 
 // Whether a piece stands clear in front of what lies behind it: two thirds or more of the placed
-// pixels around it are the back plane's, the floor's, or the model's 2 W or more behind the piece's
-// pixel beside them along the 45-degree view (a V piece W deep in front of a V face). Filled from
-// them it would vanish from the card (a sail of arch_windmill, 8,293 pixels before the back plane;
-// at W = 5 mm the other three, before the tower, had been filled from it: p95 9.7 -> 1.7 W); a piece
-// among the model's faces is filled from those instead, a detail lost rather than a part. Kept as
-// faces of their own, such pieces cost the supports more than they give: on arch_temple (pieces in
-// its steps) p95 2.8 -> 6.2 W, arch_water_tower 21 -> 42 W; the 2 W margin keeps both as they were.
+// pixels around it are the back plane's, the floor's, or the model's 2 W or more lower in h + d than
+// the piece's pixel beside them (a V piece W in front of a V face). Else the piece is a detail among
+// the model's faces, filled from them: kept, such pieces cost the supports more than they gave
+// (arch_temple p95 2.8 -> 6.2 W, arch_water_tower 21 -> 42 W; a margin of 2 W keeps both as they were).
 bool stands_clear(const ThinPiece& piece, const RasterPlan& plan, const RasterMaps& maps, double W) {
   const auto key = [&](int col, int row) { return maps.h_mm(col, row) + maps.d_mm(col, row); };
   std::int64_t around = 0, background = 0;
@@ -376,6 +373,7 @@ void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vec
                             : s < 0              ? kNoFace
                                                  : kUnassigned;
   }
+  const auto model_pixels = std::ranges::count(result.face.values, kUnassigned);
   const double min_side_px = W * maps.grid.px_per_mm;
   std::vector<ThinPiece> thin;
   Grid<std::uint8_t> visited(cols, rows, 0);
@@ -408,10 +406,11 @@ void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vec
   // neither decides for another (two levels of one sail).
   std::vector<ThinPiece> joined = join_coplanar_thin_pieces(std::move(thin), cols, rows, W);
   std::vector<std::uint8_t> kept(joined.size());
-  for (std::size_t i = 0; i < joined.size(); ++i)
-    kept[i] = oriented_box_min_side_px(joined[i].pixels) >= min_side_px &&
-              (stands_clear(joined[i], result, maps, W) ||
-               static_cast<double>(joined[i].pixels.size()) >= kPartShare * static_cast<double>(maps.model_pixels));
+  for (std::size_t i = 0; i < joined.size(); ++i) {
+    const bool part = static_cast<double>(joined[i].pixels.size()) >= kPartShare * static_cast<double>(model_pixels);
+    kept[i] =
+        oriented_box_min_side_px(joined[i].pixels) >= min_side_px && (part || stands_clear(joined[i], result, maps, W));
+  }
   for (std::size_t i = 0; i < joined.size(); ++i) {
     if (!kept[i]) {
       result.removed_thin += joined[i].pieces;
