@@ -220,6 +220,28 @@ TEST(Slice, ThinPoleIsRemovedAndItsHoleFilled) {
 // A low-poly model's file normals, one per vertex and averaged over the faces around it, turn 55
 // degrees from every face of a box; the loader gives each face its own, and the box slices as it
 // does with no normals in its file: one front, one top.
+// A plate 1.5 mm wide against the left side of a box, its front 10 mm behind the box's: too thin to
+// be a face, its pixels are filled from the faces of the model beside them, not from the back plane
+// and the floor behind (which had taken the half of each row nearer them: a card showing the
+// background where the model is; over the 37 models at W = 3 mm the mean p95 1.80 -> 1.77 W, the
+// lowest coverage 96.8 -> 98.8%).
+TEST(Slice, AThinPieceBesideTheModelIsFilledFromItsFaces) {
+  const TriangleMesh house = test::box({60, 0, 0}, {150, 50, 30});
+  const TriangleMesh plate = test::box({58.5, 0, 0}, {60, 50, 20});
+  const Planned p = plan_of_oa_mesh(test::merged(house, plate));
+  EXPECT_GE(p.raster_plan.removed_thin, 1);
+  // The plate's front, X 58.5 to 60, Y = h - 20 from -20 to 30 (a pixel in from each side).
+  int background = 0, model = 0;
+  for (int row = 0; row < p.maps.grid.rows; ++row)
+    for (int col = 0; col < p.maps.grid.cols; ++col)
+      if (const double X = p.maps.grid.X(col), Y = p.maps.grid.Y(row);
+          58.75 <= X && X <= 59.75 && -19.75 <= Y && Y <= 29.75)
+        ++(p.raster_plan.face(col, row) == kBackFace || p.raster_plan.face(col, row) == kFloorFace ? background
+                                                                                                   : model);
+  EXPECT_GT(model, 4 * 190);
+  EXPECT_EQ(background, 0);
+}
+
 TEST(Slice, ABoxWithNormalsAveragedAtItsCornersSlicesAsTheBoxWithout) {
   const test::TempDir dir;
   test::write_text(dir / "plain.obj", test::box_obj({80, 50, 40}, false));

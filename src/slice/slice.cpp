@@ -191,18 +191,24 @@ std::vector<Subsegment> level_subsegments(const RasterMaps& maps, const Segmenta
 // Pixels the slicing left without a face (removed thin faces, segments the sampling missed) take a
 // neighbour's face, one ring at a time so no direction is favoured. First only faces sliced from the
 // pixel's own segment may grow (a removed sliver of a dome joins the next ring of the dome, not the
-// back plane behind it); then any face. The back plane fills only Y > 0 and the floor only Y < 0.
+// back plane behind it); then any face of the model (a sliver at a silhouette, the back plane had
+// taken the half of it nearer: over the 37 models at W = 3 mm the mean p95 1.80 -> 1.77 W, the
+// lowest coverage 96.8 -> 98.8%, places narrower than W 3,890 -> 3,944); then any face. The back
+// plane fills only Y > 0 and the floor only Y < 0.
 void fill_holes(const PixelGrid& grid, const Grid<std::int32_t>& segment, const std::vector<RasterFace>& faces,
                 Grid<std::int32_t>& face) {
   Grid<std::uint8_t> queued(face.cols, face.rows, 0);
   std::vector<std::pair<int, int>> ring, next;
   std::vector<std::int32_t> labels;
-  for (const bool same_segment_only : {true, false}) {
+  enum class From { OwnSegment, ModelFaces, AnyFace };
+  for (const From from : {From::OwnSegment, From::ModelFaces, From::AnyFace}) {
     auto label_of = [&](int col, int row) {
       for (const auto& step : kFourNeighbours) {
         const int c = col + step[0], r = row + step[1];
         if (!face.contains(c, r) || face(c, r) < 0) continue;
-        if (same_segment_only && faces[static_cast<std::size_t>(face(c, r))].segment != segment(col, row)) continue;
+        if (from == From::OwnSegment && faces[static_cast<std::size_t>(face(c, r))].segment != segment(col, row))
+          continue;
+        if (from == From::ModelFaces && (face(c, r) == kBackFace || face(c, r) == kFloorFace)) continue;
         const std::int32_t label = face(c, r);
         if (label == kBackFace || label == kFloorFace) return grid.Y(row) > 0 ? kBackFace : kFloorFace;
         return label;
