@@ -34,7 +34,7 @@ struct SliceOptions {
   // its oriented box has a side under W, and with this also where no disc W across fits in it, to
   // a pixel (widest_disc_px, which errs wide: a crescent where a curved surface turns sideways), a
   // neighbour of its own orientation. Over the 37 models at W = 3 mm: faces narrower than W
-  // everywhere 232 -> 122, places 3,890 -> 3,551, mean p95 1.80 -> 1.90 W: such slopes in coarser
+  // everywhere 237 -> 113, places 3,944 -> 3,590, mean p95 1.77 -> 1.87 W: such slopes in coarser
   // steps, so the user's choice.
   bool merge_thin_slices = false;
 };
