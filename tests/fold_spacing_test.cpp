@@ -168,5 +168,79 @@ TEST(FoldSpacing, ATreadUnderWBetweenTwoFoldsGrowsToW) {
   EXPECT_TRUE(tread_front);
 }
 
+// Two folds a pixel apart where the model is flat become one step (issue 23: "take two folds closer
+// than W into one step"). The plan: a rear top H(60) over d = 0-5, a riser V(5) and a front top
+// H(57) over d = 5-70, the front top then raised to 59.75 mm, a riser one pixel high left. The card
+// is judged against a model whose front top is 59.75 mm high: parting the folds would move a top
+// 2.75 mm off its model, closing them the rear top, 4 % of the model, 0.25 mm. The riser goes, and
+// the two tops are one face, folded to the back plane on Y = 59.75 and to the front on 59.75 - 70.
+TEST(FoldSpacing, FoldsAPixelApartWhereTheModelIsFlatBecomeOneStep) {
+  const Sheet sheet;
+  const RayScene stepped(test::merged(test::box({40, 0, 0}, {150, 60, 5}), test::box({40, 0, 5}, {150, 57, 70})));
+  const RayScene flat(test::merged(test::box({40, 0, 0}, {150, 60, 5}), test::box({40, 0, 5}, {150, 59.75, 70})));
+  const RasterMaps stepped_maps = raster(stepped, sheet, RasterOptions{});
+  const RasterMaps maps = raster(flat, sheet, RasterOptions{});
+  const RasterPlan sliced = slice(stepped_maps, segment(stepped_maps, SegmentOptions{}), SliceOptions{});
+  std::int32_t rear_top = -1, riser = -1, front_top = -1;
+  for (std::size_t f = kFloorFace + 1; f < sliced.faces.size(); ++f) {
+    const RasterFace& face = sliced.faces[f];
+    const auto is = [&](Orientation o, double depth) {
+      return face.orientation == o && std::abs(face.depth_mm - depth) < 1e-6;
+    };
+    if (is(Orientation::H, 60)) rear_top = static_cast<std::int32_t>(f);
+    if (is(Orientation::V, 5)) riser = static_cast<std::int32_t>(f);
+    if (is(Orientation::H, 57)) front_top = static_cast<std::int32_t>(f);
+  }
+  ASSERT_GE(rear_top, 0);
+  ASSERT_GE(riser, 0);
+  ASSERT_GE(front_top, 0);
+  const PixelGrid& grid = maps.grid;
+  const double W = sliced.min_strip_mm, tolerance = fold_snap_tolerance_mm(PlanOptions{}, sliced, grid);
+  const std::optional<RasterPlan> raised = move_plane(sliced, grid, front_top, 59.75, tolerance, 1);
+  ASSERT_TRUE(raised.has_value());
+  const std::vector<FoldPair> pairs = fold_pairs_under_W(*raised, grid, tolerance);
+  ASSERT_EQ(pairs.size(), 1u);
+  EXPECT_EQ(pairs[0].strip, riser);
+  EXPECT_NEAR(pairs[0].apart_mm, 0.25, 1e-9);
+  const std::int64_t tops_and_riser =
+      raised->faces[rear_top].pixels + raised->faces[riser].pixels + raised->faces[front_top].pixels;
+
+  SupportedPlan supported{*raised, build_plan(maps, *raised, sheet, PlanOptions{}), {}};
+  ASSERT_TRUE(plan_stands(supported.plan, false));
+  ASSERT_EQ(narrow_between_folds(supported.plan, W), 1);
+  const SupportedPlan spread = spread_fold_pairs(maps, std::move(supported), sheet, PlanOptions{}, false, {});
+  ASSERT_EQ(spread.report.planes_spread.size(), 1u);
+  const RefitPlane& moved = spread.report.planes_spread.front();
+  EXPECT_EQ(moved.orientation, Orientation::H);
+  EXPECT_EQ(moved.from_mm, 60);
+  EXPECT_EQ(moved.to_mm, 59.75);
+  // One H face at 59.75 mm, of all the tops' and the riser's pixels; no V(5).
+  std::vector<const RasterFace*> tops;
+  for (const RasterFace& face : spread.raster_plan.faces) {
+    EXPECT_FALSE(face.orientation == Orientation::V && face.depth_mm == 5);
+    if (face.orientation == Orientation::H && face.depth_mm > 0) tops.push_back(&face);
+  }
+  ASSERT_EQ(tops.size(), 1u);
+  EXPECT_EQ(tops[0]->depth_mm, 59.75);
+  // The back plane took the row its fold with the rear top came down by, across the top's 110 mm.
+  EXPECT_EQ(tops[0]->pixels, tops_and_riser - 110 * 4);
+  EXPECT_EQ(spread.raster_plan.faces[kBackFace].pixels, raised->faces[kBackFace].pixels + 110 * 4);
+  EXPECT_TRUE(fold_pairs_under_W(spread.raster_plan, grid, tolerance).empty());
+  EXPECT_TRUE(plan_stands(spread.plan, false));
+  EXPECT_EQ(narrow_between_folds(spread.plan, W), 0);
+  // Its folds: to the back plane on Y = 59.75, to the front V(70) on 59.75 - 70; none between.
+  int back_fold = 0, front_fold = 0, between = 0;
+  for (const PlanPolyline& line : spread.plan.lines) {
+    if (line.kind != LineKind::Mountain && line.kind != LineKind::Valley) continue;
+    for (const PlanPoint& p : line.points) {
+      back_fold += p.Y == 59.75, front_fold += p.Y == 59.75 - 70;
+      between += p.Y > 59.75 - 70 && p.Y < 59.75 && p.Y != 0;  // the main fold beside the boxes aside
+    }
+  }
+  EXPECT_GT(back_fold, 0);
+  EXPECT_GT(front_fold, 0);
+  EXPECT_EQ(between, 0);
+}
+
 }  // namespace
 }  // namespace origamic

@@ -204,5 +204,33 @@ TEST(RasterPlanEdits, APlaneMovesOnlyWhereTheFacesGivingRowsKeepTheirRunAndStayW
   EXPECT_FALSE(move_plane(bridge, grid, 3, 1.5, 0.3, 1).has_value());
 }
 
+// Two folds half a millimetre apart become one step: H(4) rows 0-11, a V(2) strip rows 12-13 (folds
+// at Y = 2 and 1.5), H(3.5) below. Moved onto H(3.5), H(4) takes the strip's rows and becomes part
+// of it: one face in every row. Onto a face beyond no strip (the floor), nothing moves.
+TEST(RasterPlanEdits, AFaceMovedOntoTheFaceBeyondItsStripClosesIt) {
+  const PixelGrid grid = three_columns(40, 20);
+  RasterPlan s;
+  s.face = Grid<std::int32_t>(grid.cols, grid.rows, 4);
+  s.faces = {{Orientation::V, 0}, {Orientation::H, 0}, {Orientation::H, 4}, {Orientation::V, 2}, {Orientation::H, 3.5}};
+  for (int c = 0; c < grid.cols; ++c)
+    for (int r = 0; r < 14; ++r) s.face(c, r) = r < 12 ? 2 : 3;
+  s.faces[2].pixels = 12 * grid.cols, s.faces[3].pixels = 2 * grid.cols, s.faces[4].pixels = 26 * grid.cols;
+  for (const auto& [f, onto] : {std::pair{2, 4}, std::pair{4, 2}}) {
+    const double depth = s.faces[static_cast<std::size_t>(onto)].depth_mm;
+    const std::optional<RasterPlan> closed = move_plane(s, grid, f, depth, 0.3, 12, std::nullopt, onto);
+    ASSERT_TRUE(closed.has_value()) << f;
+    for (const std::int32_t g : closed->face.values) EXPECT_EQ(g, onto);
+    EXPECT_EQ(closed->faces[static_cast<std::size_t>(onto)].pixels, grid.rows * grid.cols);
+    EXPECT_EQ(closed->faces[static_cast<std::size_t>(f)].pixels, 0);
+    EXPECT_EQ(closed->faces[3].pixels, 0);
+    EXPECT_EQ(closed->faces[static_cast<std::size_t>(f)].depth_mm, depth);
+  }
+  EXPECT_FALSE(move_plane(s, grid, 2, 0, 0.3, 1, std::nullopt, kFloorFace).has_value());
+  // Beside the floor in one column, the strip would go there too, the floor taking H(4)'s fold: no.
+  RasterPlan beside_floor = s;
+  for (int r = 14; r < grid.rows; ++r) beside_floor.face(2, r) = kFloorFace;
+  EXPECT_FALSE(move_plane(beside_floor, grid, 2, 3.5, 0.3, 1, std::nullopt, 4).has_value());
+}
+
 }  // namespace
 }  // namespace origamic

@@ -35,6 +35,7 @@ constexpr double kPastW_mm = 2 * kFoldLineTolerance_mm;
 struct Move {
   std::int32_t face = -1;
   double to_mm = 0;
+  std::optional<std::int32_t> onto;  // the face whose plane it takes, the strip closed (move_plane)
 };
 
 struct PixelBox {
@@ -127,25 +128,31 @@ class Spreader {
     const RasterFace &strip = face(it->strip), &above = face(it->above), &below = face(it->below);
     const double above_Y = fold_line_Y(above.orientation, above.depth_mm, strip.depth_mm);
     const double below_Y = fold_line_Y(strip.orientation, strip.depth_mm, below.depth_mm);
+    // The strip parted (one face W from the other) or closed (one face in the other's plane, the
+    // two folds one step: issue 23).
     std::vector<Tried> tried;
     for (const Move& move :
-         {Move{it->above, plane_for_fold(above.orientation, strip.depth_mm, below_Y + W + kPastW_mm)},
-          Move{it->below, plane_for_fold(below.orientation, strip.depth_mm, above_Y - W - kPastW_mm)}})
+         {Move{it->above, plane_for_fold(above.orientation, strip.depth_mm, below_Y + W + kPastW_mm), {}},
+          Move{it->below, plane_for_fold(below.orientation, strip.depth_mm, above_Y - W - kPastW_mm), {}},
+          Move{it->above, below.depth_mm, it->below}, Move{it->below, above.depth_mm, it->above}})
       if (std::optional<Tried> t = try_move(move)) tried.push_back(std::move(*t));
     std::ranges::stable_sort(tried, {}, &Tried::fared);
     const auto made = std::ranges::find_if(tried, [&](const Tried& t) {
-      return std::ranges::includes(unheld_, faces_unheld_on_raster(maps_.grid, t.plan, allow_dangling_));
+      std::vector<std::int32_t> unheld = faces_unheld_on_raster(maps_.grid, t.plan, allow_dangling_);
+      std::erase_if(unheld, [&](std::int32_t g) { return t.plan.faces[static_cast<std::size_t>(g)].pixels == 0; });
+      return std::ranges::includes(unheld_, unheld);
     });
     if (made == tried.end()) return std::nullopt;
     const RasterFace& f = face(made->move.face);
     RefitPlane moved{{}, f.orientation, f.support, f.depth_mm, made->move.to_mm};
+    if (made->move.onto) moved.at = first_pixel(made->move.face);  // it keeps none
     for (const auto [c, r] : made->changed) {
       card_.update(made->plan, c, r);
       if (const std::int32_t g = made->plan.face(c, r); g >= 0)
         grow(boxes_[static_cast<std::size_t>(g)], c, r);  // a box may hold more than its face
     }
     plan_ = std::move(made->plan);
-    moved.at = first_pixel(made->move.face);
+    if (!made->move.onto) moved.at = first_pixel(made->move.face);
     return moved;
   }
 
@@ -178,11 +185,12 @@ class Spreader {
   // bears it; the card is left as it was.
   std::optional<Tried> try_move(const Move& move) {
     const RasterFace& f = face(move.face);
-    if (move.face <= kFloorFace || f.hole || !(move.to_mm > 0)) return std::nullopt;
+    if (move.face <= kFloorFace || f.hole || !(move.to_mm > 0 || move.onto)) return std::nullopt;
     std::optional<RasterPlan> moved =
         move_plane(plan_, maps_.grid, move.face, move.to_mm, tolerance_mm_, plan_.block_px,
                    std::pair{boxes_[static_cast<std::size_t>(move.face)].first_col,
-                             boxes_[static_cast<std::size_t>(move.face)].last_col});
+                             boxes_[static_cast<std::size_t>(move.face)].last_col},
+                   move.onto);
     if (!moved || pairs_in(*moved, move.face).size() >= pairs_in(plan_, move.face).size()) return std::nullopt;
     // The face's pixels show their new plane, and its folds moved at most as many rows past its box
     // as the plane moves.
@@ -239,12 +247,13 @@ SupportedPlan spread_fold_pairs(const RasterMaps& maps, SupportedPlan supported,
     if (std::optional<RefitPlane> moved = spreader.part(pair)) spread.push_back(*moved);
   if (spread.empty()) return supported;
   const PlanFares before = plan_fares(maps, supported.plan, W, allow_dangling);
-  Plan plan = build_plan(maps, spreader.plan(), sheet, plan_options);
+  RasterPlan spread_plan = merge_coplanar_faces(spreader.plan());  // faces closed onto others go
+  Plan plan = build_plan(maps, spread_plan, sheet, plan_options);
   const PlanFares fared = plan_fares(maps, plan, W, allow_dangling);
   if (fared.fails || fared.p95_W > before.p95_W + options.may_add_p95_W ||
       fared.mean_W > before.mean_W + options.may_add_mean_W || (keep && !keep(supported.plan, plan)))
     return supported;
-  supported.raster_plan = spreader.plan();
+  supported.raster_plan = std::move(spread_plan);
   supported.plan = std::move(plan);
   supported.report.drawn_in_mirror_image = false;  // drawn here, from the raster plan moved
   supported.report.narrow = narrow_strips(supported.raster_plan, maps.grid);

@@ -43,8 +43,9 @@ struct FoldSpacingOptions {
 using FoldSpacingCheck = std::function<bool(const Plan& given, const Plan& parted)>;
 
 /// For each fold pair, the nearest W apart first, one of the two faces beside the strip (not the
-/// back plane or the floor) moves its plane to W (and 2 kFoldLineTolerance_mm) from the other's,
-/// its folds with it (move_plane): of the two moves that leave fewer pairs in the face's columns,
+/// back plane or the floor) moves its plane, its folds with it (move_plane): to W (and 2
+/// kFoldLineTolerance_mm) from the other's, or into the other's, the strip closed and the two faces
+/// one (two folds one step). Of the four moves, those that leave fewer pairs in the face's columns,
 /// no face unheld on the raster plan's folds that was held, and the card estimated on the raster
 /// within the options' bounds of the plan given, the one that shows the model better. A strip
 /// parted by a boundary of two coplanar faces (a support beside a slice in its plane) is not seen.

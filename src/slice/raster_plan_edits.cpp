@@ -313,8 +313,12 @@ std::vector<int> align_sweep(RasterPlan& result, const FoldRows& folds) {
 }  // namespace
 
 std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& grid, std::int32_t f, double depth_mm,
-                                     double tolerance_mm, int min_run_px, std::optional<std::pair<int, int>> columns) {
+                                     double tolerance_mm, int min_run_px, std::optional<std::pair<int, int>> columns,
+                                     std::optional<std::int32_t> onto) {
   assert(f > kFloorFace && static_cast<std::size_t>(f) < plan.faces.size() && !plan.faces[f].hole);
+  assert(!onto || (*onto != f && !plan.faces[static_cast<std::size_t>(*onto)].hole &&
+                   plan.faces[static_cast<std::size_t>(*onto)].orientation == plan.faces[f].orientation &&
+                   plan.faces[static_cast<std::size_t>(*onto)].depth_mm == depth_mm));
   // The folds are found on the planes as they are, then moved to the new plane's lines: first each
   // move is checked (most that fail, fail here), then the plan copied and the moves made.
   const FoldRows old_folds{grid, tolerance_mm};
@@ -327,6 +331,7 @@ std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& gr
     int col, first, last;
     std::int32_t taker, giver;
     int kept_row, away;  // the giver's first row kept, and the way its run goes on from it
+    bool closes;         // the giver keeps none: `onto` lies beyond
   };
   std::vector<Rows> given;
   const Grid<std::int32_t>& face = plan.face;
@@ -339,6 +344,19 @@ std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& gr
       // (one that could not be aligned stays so: res_dragon_full's ends of a fold 5-7 px off it).
       const int on_line = old_folds.row(plan, a, b, r);
       if (on_line == -1) continue;
+      if (onto) {  // the other face's run, from this fold to its fold with `onto`, if it has one
+        const std::int32_t g = a == f ? b : a;
+        const int away = a == f ? 1 : -1;
+        int end = a == f ? r + 1 : r;  // its last row away from f
+        while (0 <= end + away && end + away < face.rows && face(col, end + away) == g) end += away;
+        const int beyond = end + away;
+        if (0 <= beyond && beyond < face.rows && face(col, beyond) == *onto &&
+            old_folds.row(plan, away > 0 ? g : *onto, away > 0 ? *onto : g, std::min(end, beyond)) != -1) {
+          given.push_back(
+              {col, std::min(a == f ? r + 1 : r, end), std::max(a == f ? r + 1 : r, end), f, g, beyond, away, true});
+          continue;
+        }
+      }
       const int t = r + new_row(a, b) - on_line;
       if (t == r) continue;
       if (t < 0 || t + 1 >= face.rows) return std::nullopt;
@@ -350,16 +368,24 @@ std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& gr
       if (kept_row < 0 || kept_row >= face.rows || face(col, kept_row) != giver) return std::nullopt;
       for (int k = first; k <= last; ++k)
         if (face(col, k) != giver) return std::nullopt;
-      given.push_back({col, first, last, taker, giver, kept_row, away});
+      given.push_back({col, first, last, taker, giver, kept_row, away, false});
     }
+  if (onto && std::ranges::none_of(given, &Rows::closes)) return std::nullopt;
   RasterPlan moved_planes = plan;
   moved_planes.faces[static_cast<std::size_t>(f)].depth_mm = depth_mm;
   std::vector<std::uint8_t> gave(plan.faces.size(), 0);
-  for (const auto& [col, first, last, taker, giver, kept_row, away] : given) {
+  for (const auto& [col, first, last, taker, giver, kept_row, away, closes] : given) {
     for (int k = first; k <= last; ++k) moved_planes.face(col, k) = taker;
     moved_planes.faces[static_cast<std::size_t>(giver)].pixels -= last - first + 1;
     moved_planes.faces[static_cast<std::size_t>(taker)].pixels += last - first + 1;
     gave[static_cast<std::size_t>(giver)] = 1;
+  }
+  // f, in onto's plane, becomes part of it (it touches it where a strip closed).
+  if (onto) {
+    for (std::int32_t& g : moved_planes.face.values)
+      if (g == f) g = *onto;
+    moved_planes.faces[static_cast<std::size_t>(*onto)].pixels += std::exchange(moved_planes.faces[f].pixels, 0);
+    gave[static_cast<std::size_t>(*onto)] = 1;  // and is one piece of paper with it
   }
   // Each face that gave rows keeps min_run_px of its run there, counted as the move leaves it: f
   // moving gives rows at one fold as it takes as many at the other (a support W wide keeps W; on
@@ -368,15 +394,17 @@ std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& gr
   // already: it need only keep a row (kept_row, above). Refusing those too, the refits and fold
   // spreads of the 37 models at W = 3 mm left res_knot at 2.13 W with 10 planes refit (now 1.99 W,
   // 15) and 183 faces between two folds closer than W (now 178; places in all 3,880 and 3,879).
-  for (const auto& [col, first, last, taker, giver, kept_row, away] : given) {
+  for (const auto& [col, first, last, taker, giver, kept_row, away, closes] : given) {
+    if (closes) continue;
     int run_before = 0;  // from its row beside the old boundary on, up to min_run_px
     for (int row = away > 0 ? first : last;
          run_before < min_run_px && 0 <= row && row < face.rows && face(col, row) == giver; row += away)
       ++run_before;
     if (run_before < min_run_px) continue;
+    const std::int32_t kept = giver == f && onto ? *onto : giver;
     for (int k = 1; k < min_run_px; ++k) {
       const int row = kept_row + away * k;
-      if (row < 0 || row >= face.rows || moved_planes.face(col, row) != giver) return std::nullopt;
+      if (row < 0 || row >= face.rows || moved_planes.face(col, row) != kept) return std::nullopt;
     }
   }
   // A face that gave pixels and is now in two parts would be two pieces of paper, the one without
