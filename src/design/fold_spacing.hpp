@@ -4,7 +4,8 @@
 // strip between V(d1) above and V(d2) below folds at h - d1 and h - d2, d2 - d1 apart, however wide
 // its pixels are; a V strip between two H faces, their heights' difference. Supports and refit
 // planes join faces whose planes lie a hair under W apart (prim_torus: 2.9985 mm at W = 3 mm). One
-// of the two faces moves its plane away from the other's, its folds with it, to W apart.
+// of the two faces moves its plane away from the other's, its folds with it, to W apart, or into
+// it, the strip closed (a support 0.12 mm proud of a slice: arch_fzk_haus).
 #pragma once
 
 #include <cstdint>
