@@ -306,6 +306,9 @@ void design_loaded(LoadedMesh loaded, const std::filesystem::path& model_file, c
     result.plan = build_plan(result.maps, result.raster_plan, options.sheet, options.plan);
     clock.lap("plan");
   } else {
+    // No support stage reads the subsegments (--dump-maps draws them): its raster plans, copied
+    // round after round, go without them, 4 bytes a pixel.
+    Grid<std::int32_t> subsegments = std::exchange(result.raster_plan.subsegment, {});
     SupportedPlan supported = supported_plan(result, options);
     clock.lap("plan+supports");
     if (options.spread_fold_pairs) {
@@ -313,6 +316,7 @@ void design_loaded(LoadedMesh loaded, const std::filesystem::path& model_file, c
       clock.lap("fold pairs spread");
     }
     result.raster_plan = std::move(supported.raster_plan);
+    result.raster_plan.subsegment = std::move(subsegments);
     result.plan = std::move(supported.plan);
     result.supports = supported.report;
   }
