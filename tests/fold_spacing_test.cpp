@@ -77,6 +77,7 @@ TEST(FoldSpacing, ARiserUnderWBetweenTwoFoldsGrowsToW) {
   EXPECT_EQ(moved.orientation, Orientation::H);
   EXPECT_EQ(moved.from_mm, 57.1);
   EXPECT_NEAR(moved.to_mm, 57, 1e-5);
+  EXPECT_FALSE(moved.closed);
   EXPECT_EQ(spread.raster_plan.faces[s.front_top].depth_mm, moved.to_mm);
   EXPECT_TRUE(plan_stands(spread.plan, false));
   EXPECT_EQ(narrow_between_folds(spread.plan, W), 0);
@@ -214,6 +215,7 @@ TEST(FoldSpacing, FoldsAPixelApartWhereTheModelIsFlatBecomeOneStep) {
   EXPECT_EQ(moved.orientation, Orientation::H);
   EXPECT_EQ(moved.from_mm, 60);
   EXPECT_EQ(moved.to_mm, 59.75);
+  EXPECT_TRUE(moved.closed);
   // One H face at 59.75 mm, of all the tops' and the riser's pixels; no V(5).
   std::vector<const RasterFace*> tops;
   for (const RasterFace& face : spread.raster_plan.faces) {

@@ -226,10 +226,31 @@ TEST(RasterPlanEdits, AFaceMovedOntoTheFaceBeyondItsStripClosesIt) {
     EXPECT_EQ(closed->faces[static_cast<std::size_t>(f)].depth_mm, depth);
   }
   EXPECT_FALSE(move_plane(s, grid, 2, 0, 0.3, 1, std::nullopt, kFloorFace).has_value());
-  // Beside the floor in one column, the strip would go there too, the floor taking H(4)'s fold: no.
+  // Beside the floor in one column, H(4)'s fold with the strip would move onto the floor's row
+  // there, leaving the strip none: nothing moves.
   RasterPlan beside_floor = s;
   for (int r = 14; r < grid.rows; ++r) beside_floor.face(2, r) = kFloorFace;
   EXPECT_FALSE(move_plane(beside_floor, grid, 2, 3.5, 0.3, 1, std::nullopt, 4).has_value());
+  // A row longer in one column, the strip meets H(3.5) a row off its fold line (0.25 mm, over the
+  // 0.2 mm tolerance): closed elsewhere, it would lie there between two parts of H(3.5).
+  RasterPlan longer = s;
+  longer.face(2, 14) = 3;
+  EXPECT_TRUE(move_plane(s, grid, 2, 3.5, 0.2, 1, std::nullopt, 4).has_value());
+  EXPECT_FALSE(move_plane(longer, grid, 2, 3.5, 0.2, 1, std::nullopt, 4).has_value());
+}
+
+// A move that could be made but closes no strip between f and `onto` is not made: H(4) half a
+// millimetre higher takes its fold with the V face up 2 rows, but the V face's run ends on the
+// floor, not on the H(4.5) face below it.
+TEST(RasterPlanEdits, AFaceMovedOntoAFaceNoStripOfItsReachesStays) {
+  const PixelGrid grid = three_columns(40, 20);
+  RasterPlan s = v_between_h_and_floor(grid);
+  s.faces.push_back({Orientation::H, 4.5});
+  for (int c = 0; c < grid.cols; ++c)
+    for (int r = 36; r < grid.rows; ++r) s.face(c, r) = 4;
+  s.faces[kFloorFace].pixels -= 4 * grid.cols, s.faces[4].pixels = 4 * grid.cols;
+  EXPECT_TRUE(move_plane(s, grid, 2, 4.5, 0.3, 1).has_value());
+  EXPECT_FALSE(move_plane(s, grid, 2, 4.5, 0.3, 1, std::nullopt, 4).has_value());
 }
 
 }  // namespace

@@ -107,6 +107,7 @@ struct RefitPlane {
   Orientation orientation = Orientation::V;
   bool support = false;           // a support, not a face of the model
   double from_mm = 0, to_mm = 0;  // its depth d (V) or height h (H) before and after
+  bool closed = false;            // spread: into the plane of the face across the strip, now part of it
 };
 
 /// Why supports alone did not make every face stand.
@@ -144,7 +145,8 @@ struct SupportReport {
   std::vector<CutOutFace> cut_out_faces;  // each, with its place and why
   std::vector<JoinedFace> joined_faces;   // faces given to a neighbour instead of cut out
   std::vector<RefitPlane> planes_refit;   // faces moved to a plane that shows the model better
-  std::vector<RefitPlane> planes_spread;  // faces moved to W from a plane across a strip between two folds
+  std::vector<RefitPlane> planes_spread;  // faces moved to W from a plane across a strip between two
+                                          // folds, or into it (closed)
   std::vector<NarrowStrip> narrow;        // faces and supports narrower than W, with their place
 };
 

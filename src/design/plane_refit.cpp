@@ -259,7 +259,7 @@ SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, cons
         continue;
       }
       const RasterFace& face = supported.raster_plan.faces[static_cast<std::size_t>(move.face)];
-      report.planes_refit.push_back({move.at, face.orientation, face.support, move.from_mm, move.to_mm});
+      report.planes_refit.push_back({move.at, face.orientation, face.support, move.from_mm, move.to_mm, false});
       listed.push_back(move.face);
     }
   }

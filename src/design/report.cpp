@@ -94,14 +94,16 @@ nlohmann::json joined_json(const std::vector<JoinedFace>& faces) {
   return list;
 }
 
-nlohmann::json refit_json(const std::vector<RefitPlane>& planes) {
+nlohmann::json refit_json(const std::vector<RefitPlane>& planes, bool spread = false) {
   nlohmann::json list = nlohmann::json::array();
-  for (const RefitPlane& p : planes)
+  for (const RefitPlane& p : planes) {
     list.push_back({{"at_XY", {p.at.X, p.at.Y}},
                     {"orientation", p.orientation == Orientation::V ? "V" : "H"},
                     {"support", p.support},
                     {"from_mm", p.from_mm},
                     {"to_mm", p.to_mm}});
+    if (spread) list.back()["closed"] = p.closed;
+  }
   return list;
 }
 
@@ -244,7 +246,7 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
         {"cut_out_faces", cut_out_json(result.supports.cut_out_faces)},
         {"joined_to_neighbour", joined_json(result.supports.joined_faces)},
         {"planes_refit", refit_json(result.supports.planes_refit)},
-        {"planes_spread", refit_json(result.supports.planes_spread)},
+        {"planes_spread", refit_json(result.supports.planes_spread, true)},
         {"narrow_strips", narrow_json(result.supports.narrow)},
         {"round_bound", result.supports.round_bound},
         {"orders", result.supports.orders},

@@ -260,6 +260,22 @@ struct FoldRows {
   }
 };
 
+// Face g's run in a column from its boundary with f (below row r if f is above it, else above it)
+// to where it meets face `onto`: its first and last rows, and onto's row beyond them; none if the
+// run ends on another face.
+struct RunTo {
+  int first, last, beyond;
+};
+std::optional<RunTo> run_to(const Grid<std::int32_t>& face, int col, int r, bool f_above, std::int32_t onto) {
+  const int start = f_above ? r + 1 : r, away = f_above ? 1 : -1;
+  const std::int32_t g = face(col, start);
+  int end = start;
+  while (0 <= end + away && end + away < face.rows && face(col, end + away) == g) end += away;
+  const int beyond = end + away;
+  if (beyond < 0 || beyond >= face.rows || face(col, beyond) != onto) return std::nullopt;
+  return RunTo{std::min(start, end), std::max(start, end), beyond};
+}
+
 // One sweep of align_folds_to_lines over one column; returns how many pixels changed face.
 std::int64_t align_column(RasterPlan& result, const FoldRows& folds, int col) {
   std::int64_t moved = 0;
@@ -315,9 +331,11 @@ std::vector<int> align_sweep(RasterPlan& result, const FoldRows& folds) {
 std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& grid, std::int32_t f, double depth_mm,
                                      double tolerance_mm, int min_run_px, std::optional<std::pair<int, int>> columns,
                                      std::optional<std::int32_t> onto) {
-  assert(f > kFloorFace && static_cast<std::size_t>(f) < plan.faces.size() && !plan.faces[f].hole);
+  assert(f > kFloorFace && static_cast<std::size_t>(f) < plan.faces.size() &&
+         !plan.faces[static_cast<std::size_t>(f)].hole);
   assert(!onto || (*onto != f && !plan.faces[static_cast<std::size_t>(*onto)].hole &&
-                   plan.faces[static_cast<std::size_t>(*onto)].orientation == plan.faces[f].orientation &&
+                   plan.faces[static_cast<std::size_t>(*onto)].orientation ==
+                       plan.faces[static_cast<std::size_t>(f)].orientation &&
                    plan.faces[static_cast<std::size_t>(*onto)].depth_mm == depth_mm));
   // The folds are found on the planes as they are, then moved to the new plane's lines: first each
   // move is checked (most that fail, fail here), then the plan copied and the moves made.
@@ -331,7 +349,7 @@ std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& gr
     int col, first, last;
     std::int32_t taker, giver;
     int kept_row, away;  // the giver's first row kept, and the way its run goes on from it
-    bool closes;         // the giver keeps none: `onto` lies beyond
+    bool closes;         // a strip between f and `onto`: the giver keeps none
   };
   std::vector<Rows> given;
   const Grid<std::int32_t>& face = plan.face;
@@ -339,24 +357,22 @@ std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& gr
   for (int col = first_col; col <= last_col; ++col)
     for (int r = 0; r + 1 < face.rows; ++r) {
       const std::int32_t a = face(col, r), b = face(col, r + 1);  // a above, b below
-      if (a != f && b != f) continue;
+      if (a == b || (a != f && b != f)) continue;
+      // A strip between f and `onto` closes: folded to both, f takes all its rows; else it would
+      // lie between two parts of onto, and nothing moves.
+      if (const std::int32_t g = a == f ? b : a; onto && g != *onto)
+        if (const std::optional<RunTo> strip = run_to(face, col, r, a == f, *onto)) {
+          const bool folded =
+              old_folds.row(plan, a, b, r) != -1 &&
+              old_folds.row(plan, a == f ? g : *onto, a == f ? *onto : g, a == f ? strip->last : strip->beyond) != -1;
+          if (!folded) return std::nullopt;
+          given.push_back({col, strip->first, strip->last, f, g, strip->beyond, a == f ? 1 : -1, true});
+          continue;
+        }
       // A boundary the exact plan would snap onto its fold moves with it, as far off it as before
       // (one that could not be aligned stays so: res_dragon_full's ends of a fold 5-7 px off it).
       const int on_line = old_folds.row(plan, a, b, r);
       if (on_line == -1) continue;
-      if (onto) {  // the other face's run, from this fold to its fold with `onto`, if it has one
-        const std::int32_t g = a == f ? b : a;
-        const int away = a == f ? 1 : -1;
-        int end = a == f ? r + 1 : r;  // its last row away from f
-        while (0 <= end + away && end + away < face.rows && face(col, end + away) == g) end += away;
-        const int beyond = end + away;
-        if (0 <= beyond && beyond < face.rows && face(col, beyond) == *onto &&
-            old_folds.row(plan, away > 0 ? g : *onto, away > 0 ? *onto : g, std::min(end, beyond)) != -1) {
-          given.push_back(
-              {col, std::min(a == f ? r + 1 : r, end), std::max(a == f ? r + 1 : r, end), f, g, beyond, away, true});
-          continue;
-        }
-      }
       const int t = r + new_row(a, b) - on_line;
       if (t == r) continue;
       if (t < 0 || t + 1 >= face.rows) return std::nullopt;
@@ -384,7 +400,8 @@ std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& gr
   if (onto) {
     for (std::int32_t& g : moved_planes.face.values)
       if (g == f) g = *onto;
-    moved_planes.faces[static_cast<std::size_t>(*onto)].pixels += std::exchange(moved_planes.faces[f].pixels, 0);
+    moved_planes.faces[static_cast<std::size_t>(*onto)].pixels +=
+        std::exchange(moved_planes.faces[static_cast<std::size_t>(f)].pixels, 0);
     gave[static_cast<std::size_t>(*onto)] = 1;  // and is one piece of paper with it
   }
   // Each face that gave rows keeps min_run_px of its run there, counted as the move leaves it: f

@@ -61,9 +61,11 @@ RasterPlan align_folds_to_lines(RasterPlan raster_plan, const PixelGrid& grid, d
 /// line, or the new line lies off the sheet; or where the move leaves a face in more 4-connected
 /// parts than it was. `columns` (first, last), if given, holds every column of f: only those are
 /// searched for its folds. With `onto`, a face of f's orientation in the plane `depth_mm`, two
-/// folds become one step: where a face of the other orientation lies between f and `onto` in a
-/// column, folded to both, f takes all of its rows there (its strip closes), and f becomes part of
-/// `onto` (f keeps no pixel; the checks above count them as one face); nothing if no strip closes.
+/// folds become one step: where another face lies between f and `onto` in a column, folded to both,
+/// f takes all of its rows there (its strip closes), and f becomes part of `onto` (f keeps no pixel;
+/// the runs kept and the parts after the move are counted as one face's). Nothing if no strip
+/// closes, or where a face between them is not folded to both (it would lie between two parts of
+/// `onto`).
 /// \pre f is a face of the plan, not the back plane, the floor or a hole; `onto`, if given, is
 /// another face, not a hole, of f's orientation and depth `depth_mm`.
 std::optional<RasterPlan> move_plane(const RasterPlan& raster_plan, const PixelGrid& grid, std::int32_t f,

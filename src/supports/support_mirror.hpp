@@ -32,8 +32,9 @@ SupportFrame first_support_frame(const RasterPlan& raster_plan, const PixelGrid&
 /// slicing and pictures read, are left empty.
 RasterMaps mirror_image(const RasterMaps& maps);
 
-/// The raster plan mirrored (face ids kept; block_subsegment, which nothing reads after slicing, as
-/// it is). Mirroring twice gives it back.
+/// The raster plan mirrored (face ids kept; its subsegments too where it has them, which design()
+/// sets aside for the support stage; block_subsegment, which nothing reads after slicing, as it
+/// is). Mirroring twice gives it back.
 RasterPlan mirror_image(RasterPlan raster_plan);
 
 /// The faces renumbered in the order a row-major scan meets them (the back plane and the floor
