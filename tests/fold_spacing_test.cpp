@@ -18,6 +18,15 @@
 namespace origamic {
 namespace {
 
+// The face of a raster plan in a plane (the last of several), -1 if none.
+std::int32_t face_in(const RasterPlan& plan, Orientation orientation, double depth_mm) {
+  std::int32_t found = -1;
+  for (std::size_t f = kFloorFace + 1; f < plan.faces.size(); ++f)
+    if (plan.faces[f].orientation == orientation && std::abs(plan.faces[f].depth_mm - depth_mm) < 1e-6)
+      found = static_cast<std::int32_t>(f);
+  return found;
+}
+
 // Two boxes, one behind the other: the rear one's top H(60) over d = 0-30, a riser V(30) 6 mm high,
 // the front one's top H(54) over d = 30-60 and its front V(60).
 struct Staircase {
@@ -29,15 +38,9 @@ Staircase staircase(const Sheet& sheet) {
   const RayScene scene(test::merged(test::box({40, 0, 0}, {150, 60, 30}), test::box({40, 0, 30}, {150, 54, 60})));
   Staircase s{raster(scene, sheet, RasterOptions{}), {}};
   s.sliced = slice(s.maps, segment(s.maps, SegmentOptions{}), SliceOptions{});
-  for (std::size_t f = kFloorFace + 1; f < s.sliced.faces.size(); ++f) {
-    const RasterFace& face = s.sliced.faces[f];
-    const auto is = [&](Orientation o, double depth) {
-      return face.orientation == o && std::abs(face.depth_mm - depth) < 1e-6;
-    };
-    if (is(Orientation::H, 60)) s.rear_top = static_cast<std::int32_t>(f);
-    if (is(Orientation::V, 30)) s.riser = static_cast<std::int32_t>(f);
-    if (is(Orientation::H, 54)) s.front_top = static_cast<std::int32_t>(f);
-  }
+  s.rear_top = face_in(s.sliced, Orientation::H, 60);
+  s.riser = face_in(s.sliced, Orientation::V, 30);
+  s.front_top = face_in(s.sliced, Orientation::H, 54);
   return s;
 }
 
@@ -122,16 +125,8 @@ TEST(FoldSpacing, ATreadUnderWBetweenTwoFoldsGrowsToW) {
   const RayScene scene(test::merged(test::box({40, 0, 0}, {150, 60, 30}), test::box({40, 0, 30}, {150, 40, 40})));
   const RasterMaps maps = raster(scene, sheet, RasterOptions{});
   const RasterPlan sliced = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
-  std::int32_t tall_front = -1, tread = -1, low_front = -1;
-  for (std::size_t f = kFloorFace + 1; f < sliced.faces.size(); ++f) {
-    const RasterFace& face = sliced.faces[f];
-    const auto is = [&](Orientation o, double depth) {
-      return face.orientation == o && std::abs(face.depth_mm - depth) < 1e-6;
-    };
-    if (is(Orientation::V, 30)) tall_front = static_cast<std::int32_t>(f);
-    if (is(Orientation::H, 40)) tread = static_cast<std::int32_t>(f);
-    if (is(Orientation::V, 40)) low_front = static_cast<std::int32_t>(f);
-  }
+  const std::int32_t tall_front = face_in(sliced, Orientation::V, 30), tread = face_in(sliced, Orientation::H, 40),
+                     low_front = face_in(sliced, Orientation::V, 40);
   ASSERT_GE(tall_front, 0);
   ASSERT_GE(tread, 0);
   ASSERT_GE(low_front, 0);
@@ -182,16 +177,8 @@ TEST(FoldSpacing, FoldsAPixelApartWhereTheModelIsFlatBecomeOneStep) {
   const RasterMaps stepped_maps = raster(stepped, sheet, RasterOptions{});
   const RasterMaps maps = raster(flat, sheet, RasterOptions{});
   const RasterPlan sliced = slice(stepped_maps, segment(stepped_maps, SegmentOptions{}), SliceOptions{});
-  std::int32_t rear_top = -1, riser = -1, front_top = -1;
-  for (std::size_t f = kFloorFace + 1; f < sliced.faces.size(); ++f) {
-    const RasterFace& face = sliced.faces[f];
-    const auto is = [&](Orientation o, double depth) {
-      return face.orientation == o && std::abs(face.depth_mm - depth) < 1e-6;
-    };
-    if (is(Orientation::H, 60)) rear_top = static_cast<std::int32_t>(f);
-    if (is(Orientation::V, 5)) riser = static_cast<std::int32_t>(f);
-    if (is(Orientation::H, 57)) front_top = static_cast<std::int32_t>(f);
-  }
+  const std::int32_t rear_top = face_in(sliced, Orientation::H, 60), riser = face_in(sliced, Orientation::V, 5),
+                     front_top = face_in(sliced, Orientation::H, 57);
   ASSERT_GE(rear_top, 0);
   ASSERT_GE(riser, 0);
   ASSERT_GE(front_top, 0);
