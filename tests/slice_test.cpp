@@ -217,9 +217,6 @@ TEST(Slice, ThinPoleIsRemovedAndItsHoleFilled) {
   EXPECT_EQ(p.raster_plan.faces.size(), 4u);  // back, floor, and the house's front and top
 }
 
-// A low-poly model's file normals, one per vertex and averaged over the faces around it, turn 55
-// degrees from every face of a box; the loader gives each face its own, and the box slices as it
-// does with no normals in its file: one front, one top.
 // A plate 1.5 mm wide against the left side of a box, its front 10 mm behind the box's: too thin to
 // be a face, its pixels are filled from the faces of the model beside them, not from the back plane
 // and the floor behind (which had taken the half of each row nearer them: a card showing the
@@ -242,6 +239,9 @@ TEST(Slice, AThinPieceBesideTheModelIsFilledFromItsFaces) {
   EXPECT_EQ(background, 0);
 }
 
+// A low-poly model's file normals, one per vertex and averaged over the faces around it, turn 55
+// degrees from every face of a box; the loader gives each face its own, and the box slices as it
+// does with no normals in its file: one front, one top.
 TEST(Slice, ABoxWithNormalsAveragedAtItsCornersSlicesAsTheBoxWithout) {
   const test::TempDir dir;
   test::write_text(dir / "plain.obj", test::box_obj({80, 50, 40}, false));
