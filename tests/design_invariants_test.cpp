@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <iterator>
 #include <optional>
@@ -105,13 +106,45 @@ TEST(DesignInvariants, AModelMirroredAlongTheFoldGivesTheMirroredPlan) {
   }
 }
 
+// The supports mirror the maps in place to choose on the mirror image and give them back bit for bit;
+// the normals, which nothing after slicing reads, are dropped unless kept, and the plan is the same.
+TEST(DesignInvariants, TheMapsComeBackFromTheSupportsAsTheyWereAndTheirNormalsOnlyWhenKept) {
+  const TriangleMesh house = load_mesh(kHouse).mesh;
+  const double width_mm = Sheet{}.width_mm;
+  const auto same_bytes = [](const auto& a, const auto& b) {
+    return a.values.size() == b.values.size() &&
+           std::memcmp(a.values.data(), b.values.data(), a.values.size() * sizeof(a.values[0])) == 0;
+  };
+  std::vector<bool> chosen_on_the_mirror_image;
+  for (const auto& [model, x] : {std::pair{house, kX}, {mirrored_along_the_fold(house), width_mm - kX}}) {
+    const DesignResult sliced = design_at(model, x, false);  // maps no support stage has touched
+    DesignOptions options;
+    options.placement.scale = kScale;
+    options.placement.offset_mm = glm::dvec3(x, 0, 0);
+    const DesignResult dropped = design(LoadedMesh{.mesh = model, .format = "obj"}, options);
+    options.keep_normals = true;
+    const DesignResult kept = design(LoadedMesh{.mesh = model, .format = "obj"}, options);
+    EXPECT_EQ(dropped.maps.normal.size(), 0u);
+    EXPECT_EQ(sliced.maps.normal.size(), 0u);
+    EXPECT_EQ(kept.maps.normal.size(), kept.maps.d_mm.size());
+    EXPECT_TRUE(same_bytes(kept.maps.d_mm, sliced.maps.d_mm) && same_bytes(kept.maps.h_mm, sliced.maps.h_mm) &&
+                same_bytes(kept.maps.kind, sliced.maps.kind) &&
+                same_bytes(kept.maps.break_right, sliced.maps.break_right) &&
+                same_bytes(kept.maps.break_below, sliced.maps.break_below));
+    const auto a = segments(dropped.plan, 1, 0), b = segments(kept.plan, 1, 0);
+    EXPECT_TRUE(a == b) << difference(a, b);
+    chosen_on_the_mirror_image.push_back(kept.supports.mirror_image);
+  }
+  EXPECT_NE(chosen_on_the_mirror_image[0], chosen_on_the_mirror_image[1]) << "one of the two mirrored its maps";
+}
+
 // The other frame's supports (add_supports_in_other_frame) are another choice, and a mirrored
 // model's are the mirror image of the model's.
 TEST(DesignInvariants, TheOtherFramesSupportsOfAMirroredModelAreTheMirroredOnes) {
   const TriangleMesh house = load_mesh(kHouse).mesh;
   const TriangleMesh mirrored = mirrored_along_the_fold(house);
   const double width_mm = Sheet{}.width_mm;
-  const DesignResult a = design_at(house, kX, false), b = design_at(mirrored, width_mm - kX, false);
+  DesignResult a = design_at(house, kX, false), b = design_at(mirrored, width_mm - kX, false);
   const DesignOptions options;
   const SupportedPlan first = add_supports(a.maps, a.raster_plan, options.sheet, options.plan, options.supports);
   const std::optional<SupportedPlan> other =

@@ -71,7 +71,8 @@ TEST(LevelContours, ASlicesEndCrossesEachPixelEdgeWhereTheDepthCrossesItsLevel) 
 TEST(LevelContours, TheMirrorImageGetsOneMinusEachFraction) {
   const Sliced s = two_slices();
   const BreaksAndLevels lines = breaks_and_levels(s.maps, s.plan.face, s.plan.faces);
-  const RasterMaps mirrored_maps = mirror_image(s.maps);
+  RasterMaps mirrored_maps = s.maps;
+  mirror_in_place(mirrored_maps);
   const RasterPlan mirrored_plan = mirror_image(s.plan);
   const BreaksAndLevels mirrored = breaks_and_levels(mirrored_maps, mirrored_plan.face, mirrored_plan.faces);
   for (int r = 0; r < kRows; ++r)
@@ -109,7 +110,8 @@ TEST(LevelContours, AStraightModelEdgeRunsOnAlongTheBoundaryThatContinuesIt) {
   for (int r = 0; r < s.rows; ++r) EXPECT_EQ(lines.right(1, r), 0.75f) << "row " << r;
   EXPECT_EQ(drawn(lines.right), s.rows) << "on that line only";
   EXPECT_EQ(drawn(lines.below), 0);
-  const RasterMaps mirrored_maps = mirror_image(s.maps);
+  RasterMaps mirrored_maps = s.maps;
+  mirror_in_place(mirrored_maps);
   const RasterPlan mirrored_plan = mirror_image(s.plan);
   const BreaksAndLevels mirrored = breaks_and_levels(mirrored_maps, mirrored_plan.face, mirrored_plan.faces);
   for (int r = 0; r < s.rows; ++r) EXPECT_EQ(mirrored.right(1, r), 0.25f) << "mirrored, row " << r;

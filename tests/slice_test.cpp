@@ -114,6 +114,7 @@ TEST(Slice, FaceCountFallsAsWGrowsAndNoFaceIsNarrowerThanW) {
       options.placement.up = UpAxis::Z;
       options.slice.min_strip_mm = W;
       options.supports.enabled = false;
+      options.keep_normals = true;  // read below
       const DesignResult r = design(test::models_dir() / model, options);
       EXPECT_LT(r.raster_plan.faces.size(), previous) << "W = " << W;
       previous = r.raster_plan.faces.size();

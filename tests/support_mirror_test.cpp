@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "helpers.hpp"
@@ -100,20 +101,45 @@ TEST(SupportMirror, MirroredMapsPutEachBreakBetweenTheMirroredPixelCentres) {
   RasterMaps maps = test::blank_maps(grid(), HitKind::Back);
   maps.kind(2, 1) = HitKind::Model;
   maps.d_mm(2, 1) = 7.5;
+  maps.normal(2, 1) = glm::vec3(0.6f, 0, 0.8f);
   maps.break_right(2, 1) = 0.25f;  // between columns 2 and 3, a quarter of the way from 2
   maps.break_below(2, 1) = 0.5f;
-  const RasterMaps m = mirror_image(maps);
+  RasterMaps m = maps;
+  mirror_in_place(m);
   EXPECT_EQ(m.kind(21, 1), HitKind::Model);
   EXPECT_EQ(m.d_mm(21, 1), 7.5);
-  EXPECT_EQ(m.normal.size(), 0u) << "the support stage reads no normals";
+  EXPECT_EQ(m.normal(21, 1), glm::vec3(-0.6f, 0, 0.8f));
   EXPECT_EQ(m.break_right(20, 1), 0.75f);  // between columns 20 and 21, a quarter from 21
   EXPECT_EQ(m.break_below(21, 1), 0.5f);
   int breaks = 0;
   for (const float t : m.break_right.values) breaks += !std::isnan(t);
   EXPECT_EQ(breaks, 1);
-  const RasterMaps back = mirror_image(m);
-  EXPECT_EQ(back.break_right(2, 1), 0.25f);
-  EXPECT_EQ(back.d_mm(2, 1), 7.5);
+  {
+    const MirroredMaps back(m);  // mirrored again while it lives
+    EXPECT_EQ(m.break_right(2, 1), 0.25f);
+    EXPECT_EQ(m.d_mm(2, 1), 7.5);
+  }
+  EXPECT_EQ(m.break_right(20, 1), 0.75f) << "and as given after";
+}
+
+// Mirroring twice gives a design's maps back bit for bit: the supports mirror them in place.
+TEST(SupportMirror, MapsMirroredTwiceAreTheMapsBitForBit) {
+  const RayScene scene(test::box({30, 40, 20}, {100, 80, 50}));  // off the sheet's middle
+  const RasterMaps maps = raster(scene, Sheet{}, RasterOptions{});
+  RasterMaps twice = maps;
+  mirror_in_place(twice);
+  EXPECT_NE(twice.d_mm.values, maps.d_mm.values);
+  mirror_in_place(twice);
+  const auto same_bytes = [](const auto& a, const auto& b) {
+    return a.values.size() == b.values.size() &&
+           std::memcmp(a.values.data(), b.values.data(), a.values.size() * sizeof(a.values[0])) == 0;
+  };
+  EXPECT_TRUE(same_bytes(twice.kind, maps.kind));
+  EXPECT_TRUE(same_bytes(twice.d_mm, maps.d_mm));
+  EXPECT_TRUE(same_bytes(twice.h_mm, maps.h_mm));
+  EXPECT_TRUE(same_bytes(twice.normal, maps.normal));
+  EXPECT_TRUE(same_bytes(twice.break_right, maps.break_right));  // NaN where none: bytes, not ==
+  EXPECT_TRUE(same_bytes(twice.break_below, maps.break_below));
 }
 
 TEST(SupportMirror, FacesAreRenumberedInTheOrderAScanMeetsThem) {

@@ -77,7 +77,7 @@ SupportChoice choose(const RasterMaps& maps, const RasterPlan& raster_plan, cons
 TEST(Supports, FloatingBoxIsSupportedAtTopAndBottom) {
   const RayScene scene(test::box({60, 40, 20}, {150, 80, 50}));
   const Sheet sheet;
-  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
+  RasterMaps maps = raster(scene, sheet, RasterOptions{});
   const RasterPlan raster_plan = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
   ASSERT_FALSE(plan_stands(build_plan(maps, raster_plan, sheet, PlanOptions{}).validity, false));
   const SupportedPlan s = add_supports(maps, raster_plan, sheet, PlanOptions{}, SupportOptions{});
@@ -952,7 +952,7 @@ struct FramesChosen {
 FramesChosen frames_chosen(const char* model, UpAxis up) {
   const DesignOptions options;
   FramesChosen chosen{sliced_design(model, up), {}, {}};
-  const DesignResult& s = chosen.sliced;
+  DesignResult& s = chosen.sliced;
   const auto likeness_of = [&](const Plan& plan) {
     return likeness(s.maps, card_view(s.maps.grid, plan), options.slice.min_strip_mm);
   };
@@ -999,7 +999,7 @@ int joined_farther_than(const SupportReport& report, double W, double cap_W) {
 // cap: it is held where that costs no more than its hole, or cut out.
 TEST(Supports, WithJoinsCappedNoFaceGoesToANeighbourFartherOffThanTheCap) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
-  const DesignResult s = sliced_design("arch_city_block.obj", UpAxis::Z);
+  DesignResult s = sliced_design("arch_city_block.obj", UpAxis::Z);
   const DesignOptions options;
   const double W = options.slice.min_strip_mm;
   SupportOptions capped = options.supports;

@@ -15,8 +15,9 @@
 namespace origamic {
 
 /// D, F and T as 16-bit grey PNGs (dark = near, as in the seed's Figure 4.2), N as an RGB PNG
-/// (normal * 0.5 + 0.5) and the hit kind as a colour PNG (back grey, floor tan, model blue, outside
-/// black), named for the folder dir. \throws OutputError if one cannot be encoded.
+/// (normal * 0.5 + 0.5; none where the maps have no normals: DesignOptions::keep_normals) and the
+/// hit kind as a colour PNG (back grey, floor tan, model blue, outside black), named for the folder
+/// dir. \throws OutputError if one cannot be encoded.
 std::vector<OutputFile> raster_image_files(const RasterMaps& maps, const std::filesystem::path& dir);
 
 /// The segmentation map S, the subsegment map SS and the face map as colour PNGs (one colour per id;

@@ -158,17 +158,20 @@ struct SupportedPlan {
 
 /// Adds supports until every face of the exact plan is valid (or, with allow_dangling, valid or
 /// dangling), or the bound is reached. Deterministic for a given seed; the mirror image of a raster
-/// plan (on a pixel lattice symmetric on the sheet) gets the mirror image of its supports. Calls
-/// from several threads take turns (one exact run at a time per process, as for build_plan and design).
-SupportedPlan add_supports(const RasterMaps& maps, RasterPlan raster_plan, const Sheet& sheet,
+/// plan (on a pixel lattice symmetric on the sheet) gets the mirror image of its supports. The maps
+/// are mirrored in place while the supports are chosen on the mirror image, and given back as they
+/// were (no copy of them held beside them: 25 bytes a pixel); nothing else may read them meanwhile.
+/// Calls from several threads take turns (one exact run at a time per process, as for build_plan and
+/// design).
+SupportedPlan add_supports(RasterMaps& maps, RasterPlan raster_plan, const Sheet& sheet,
                            const PlanOptions& plan_options, const SupportOptions& options);
 
 /// The same, chosen in the other frame: on the mirror image where add_supports chose on the plan,
 /// and on the plan where it chose on the mirror image. Its ties fall the other way, and so may its
 /// choices. Nothing where there is no other frame (a plan that is its own mirror image, or a pixel
 /// lattice not symmetric on the sheet).
-std::optional<SupportedPlan> add_supports_in_other_frame(const RasterMaps& maps, RasterPlan raster_plan,
-                                                         const Sheet& sheet, const PlanOptions& plan_options,
+std::optional<SupportedPlan> add_supports_in_other_frame(RasterMaps& maps, RasterPlan raster_plan, const Sheet& sheet,
+                                                         const PlanOptions& plan_options,
                                                          const SupportOptions& options);
 
 /// The faces the raster plan's own folds (its V/H boundaries on their fold lines) leave floating,

@@ -249,6 +249,7 @@ int run_design(const DesignArgs& args, const FabricationArgs& fabrication, const
   options.supports.enabled = !args.no_supports;
   options.supports.allow_dangling = args.allow_dangling;
   options.allow_narrow = args.allow_narrow;
+  options.keep_normals = !args.maps_dir.empty();  // N.png
   options.supports.seed = args.seed;
   options.supports.orders = args.orders;
   const origamic::ExportOptions exports = export_options(args, fabrication, options);

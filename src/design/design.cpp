@@ -97,7 +97,7 @@ bool model_faces_put_p95_over(const DesignResult& sliced, const Plan& plan, doub
   return static_cast<double>(off) > kPastP95 * static_cast<double>(model);
 }
 
-SupportedPlan supported_plan(const DesignResult& sliced, const DesignOptions& options) {
+SupportedPlan supported_plan(DesignResult& sliced, const DesignOptions& options) {
   const bool allow_dangling = options.supports.allow_dangling;
   const double W = options.slice.min_strip_mm;
   const auto fares = [&](const Plan& plan) { return plan_fares(sliced.maps, plan, W, allow_dangling); };
@@ -294,6 +294,7 @@ void design_loaded(LoadedMesh loaded, const std::filesystem::path& model_file, c
                      "a larger scale, a smaller W or another up axis may help)");
   const double fold_snap_mm = fold_snap_tolerance_mm(options.plan, result.raster_plan, result.maps.grid);
   result.raster_plan = align_folds_to_lines(std::move(result.raster_plan), result.maps.grid, fold_snap_mm);
+  if (!options.keep_normals) result.maps.normal = {};
   clock.lap("slice");
   const double W = options.slice.min_strip_mm;
   NarrowPlaces narrow(W);

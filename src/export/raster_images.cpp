@@ -121,8 +121,9 @@ std::vector<OutputFile> raster_image_files(const RasterMaps& maps, const std::fi
   const NormalisedDepths depths = normalised_depths(maps);
   for (const auto& [name, map] : {std::pair{"D.png", &depths.D}, {"F.png", &depths.F}, {"T.png", &depths.T}})
     files.push_back({dir / name, encode_png((dir / name).string(), w, h, gray16(*map))});
-  files.push_back(
-      {dir / "N.png", encode_png((dir / "N.png").string(), w, h, PngFormat::Rgb8, normal_rgb(maps.normal))});
+  if (maps.normal.size() > 0)
+    files.push_back(
+        {dir / "N.png", encode_png((dir / "N.png").string(), w, h, PngFormat::Rgb8, normal_rgb(maps.normal))});
   files.push_back(
       {dir / "kind.png", encode_png((dir / "kind.png").string(), w, h, PngFormat::Rgb8, kind_rgb(maps.kind))});
   return files;

@@ -5,8 +5,10 @@
 #include <climits>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -15,29 +17,24 @@
 namespace origamic {
 namespace {
 
-// A grid with its columns in reverse order.
-template <class T>
-Grid<T> columns_reversed(Grid<T> grid) {
-  for (int r = 0; r < grid.rows; ++r) {
-    const auto row = grid.values.begin() + static_cast<std::ptrdiff_t>(grid.index(0, r));
-    std::reverse(row, row + grid.cols);
-  }
-  return grid;
-}
-
-// A copy of a grid with its columns in reverse order, written once (bands of rows in parallel), not
-// copied and then reversed.
-template <class T>
-Grid<T> mirrored_copy(const Grid<T>& grid) {
-  Grid<T> out = Grid<T>::unfilled(grid.cols, grid.rows);
+// A grid's columns reversed in place, bands of rows in parallel, each value turned as it lands (a
+// normal's x negated in the mirror image).
+template <class T, class Turn = std::identity>
+void reverse_columns(Grid<T>& grid, Turn turn = {}) {
   for_bands(grid.rows, [&](int, int row_begin, int row_end) {
     for (int r = row_begin; r < row_end; ++r) {
-      const T* from = &grid.values[grid.index(0, r)];
-      T* to = &out.values[out.index(0, r)] + grid.cols;
-      for (int c = 0; c < grid.cols; ++c) *--to = from[c];
+      T* row = &grid.values[grid.index(0, r)];
+      std::reverse(row, row + grid.cols);
+      if constexpr (!std::is_same_v<Turn, std::identity>)
+        for (int c = 0; c < grid.cols; ++c) row[c] = turn(row[c]);
     }
   });
-  return out;
+}
+
+template <class T>
+Grid<T> columns_reversed(Grid<T> grid) {
+  reverse_columns(grid);
+  return grid;
 }
 
 // What a pixel of the raster plan is, whatever the ids: the kind of paper there, its plane, whether
@@ -77,35 +74,33 @@ SupportFrame first_support_frame(const RasterPlan& raster_plan, const PixelGrid&
   return SupportFrame::Only;
 }
 
-// Every map the supports read written once into its mirror image, in parallel (seedlike/chapel's
-// second frame: copying the maps and then reversing them took 3.5% of its samples, now 2.4%, mostly
-// the first touches of their memory). The normals (12 bytes a pixel), which nothing reads in the
-// mirror image, are left out: with the maps' own 53 -> 37 bytes a pixel (raster.hpp), peak memory
-// of seedlike/torus, whose supports are chosen there, 213 -> 162 MB. Each member is named: a grid
-// added to RasterMaps and left out here is a warning (-Wmissing-field-initializers; not so a member
-// with a default initializer).
-RasterMaps mirror_image(const RasterMaps& maps) {
+// In place, not copied: the supports' choice in the mirror frame held the model's maps and their
+// mirror image (25 bytes a pixel) at once. With the normals dropped after slicing (design.hpp), peak
+// memory seedlike/torus 153 -> 122 MB, seedlike/sphere 158 -> 123 MB, arch_city_block 188 -> 132 MB;
+// the same plans, in the same time.
+void mirror_in_place(RasterMaps& maps) {
+  reverse_columns(maps.kind);
+  reverse_columns(maps.d_mm);
+  reverse_columns(maps.h_mm);
+  reverse_columns(maps.normal, [](glm::vec3 n) { return glm::vec3(-n.x, n.y, n.z); });
+  reverse_columns(maps.break_below);
   // A break between columns c and c + 1, t of the way from c, is between their mirror images, the
   // same distance from the other: in the mirror image's column cols - 2 - c, 1 - t of the way; the
-  // last column has none.
-  const Grid<float>& right = maps.break_right;
-  Grid<float> break_right = Grid<float>::unfilled(right.cols, right.rows);
+  // last column has none. (t is a multiple of 1/2048, so 1 - t is exact and twice gives t back.)
+  Grid<float>& right = maps.break_right;
   for_bands(right.rows, [&](int, int row_begin, int row_end) {
     for (int r = row_begin; r < row_end; ++r) {
-      for (int c = 0; c + 1 < right.cols; ++c) break_right(right.cols - 2 - c, r) = 1 - right(c, r);
-      if (right.cols > 0) break_right(right.cols - 1, r) = std::numeric_limits<float>::quiet_NaN();
+      if (right.cols == 0) continue;
+      float* row = &right.values[right.index(0, r)];
+      std::reverse(row, row + right.cols - 1);
+      for (int c = 0; c + 1 < right.cols; ++c) row[c] = 1 - row[c];
+      row[right.cols - 1] = std::numeric_limits<float>::quiet_NaN();
     }
   });
-  return RasterMaps{.grid = maps.grid,
-                    .reference = maps.reference,
-                    .kind = mirrored_copy(maps.kind),
-                    .d_mm = mirrored_copy(maps.d_mm),
-                    .h_mm = mirrored_copy(maps.h_mm),
-                    .normal = {},
-                    .break_right = std::move(break_right),
-                    .break_below = mirrored_copy(maps.break_below),
-                    .model_pixels = maps.model_pixels};
 }
+
+MirroredMaps::MirroredMaps(RasterMaps& maps) : maps_(maps) { mirror_in_place(maps_); }
+MirroredMaps::~MirroredMaps() { mirror_in_place(maps_); }
 
 RasterPlan mirror_image(RasterPlan raster_plan) {
   raster_plan.face = columns_reversed(std::move(raster_plan.face));

@@ -27,10 +27,23 @@ namespace origamic {
 enum class SupportFrame { Only, Plan, MirrorImage };
 SupportFrame first_support_frame(const RasterPlan& raster_plan, const PixelGrid& grid, const Sheet& sheet);
 
-/// The maps the support stage and the exact plan read (kind, d_mm, h_mm and the breaks), mirrored
-/// along the main fold (X to the sheet's width less X). The normals, which only segmentation,
-/// slicing and pictures read, are left empty.
-RasterMaps mirror_image(const RasterMaps& maps);
+/// The maps mirrored along the main fold, in place (X to the sheet's width less X; a normal's x
+/// negated). Mirroring twice gives them back bit for bit, their breaks being multiples of 1/2048 of
+/// the way between pixel centres, as raster() puts them.
+void mirror_in_place(RasterMaps& maps);
+
+/// The maps in their mirror image for as long as it lives, and given back as they were when it ends,
+/// by an exception too.
+class MirroredMaps {
+ public:
+  explicit MirroredMaps(RasterMaps& maps);
+  ~MirroredMaps();
+  MirroredMaps(const MirroredMaps&) = delete;
+  MirroredMaps& operator=(const MirroredMaps&) = delete;
+
+ private:
+  RasterMaps& maps_;
+};
 
 /// The raster plan mirrored (face ids kept; its subsegments too where it has them, which design()
 /// sets aside for the support stage; block_subsegment, which nothing reads after slicing, as it

@@ -300,8 +300,8 @@ enum class FrameTurn { First, Other };
 
 // The supports chosen in the first frame or the other, mirrored back; none in the other where the
 // plan has only one.
-std::optional<SupportedPlan> supports_in_frame(const RasterMaps& maps, RasterPlan raster_plan,
-                                               const SupportRequest& request, FrameTurn turn) {
+std::optional<SupportedPlan> supports_in_frame(RasterMaps& maps, RasterPlan raster_plan, const SupportRequest& request,
+                                               FrameTurn turn) {
   const auto& [sheet, plan_options, options] = request;
   const auto lock = exact_run_lock();
   // The loop breaks its ties one way and draws its face orders by id: it runs in a frame a mirrored
@@ -312,8 +312,10 @@ std::optional<SupportedPlan> supports_in_frame(const RasterMaps& maps, RasterPla
   if (first == SupportFrame::Only && turn == FrameTurn::Other) return std::nullopt;
   if ((first == SupportFrame::MirrorImage) == (turn == FrameTurn::Other))
     return supports_in_face_orders(maps, std::move(raster_plan), request);
-  SupportedPlan mirrored = supports_in_face_orders(
-      mirror_image(maps), with_faces_in_scan_order(mirror_image(std::move(raster_plan))), request);
+  SupportedPlan mirrored = [&] {
+    const MirroredMaps mirror(maps);
+    return supports_in_face_orders(maps, with_faces_in_scan_order(mirror_image(std::move(raster_plan))), request);
+  }();
   mirrored.report.mirror_image = true;
   SupportedPlan supported = mirror_image(std::move(mirrored), sheet);
   supported.report.narrow = narrow_strips(supported.raster_plan, maps.grid);  // placed as a run here places them
@@ -330,13 +332,13 @@ std::optional<SupportedPlan> supports_in_frame(const RasterMaps& maps, RasterPla
 
 }  // namespace
 
-SupportedPlan add_supports(const RasterMaps& maps, RasterPlan raster_plan, const Sheet& sheet,
+SupportedPlan add_supports(RasterMaps& maps, RasterPlan raster_plan, const Sheet& sheet,
                            const PlanOptions& plan_options, const SupportOptions& options) {
   return std::move(*supports_in_frame(maps, std::move(raster_plan), {sheet, plan_options, options}, FrameTurn::First));
 }
 
-std::optional<SupportedPlan> add_supports_in_other_frame(const RasterMaps& maps, RasterPlan raster_plan,
-                                                         const Sheet& sheet, const PlanOptions& plan_options,
+std::optional<SupportedPlan> add_supports_in_other_frame(RasterMaps& maps, RasterPlan raster_plan, const Sheet& sheet,
+                                                         const PlanOptions& plan_options,
                                                          const SupportOptions& options) {
   return supports_in_frame(maps, std::move(raster_plan), {sheet, plan_options, options}, FrameTurn::Other);
 }
