@@ -10,11 +10,13 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <random>
 #include <set>
 
 #include "helpers.hpp"
 #include "origamic/design.hpp"
 #include "origamic/likeness.hpp"
+#include "raster_card.hpp"
 #include "raster_plan_edits.hpp"
 
 namespace origamic {
@@ -153,6 +155,23 @@ TEST(PlaneRefit, ASecondPassFindsPlanesTheFirstLeft) {
   EXPECT_LE(p95_W(all), p95_W(twice));
   EXPECT_TRUE(plan_stands(all.plan, dangling));
   EXPECT_EQ(refit(all, 8).report.planes_refit.size(), all.report.planes_refit.size());
+}
+
+// The card's error counts built at once (a design's first card) are those added pixel by pixel: the
+// same count up to every bin, the same 95th percentile and the same sum, to the last bit.
+TEST(PlaneRefit, ErrorCountsBuiltAtOnceAreTheCountsAddedOneByOne) {
+  constexpr double W = 3;
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> error(-2 * W, 70 * W);  // some off the model, some past the last bin
+  std::vector<double> errors(20000);
+  for (double& e : errors) e = error(random);
+  raster_card::ErrorCounts one_by_one(W);
+  for (const double e : errors)
+    if (e >= 0) one_by_one.add(e, 1);
+  const raster_card::ErrorCounts at_once(W, errors);
+  for (int b = 0; b < 1 << 14; ++b) ASSERT_EQ(at_once.up_to(b), one_by_one.up_to(b)) << "bin " << b;
+  EXPECT_EQ(at_once.fares(), one_by_one.fares());
+  EXPECT_GT(at_once.fares().first, 0);
 }
 
 }  // namespace

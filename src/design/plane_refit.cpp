@@ -81,9 +81,11 @@ std::optional<double> best_plane(const RasterMaps& maps, const RasterFace& face,
   std::optional<double> best_depth;
   // Every percentile: in steps of 5 the chapel's door slot support (3.03 W) and the water tower's
   // shaft (4.17 W) found no plane as good (1.94 W, 3.83 W; the 37 models 1.81 -> 1.77 W).
+  double tried = 0;
   for (int percent = 1; percent <= 99; ++percent) {
     const double t = depths[depths.size() * static_cast<std::size_t>(percent) / 100];
-    if (t <= 0) continue;  // the back plane's or the floor's
+    if (t <= 0 || t == tried) continue;  // the back plane's or the floor's; or fares as before
+    tried = t;
     if (const auto fared = fares_at(t); worth(fared) && (!best || fared < *best)) best = fared, best_depth = t;
   }
   for (const auto [c, r] : pixels) counts.add(card.error_at(c, r), 1);
@@ -150,12 +152,23 @@ std::vector<PlaneMove> find_planes(const RasterMaps& maps, RasterPlan raster_pla
       const std::pair<int, double> before = card.counts().fares();
       std::vector<PixelAt> changed;
       const auto [first_col, last_col] = columns[static_cast<std::size_t>(f)];
-      for (int r = 0; r < maps.grid.rows; ++r)
-        for (int c = first_col; c <= last_col; ++c)
-          if (const std::int32_t now = moved->face(c, r); now != raster_plan.face(c, r) || now == f) {
-            changed.push_back({c, r});
-            card.update(*moved, c, r);
-          }
+      // Row by row, as the card adds them up: in a row the move left as it was, the face's own model
+      // pixels only (`own`, by row then column); elsewhere each pixel that changed or is the face's.
+      auto own_in_row = own.begin();
+      for (int r = 0; r < maps.grid.rows; ++r) {
+        const auto row_end = std::find_if(own_in_row, own.end(), [&](PixelAt p) { return p.r != r; });
+        const std::int32_t* now_row = &moved->face(first_col, r);
+        if (std::equal(now_row, now_row + (last_col - first_col + 1), &raster_plan.face(first_col, r))) {
+          for (auto p = own_in_row; p != row_end; ++p) changed.push_back(*p), card.update(*moved, p->c, r);
+        } else {
+          for (int c = first_col; c <= last_col; ++c)
+            if (const std::int32_t now = moved->face(c, r); now != raster_plan.face(c, r) || now == f) {
+              changed.push_back({c, r});
+              card.update(*moved, c, r);
+            }
+        }
+        own_in_row = row_end;
+      }
       if (!(card.counts().fares() < before)) {
         for (const auto [c, r] : changed) card.update(raster_plan, c, r);
         break;
