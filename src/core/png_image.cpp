@@ -59,6 +59,11 @@ bool write_rgb(png_structp png, png_infop info, const RgbRows& image, std::strin
                PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_set_text(png, info, image.texts, image.text_count);
   png_set_pHYs(png, info, image.px_per_metre, image.px_per_metre, PNG_RESOLUTION_METER);
+  // One filter and zlib's fastest level, where libpng tries five filters a row at level 6: the plan
+  // picture of seedlike/torus (840 x 1188, mostly paper) 106 -> 116 KB, its encoding 1.8 -> 0.5 % of
+  // the design's samples.
+  png_set_filter(png, 0, PNG_FILTER_UP);
+  png_set_compression_level(png, 1);
   png_set_rows(png, info, image.rows);
   png_write_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
   return true;

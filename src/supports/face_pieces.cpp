@@ -2,6 +2,7 @@
 #include "face_pieces.hpp"
 
 #include <algorithm>
+#include <boost/container/small_vector.hpp>
 #include <climits>
 #include <cstdint>
 #include <span>
@@ -83,13 +84,14 @@ int FacePieces::pieces_without(int c0, int c1, int r0, int r1) const {
   if (c0 >= c1 || r0 >= r1) return pieces_;
   // The nodes: the pieces left of the rectangle that reach its left side, those right of it that
   // reach its right side, and the runs of its columns above and below it.
-  std::vector<int> left, right;
-  std::vector<ColumnRun> middle;
-  std::vector<int> middle_begin;
+  // On the stack: a support's cost asks this of hundreds of thousands of rectangles (seedlike/torus:
+  // 890,000 allocations here, an eighth of the design's).
+  boost::container::small_vector<int, 16> left, right, middle_begin;
+  boost::container::small_vector<ColumnRun, 64> middle;
   const auto column = [&](int c) {
     return std::span(runs_).subspan(column_begin_[c], column_begin_[c + 1] - column_begin_[c]);
   };
-  const auto labels_beside = [&](int c, const std::vector<int>& labels, std::vector<int>& out) {
+  const auto labels_beside = [&](int c, const std::vector<int>& labels, auto& out) {
     for (int b = column_begin_[c]; b < column_begin_[c + 1]; ++b)
       if (std::ranges::find(out, labels[b]) == out.end()) out.push_back(labels[b]);
   };
@@ -107,9 +109,10 @@ int FacePieces::pieces_without(int c0, int c1, int r0, int r1) const {
   UnionFind<int> sets(static_cast<std::size_t>(side_nodes) + middle.size());
   int nodes = side_nodes + static_cast<int>(middle.size());
   const auto middle_of = [&](int k) {
-    return std::span(middle).subspan(middle_begin[k], middle_begin[k + 1] - middle_begin[k]);
+    return std::span<const ColumnRun>(middle.data(), middle.size())
+        .subspan(middle_begin[k], middle_begin[k + 1] - middle_begin[k]);
   };
-  const auto node_of = [&](const std::vector<int>& labels, int label, int offset) {
+  const auto node_of = [&](const auto& labels, int label, int offset) {
     return offset + static_cast<int>(std::ranges::find(labels, label) - labels.begin());
   };
   if (c0 > 0) {
