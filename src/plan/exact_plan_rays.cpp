@@ -110,7 +110,16 @@ struct Mark {
   exact::Rational exact() const { return Y ? *Y : exact_Y(fold); }
 };
 
-bool below(const Mark& a, const Mark& b) { return a.Y_near != b.Y_near ? a.Y_near < b.Y_near : a.exact() < b.exact(); }
+// Where the nearest doubles tie, the rationals compare as they are: exact() copies one (res_dragon_full:
+// 1.9 of the design's 4.2 million GMP allocations were those copies).
+bool below(const Mark& a, const Mark& b) {
+  if (a.Y_near != b.Y_near) return a.Y_near < b.Y_near;
+  if (a.Y && b.Y) return *a.Y < *b.Y;
+  if (a.Y) return *a.Y < exact_Y(b.fold);
+  if (b.Y) return exact_Y(a.fold) < *b.Y;
+  if (a.fold.h == b.fold.h && a.fold.d == b.fold.d) return false;  // one fold line
+  return exact_Y(a.fold) < exact_Y(b.fold);
+}
 
 Mark at_fold(const FoldLine& fold, std::int32_t above) { return Mark{nullptr, fold, fold.h - fold.d, above}; }
 
