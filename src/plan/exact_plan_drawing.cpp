@@ -190,11 +190,12 @@ void place_inside_points(const Grid<std::int32_t>& labels, const PixelGrid& grid
       const auto f = static_cast<std::size_t>(labels(col, row));
       sum_col[f] += col, sum_row[f] += row, count[f] += 1;
     }
-  std::vector<double> best(n, 1e300);
+  std::vector<double> best(n, 1e300), mean_col(n), mean_row(n);  // the means once, not a division a pixel
+  for (std::size_t f = 0; f < n; ++f) mean_col[f] = sum_col[f] / count[f], mean_row[f] = sum_row[f] / count[f];
   for (int row = 0; row < labels.rows; ++row)
     for (int col = 0; col < labels.cols; ++col) {
       const auto f = static_cast<std::size_t>(labels(col, row));
-      const double dc = col - sum_col[f] / count[f], dr = row - sum_row[f] / count[f], d2 = dc * dc + dr * dr;
+      const double dc = col - mean_col[f], dr = row - mean_row[f], d2 = dc * dc + dr * dr;
       if (d2 < best[f]) best[f] = d2, faces[f].inside = {grid.X(col), grid.Y(row)};
     }
 }
