@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <iterator>
 #include <optional>
@@ -111,10 +110,6 @@ TEST(DesignInvariants, AModelMirroredAlongTheFoldGivesTheMirroredPlan) {
 TEST(DesignInvariants, TheMapsComeBackFromTheSupportsAsTheyWereAndTheirNormalsOnlyWhenKept) {
   const TriangleMesh house = load_mesh(kHouse).mesh;
   const double width_mm = Sheet{}.width_mm;
-  const auto same_bytes = [](const auto& a, const auto& b) {
-    return a.values.size() == b.values.size() &&
-           std::memcmp(a.values.data(), b.values.data(), a.values.size() * sizeof(a.values[0])) == 0;
-  };
   std::vector<bool> chosen_on_the_mirror_image;
   for (const auto& [model, x] : {std::pair{house, kX}, {mirrored_along_the_fold(house), width_mm - kX}}) {
     const DesignResult sliced = design_at(model, x, false);  // maps no support stage has touched
@@ -127,10 +122,11 @@ TEST(DesignInvariants, TheMapsComeBackFromTheSupportsAsTheyWereAndTheirNormalsOn
     EXPECT_EQ(dropped.maps.normal.size(), 0u);
     EXPECT_EQ(sliced.maps.normal.size(), 0u);
     EXPECT_EQ(kept.maps.normal.size(), kept.maps.d_mm.size());
-    EXPECT_TRUE(same_bytes(kept.maps.d_mm, sliced.maps.d_mm) && same_bytes(kept.maps.h_mm, sliced.maps.h_mm) &&
-                same_bytes(kept.maps.kind, sliced.maps.kind) &&
-                same_bytes(kept.maps.break_right, sliced.maps.break_right) &&
-                same_bytes(kept.maps.break_below, sliced.maps.break_below));
+    EXPECT_TRUE(test::same_bytes(kept.maps.d_mm, sliced.maps.d_mm) &&
+                test::same_bytes(kept.maps.h_mm, sliced.maps.h_mm) &&
+                test::same_bytes(kept.maps.kind, sliced.maps.kind) &&
+                test::same_bytes(kept.maps.break_right, sliced.maps.break_right) &&
+                test::same_bytes(kept.maps.break_below, sliced.maps.break_below));
     const auto a = segments(dropped.plan, 1, 0), b = segments(kept.plan, 1, 0);
     EXPECT_TRUE(a == b) << difference(a, b);
     chosen_on_the_mirror_image.push_back(kept.supports.mirror_image);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -14,6 +15,13 @@
 #include "origamic/plan_regions.hpp"
 
 namespace origamic::test {
+
+/// Whether two grids hold the same bytes (a NaN equal to itself, unlike ==).
+template <class T>
+bool same_bytes(const Grid<T>& a, const Grid<T>& b) {
+  return a.cols == b.cols && a.rows == b.rows && a.values.size() == b.values.size() &&
+         std::memcmp(a.values.data(), b.values.data(), a.values.size() * sizeof(T)) == 0;
+}
 
 /// An axis-aligned box from lo to hi, 12 triangles wound outwards.
 TriangleMesh box(const glm::dvec3& lo, const glm::dvec3& hi);

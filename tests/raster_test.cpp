@@ -7,12 +7,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-
 #include <glm/geometric.hpp>
 
 #include "helpers.hpp"
 #include "origamic/error.hpp"
 #include "origamic/placement.hpp"
+#include "origamic/raster_images.hpp"
 
 namespace origamic {
 namespace {
@@ -216,6 +216,21 @@ TEST(Raster, OutputDoesNotDependOnTheThreadCount) {
   EXPECT_EQ(std::memcmp(one.break_below.values.data(), many.break_below.values.data(),
                         one.break_below.size() * sizeof(float)),
             0);
+}
+
+// The map pictures draw N.png from the normals, which design() drops after slicing unless kept:
+// without them, the others alone.
+TEST(Raster, TheMapPicturesHaveNOnlyWhereTheMapsHaveNormals) {
+  const RayScene scene(test::box({30, 40, 20}, {100, 80, 50}));
+  RasterMaps maps = raster(scene, Sheet{}, RasterOptions{});
+  const auto names = [&] {
+    std::vector<std::string> out;
+    for (const OutputFile& file : raster_image_files(maps, "maps")) out.push_back(file.path.filename().string());
+    return out;
+  };
+  EXPECT_EQ(names(), (std::vector<std::string>{"D.png", "F.png", "T.png", "N.png", "kind.png"}));
+  maps.normal = {};
+  EXPECT_EQ(names(), (std::vector<std::string>{"D.png", "F.png", "T.png", "kind.png"}));
 }
 
 TEST(Raster, AbsurdResolutionIsRejected) {

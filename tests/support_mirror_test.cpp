@@ -7,7 +7,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <vector>
 
 #include "helpers.hpp"
@@ -130,16 +129,12 @@ TEST(SupportMirror, MapsMirroredTwiceAreTheMapsBitForBit) {
   mirror_in_place(twice);
   EXPECT_NE(twice.d_mm.values, maps.d_mm.values);
   mirror_in_place(twice);
-  const auto same_bytes = [](const auto& a, const auto& b) {
-    return a.values.size() == b.values.size() &&
-           std::memcmp(a.values.data(), b.values.data(), a.values.size() * sizeof(a.values[0])) == 0;
-  };
-  EXPECT_TRUE(same_bytes(twice.kind, maps.kind));
-  EXPECT_TRUE(same_bytes(twice.d_mm, maps.d_mm));
-  EXPECT_TRUE(same_bytes(twice.h_mm, maps.h_mm));
-  EXPECT_TRUE(same_bytes(twice.normal, maps.normal));
-  EXPECT_TRUE(same_bytes(twice.break_right, maps.break_right));  // NaN where none: bytes, not ==
-  EXPECT_TRUE(same_bytes(twice.break_below, maps.break_below));
+  EXPECT_TRUE(test::same_bytes(twice.kind, maps.kind));
+  EXPECT_TRUE(test::same_bytes(twice.d_mm, maps.d_mm));
+  EXPECT_TRUE(test::same_bytes(twice.h_mm, maps.h_mm));
+  EXPECT_TRUE(test::same_bytes(twice.normal, maps.normal));
+  EXPECT_TRUE(test::same_bytes(twice.break_right, maps.break_right));  // NaN where none: bytes, not ==
+  EXPECT_TRUE(test::same_bytes(twice.break_below, maps.break_below));
 }
 
 TEST(SupportMirror, FacesAreRenumberedInTheOrderAScanMeetsThem) {

@@ -68,7 +68,7 @@ struct DesignResult {
   bool file_normals = false;
   std::size_t faces_dropped = 0;  // faces of the file passed over for a corner repeated
   Placement placement;
-  RasterMaps maps;
+  RasterMaps maps;  // without normals unless DesignOptions::keep_normals
   Segmentation segmentation;
   RasterPlan raster_plan;
   Plan plan;  // the final plan: with supports unless they are off

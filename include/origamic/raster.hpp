@@ -52,6 +52,7 @@ struct RasterMaps {
   Grid<double> d_mm;                // depth in front of the back plane
   Grid<double> h_mm;                // height above the floor; h - d = Y of the pixel centre
   Grid<glm::vec3> normal;           // unit shading normal, OA axes; design() drops it after slicing
+                                    // unless DesignOptions::keep_normals
   // Where the model's picture breaks between two neighbouring pixel centres (its silhouette against
   // the back plane or floor, one surface passing in front of another, or a sharp crease of its
   // surface): the fraction of the way from the first centre to the second, to 1/1024, found by

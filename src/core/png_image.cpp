@@ -60,8 +60,8 @@ bool write_rgb(png_structp png, png_infop info, const RgbRows& image, std::strin
   png_set_text(png, info, image.texts, image.text_count);
   png_set_pHYs(png, info, image.px_per_metre, image.px_per_metre, PNG_RESOLUTION_METER);
   // One filter and zlib's fastest level, where libpng tries five filters a row at level 6: the plan
-  // picture of seedlike/torus (840 x 1188, mostly paper) 106 -> 116 KB, its encoding 1.8 -> 0.5 % of
-  // the design's samples.
+  // pictures (MODEL.png, narrow.png) keep their pixels; seedlike/torus's plan (840 x 1188,
+  // mostly paper) 106 -> 116 KB, its encoding 1.8 -> 0.5 % of the design's samples.
   png_set_filter(png, 0, PNG_FILTER_UP);
   png_set_compression_level(png, 1);
   png_set_rows(png, info, image.rows);

@@ -84,7 +84,7 @@ std::optional<double> best_plane(const RasterMaps& maps, const RasterFace& face,
   double tried = 0;
   for (int percent = 1; percent <= 99; ++percent) {
     const double t = depths[depths.size() * static_cast<std::size_t>(percent) / 100];
-    if (t <= 0 || t == tried) continue;  // the back plane's or the floor's; or fares as before
+    if (t <= 0 || t == tried) continue;  // the back plane's or the floor's; or the depth just tried
     tried = t;
     if (const auto fared = fares_at(t); worth(fared) && (!best || fared < *best)) best = fared, best_depth = t;
   }
@@ -159,7 +159,10 @@ std::vector<PlaneMove> find_planes(const RasterMaps& maps, RasterPlan raster_pla
         const auto row_end = std::find_if(own_in_row, own.end(), [&](PixelAt p) { return p.r != r; });
         const std::int32_t* now_row = &moved->face(first_col, r);
         if (std::equal(now_row, now_row + (last_col - first_col + 1), &raster_plan.face(first_col, r))) {
-          for (auto p = own_in_row; p != row_end; ++p) changed.push_back(*p), card.update(*moved, p->c, r);
+          for (auto p = own_in_row; p != row_end; ++p) {
+            assert(first_col <= p->c && p->c <= last_col);  // a move trades rows within a column
+            changed.push_back(*p), card.update(*moved, p->c, r);
+          }
         } else {
           for (int c = first_col; c <= last_col; ++c)
             if (const std::int32_t now = moved->face(c, r); now != raster_plan.face(c, r) || now == f) {

@@ -120,11 +120,11 @@ class RasterCard {
   }
   // Each pixel's error, -1 off the model.
   Grid<double> errors(const RasterPlan& raster_plan) const {
-    Grid<double> errors(maps_.grid.cols, maps_.grid.rows, -1.0);
+    Grid<double> shown(maps_.grid.cols, maps_.grid.rows, -1.0);
     for (int r = 0; r < maps_.grid.rows; ++r)
       for (int c = 0; c < maps_.grid.cols; ++c)
-        if (maps_.kind(c, r) == HitKind::Model) errors(c, r) = shown_error(raster_plan, c, r);
-    return errors;
+        if (maps_.kind(c, r) == HitKind::Model) shown(c, r) = shown_error(raster_plan, c, r);
+    return shown;
   }
 
   const RasterMaps& maps_;

@@ -33,7 +33,8 @@ SupportFrame first_support_frame(const RasterPlan& raster_plan, const PixelGrid&
 void mirror_in_place(RasterMaps& maps);
 
 /// The maps in their mirror image for as long as it lives, and given back as they were when it ends,
-/// by an exception too.
+/// by an exception too. (Mirroring itself throws nothing but an allocation failure of the threads'
+/// tasks, which ends the program in the destructor.)
 class MirroredMaps {
  public:
   explicit MirroredMaps(RasterMaps& maps);
