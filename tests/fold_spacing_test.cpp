@@ -49,6 +49,15 @@ int narrow_between_folds(const Plan& plan, double W) {
   return analyze_plan(plan.lines, {.min_strip_mm = W}).narrow_between_folds;
 }
 
+// The raster plan's exact plan, which must stand with one place between two folds closer than W,
+// as spread_fold_pairs leaves it (no check of its own).
+SupportedPlan spread_the_pair(const RasterMaps& maps, const RasterPlan& raster_plan, const Sheet& sheet) {
+  SupportedPlan supported{raster_plan, build_plan(maps, raster_plan, sheet, PlanOptions{}), {}};
+  EXPECT_TRUE(plan_stands(supported.plan, false));
+  EXPECT_EQ(narrow_between_folds(supported.plan, raster_plan.min_strip_mm), 1);
+  return spread_fold_pairs(maps, std::move(supported), sheet, PlanOptions{}, false, {});
+}
+
 // The front top raised to 57.1 mm leaves the riser 2.9 mm high between its two folds, under W =
 // 3 mm; the pair is found, and the front top goes down to 57 mm (W from the rear top's fold), the
 // nearer of the two planes to the model's.
@@ -71,10 +80,8 @@ TEST(FoldSpacing, ARiserUnderWBetweenTwoFoldsGrowsToW) {
   EXPECT_EQ(pairs[0].below, s.front_top);
   EXPECT_NEAR(pairs[0].apart_mm, 2.9, 1e-9);
 
-  SupportedPlan supported{*raised, build_plan(s.maps, *raised, sheet, PlanOptions{}), {}};
-  ASSERT_TRUE(plan_stands(supported.plan, false));
-  ASSERT_EQ(narrow_between_folds(supported.plan, W), 1);
-  const SupportedPlan spread = spread_fold_pairs(s.maps, std::move(supported), sheet, PlanOptions{}, false, {});
+  const SupportedPlan spread = spread_the_pair(s.maps, *raised, sheet);
+  ASSERT_FALSE(HasFailure());
   ASSERT_EQ(spread.report.planes_spread.size(), 1u);
   const RefitPlane& moved = spread.report.planes_spread.front();
   EXPECT_EQ(moved.orientation, Orientation::H);
@@ -127,9 +134,7 @@ TEST(FoldSpacing, ATreadUnderWBetweenTwoFoldsGrowsToW) {
   const RasterPlan sliced = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
   const std::int32_t tall_front = face_in(sliced, Orientation::V, 30), tread = face_in(sliced, Orientation::H, 40),
                      low_front = face_in(sliced, Orientation::V, 40);
-  ASSERT_GE(tall_front, 0);
-  ASSERT_GE(tread, 0);
-  ASSERT_GE(low_front, 0);
+  ASSERT_TRUE(tall_front >= 0 && tread >= 0 && low_front >= 0);
   const PixelGrid& grid = maps.grid;
   const double W = sliced.min_strip_mm, tolerance = fold_snap_tolerance_mm(PlanOptions{}, sliced, grid);
   const std::optional<RasterPlan> back = move_plane(sliced, grid, low_front, 32.9, tolerance, 1);
@@ -141,10 +146,8 @@ TEST(FoldSpacing, ATreadUnderWBetweenTwoFoldsGrowsToW) {
   EXPECT_EQ(pairs[0].below, low_front);
   EXPECT_NEAR(pairs[0].apart_mm, 2.9, 1e-9);
 
-  SupportedPlan supported{*back, build_plan(maps, *back, sheet, PlanOptions{}), {}};
-  ASSERT_TRUE(plan_stands(supported.plan, false));
-  ASSERT_EQ(narrow_between_folds(supported.plan, W), 1);
-  const SupportedPlan spread = spread_fold_pairs(maps, std::move(supported), sheet, PlanOptions{}, false, {});
+  const SupportedPlan spread = spread_the_pair(maps, *back, sheet);
+  ASSERT_FALSE(HasFailure());
   ASSERT_EQ(spread.report.planes_spread.size(), 1u);
   const RefitPlane& moved = spread.report.planes_spread.front();
   EXPECT_EQ(moved.orientation, Orientation::V);
@@ -179,9 +182,7 @@ TEST(FoldSpacing, FoldsAPixelApartWhereTheModelIsFlatBecomeOneStep) {
   const RasterPlan sliced = slice(stepped_maps, segment(stepped_maps, SegmentOptions{}), SliceOptions{});
   const std::int32_t rear_top = face_in(sliced, Orientation::H, 60), riser = face_in(sliced, Orientation::V, 5),
                      front_top = face_in(sliced, Orientation::H, 57);
-  ASSERT_GE(rear_top, 0);
-  ASSERT_GE(riser, 0);
-  ASSERT_GE(front_top, 0);
+  ASSERT_TRUE(rear_top >= 0 && riser >= 0 && front_top >= 0);
   const PixelGrid& grid = maps.grid;
   const double W = sliced.min_strip_mm, tolerance = fold_snap_tolerance_mm(PlanOptions{}, sliced, grid);
   const std::optional<RasterPlan> raised = move_plane(sliced, grid, front_top, 59.75, tolerance, 1);
@@ -193,10 +194,8 @@ TEST(FoldSpacing, FoldsAPixelApartWhereTheModelIsFlatBecomeOneStep) {
   const std::int64_t tops_and_riser =
       raised->faces[rear_top].pixels + raised->faces[riser].pixels + raised->faces[front_top].pixels;
 
-  SupportedPlan supported{*raised, build_plan(maps, *raised, sheet, PlanOptions{}), {}};
-  ASSERT_TRUE(plan_stands(supported.plan, false));
-  ASSERT_EQ(narrow_between_folds(supported.plan, W), 1);
-  const SupportedPlan spread = spread_fold_pairs(maps, std::move(supported), sheet, PlanOptions{}, false, {});
+  const SupportedPlan spread = spread_the_pair(maps, *raised, sheet);
+  ASSERT_FALSE(HasFailure());
   ASSERT_EQ(spread.report.planes_spread.size(), 1u);
   const RefitPlane& moved = spread.report.planes_spread.front();
   EXPECT_EQ(moved.orientation, Orientation::H);
