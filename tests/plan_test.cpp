@@ -774,6 +774,32 @@ TEST(Plan, AModelReadOnceDesignsAsItsFile) {
   EXPECT_THROW(design(LoadedMesh{}, DesignOptions{}), InputError) << "no mesh, no design";
 }
 
+// An exact plan started from the chains the plan before fell back on is that plan, its arrangement
+// built once: seedlike/sphere's plans each cross on their first build, where two chains 1 px apart
+// (a support's side and a spike of the face beside it) simplified run into each other.
+TEST(Plan, AnExactPlanKnowingTheChainsThatFellBackBuildsItsArrangementOnceAndIsTheSamePlan) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  DesignOptions options;
+  options.placement.up = UpAxis::Z;
+  const DesignResult r = design(test::models_dir() / "seedlike" / "sphere.stl", options);
+  const ExactPlan fresh(r.maps, r.raster_plan, options.sheet, options.plan);
+  ASSERT_GE(fresh.verdict().arrangement_builds, 2) << "the case this test is about: chains that cross simplified";
+  ASSERT_FALSE(fresh.fallbacks().by_chain.empty());
+  const ExactPlan knowing(r.maps, r.raster_plan, options.sheet, options.plan, fresh.fallbacks());
+  EXPECT_EQ(knowing.verdict().arrangement_builds, 1);
+  EXPECT_EQ(knowing.fallbacks().by_chain, fresh.fallbacks().by_chain);
+  const Plan a = fresh.full(), b = knowing.full();
+  EXPECT_EQ(b.raw_chains, a.raw_chains);
+  EXPECT_EQ(b.validity.status, a.validity.status);
+  EXPECT_TRUE(b.lines == a.lines) << "the same lines, point for point";
+  // Known chains of another plan (here: none of its chains) change nothing.
+  ChainFallbacks stranger;
+  stranger.by_chain[0x5eed] = 1;
+  const ExactPlan unknowing(r.maps, r.raster_plan, options.sheet, options.plan, stranger);
+  EXPECT_EQ(unknowing.verdict().arrangement_builds, fresh.verdict().arrangement_builds);
+  EXPECT_TRUE(unknowing.full().lines == a.lines);
+}
+
 // The support loop builds only verdicts: they must be the full plan's, to the last face.
 TEST(Plan, AVerdictBuildDecidesAsTheFullBuildAndDrawsNothing) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";

@@ -143,11 +143,11 @@ int keep_faces_on_the_card(const std::vector<RasterFace>& faces, Built& built) {
 }  // namespace
 
 ExactPlan::ExactPlan(const RasterMaps& maps, const RasterPlan& raster_plan, const Sheet& sheet,
-                     const PlanOptions& options) {
+                     const PlanOptions& options, const ChainFallbacks& known) {
   const auto lock = exact_run_lock();  // held until the exact numbers are made, or freed on an error
   state_ = std::make_unique<State>();
   try {
-    build(*state_, maps, raster_plan, sheet, options);
+    build(*state_, maps, raster_plan, sheet, options, known);
   } catch (...) {
     state_.reset();
     throw;
@@ -299,7 +299,7 @@ std::vector<PlanFace> plan_faces(const std::vector<RasterFace>& faces, const std
 
 // Built in place: the handles read off the arrangement stay valid.
 void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& raster_plan, const Sheet& sheet,
-                      const PlanOptions& options) {
+                      const PlanOptions& options, const ChainFallbacks& known) {
   state.grid = maps.grid;
   // §4.5 in two steps: the raster boundaries move to the pixel row nearest their fold line where
   // they can, then only those within half a pixel snap onto it. Snapping farther could carry a fold
@@ -318,8 +318,9 @@ void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& ra
   Built& built = state.built;
   const std::vector<Fallback> fallback =
       arrangement_without_crossings({chains, faces, lattice, sheet, simplify_mm, aligned_fold_tolerance_mm(maps.grid)},
-                                    built, plan.unresolved_crossings);
+                                    known, built, plan.unresolved_crossings, state.fallbacks);
   plan.raw_chains = static_cast<int>(std::ranges::count(fallback, Fallback::Unsimplified));
+  plan.arrangement_builds = built.builds;
   plan.unsnapped_chains = static_cast<int>(std::ranges::count(fallback, Fallback::PixelContour));
   plan.simplified = plan.raw_chains + plan.unsnapped_chains == 0;
   plan.trimmed_to_card = keep_faces_on_the_card(faces, built);
@@ -372,6 +373,7 @@ ExactPlan& ExactPlan::operator=(ExactPlan&& other) noexcept {
 }
 
 const Plan& ExactPlan::verdict() const { return state_->plan; }
+const ChainFallbacks& ExactPlan::fallbacks() const { return state_->fallbacks; }
 const Grid<std::int32_t>& ExactPlan::face_map() const { return state_->labels; }
 const std::vector<RasterFace>& ExactPlan::faces() const { return state_->faces; }
 

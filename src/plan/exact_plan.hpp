@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 #include "origamic/grid.hpp"
@@ -46,18 +47,30 @@ struct PaintedBand {
   FoldLine a, b;
 };
 
+/// The chains an exact plan drew short of simplified, each by its corners and the planes on its
+/// sides: where simplifying them made boundaries cross (exact_plan_chains.hpp), the plan built
+/// again with them fallen back. The next plan of a run of supports starts such a chain where it
+/// ended, and builds its arrangement once rather than twice (res_dragon_full: the same two chains
+/// in each of its 7 plans).
+struct ChainFallbacks {
+  std::unordered_map<std::uint64_t, std::uint8_t> by_chain;  // a hash of the chain: its Fallback
+};
+
 /// build_plan in two steps, for a loop that decides on many verdicts and keeps one: the verdict
 /// (the faces' statuses, orientations, depths, areas and folds on top and bottom, the validity, the
 /// arrangement's checks; no lines nor their lengths, no regions, inside points, lost or collapsed
 /// faces), then, from the arrangement kept, the plan in full, as build_plan gives it. Same rules.
 class ExactPlan {
  public:
-  ExactPlan(const RasterMaps& maps, const RasterPlan& raster_plan, const Sheet& sheet, const PlanOptions& options);
+  ExactPlan(const RasterMaps& maps, const RasterPlan& raster_plan, const Sheet& sheet, const PlanOptions& options,
+            const ChainFallbacks& known = {});
   ~ExactPlan();
   ExactPlan(ExactPlan&&) noexcept;
   ExactPlan& operator=(ExactPlan&&) noexcept;
 
   const Plan& verdict() const;
+  /// The chains this plan drew short of simplified, for the next plan of the same run.
+  const ChainFallbacks& fallbacks() const;
   Plan full() const;
   /// The raster plan the arrangement was built of (its boundaries aligned to their fold lines), and
   /// its faces: what the arrangement's labels name.
@@ -93,7 +106,7 @@ class ExactPlan {
  private:
   struct State;
   static void build(State& state, const RasterMaps& maps, const RasterPlan& raster_plan, const Sheet& sheet,
-                    const PlanOptions& options);
+                    const PlanOptions& options, const ChainFallbacks& known);
   std::unique_ptr<State> state_;
 };
 

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <map>
 #include <optional>
@@ -497,6 +498,24 @@ void build_arrangement(const ArrangementInput& in, const std::vector<Fallback>& 
   built.conflicts = label_faces(built.arrangement, built.sides, built.disputed);
 }
 
+// A chain by its corners and the planes of the faces on its sides (their ids change from plan to
+// plan), hashed (FNV-1a). Two chains sharing a hash would only start one more chain fallen back.
+std::uint64_t chain_fallback_key(const Chain& chain, const std::vector<RasterFace>& faces) {
+  std::uint64_t hash = 14695981039346656037ULL;
+  const auto mix = [&](std::uint64_t x) {
+    for (int byte = 0; byte < 8; ++byte, x >>= 8) hash = (hash ^ (x & 0xff)) * 1099511628211ULL;
+  };
+  for (const std::int32_t label : {chain.left, chain.right}) {
+    const RasterFace& face = faces[static_cast<std::size_t>(label)];
+    mix(std::bit_cast<std::uint64_t>(face.depth_mm));
+    mix(static_cast<std::uint64_t>(face.orientation) | std::uint64_t{face.hole} << 8 |
+        std::uint64_t{face.support} << 16 | std::uint64_t{label <= kFloorFace} << 24);
+  }
+  for (const LatticePoint& corner : chain.corners)
+    mix(std::uint64_t{static_cast<std::uint32_t>(corner.u)} << 32 | static_cast<std::uint32_t>(corner.v));
+  return hash;
+}
+
 }  // namespace
 
 // Simplification or snapping that makes two boundaries cross would change the plan's topology:
@@ -505,10 +524,18 @@ void build_arrangement(const ArrangementInput& in, const std::vector<Fallback>& 
 // where lines nearly meet): on the Menger slice at W = 2 mm, a simplified cut passing a hair beside a
 // fold's end left one, and the lines read back with a fold inside a face.
 // Returns how far each chain fell back; `unresolved` counts chains that cross on their contour.
-std::vector<Fallback> arrangement_without_crossings(const ArrangementInput& in, Built& built, int& unresolved) {
+std::vector<Fallback> arrangement_without_crossings(const ArrangementInput& in, const ChainFallbacks& known,
+                                                    Built& built, int& unresolved, ChainFallbacks& fell) {
   std::vector<Fallback> fallback(in.chains.size(), Fallback::None);
-  for (;;) {
+  std::vector<std::uint64_t> keys(in.chains.size());
+  for (std::size_t i = 0; i < in.chains.size(); ++i) {
+    keys[i] = chain_fallback_key(in.chains[i], in.faces);
+    if (const auto it = known.by_chain.find(keys[i]); it != known.by_chain.end())
+      fallback[i] = static_cast<Fallback>(it->second);
+  }
+  for (int builds = 1;; ++builds) {
     built = Built{};
+    built.builds = builds;
     build_arrangement(in, fallback, built);
     bool again = false;
     unresolved = 0;
@@ -521,8 +548,11 @@ std::vector<Fallback> arrangement_without_crossings(const ArrangementInput& in, 
       fallback[i] = fallback[i] == Fallback::None ? Fallback::Unsimplified : Fallback::PixelContour;
       again = true;
     }
-    if (!again) return fallback;
+    if (!again) break;
   }
+  for (std::size_t i = 0; i < fallback.size(); ++i)
+    if (fallback[i] != Fallback::None) fell.by_chain[keys[i]] = static_cast<std::uint8_t>(fallback[i]);
+  return fallback;
 }
 
 }  // namespace origamic::exact

@@ -62,6 +62,9 @@ struct ArrangementInput {
 // Simplification or snapping that makes two boundaries cross would change the plan's topology:
 // the chains involved fall back a step (unsimplified, then their pixel contour) until none does.
 // Returns how far each chain fell back; `unresolved` counts chains that cross on their contour.
-std::vector<Fallback> arrangement_without_crossings(const ArrangementInput& in, Built& built, int& unresolved);
+// Chains `known` to fall back (by chain_fallback_key) start where they fell; `fell` gets every
+// chain that falls back.
+std::vector<Fallback> arrangement_without_crossings(const ArrangementInput& in, const ChainFallbacks& known,
+                                                    Built& built, int& unresolved, ChainFallbacks& fell);
 
 }  // namespace origamic::exact

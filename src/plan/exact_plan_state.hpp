@@ -46,6 +46,7 @@ struct Built {
   int conflicts = 0;
   int folds_snapped = 0;
   double off_model_edges_mm = 0;  // the farthest a cut passes from the model's edge it follows
+  int builds = 0;                 // of the arrangement: once, and once more per step chains fell back
 };
 
 /// The pieces of paper: sets of arrangement faces of one label joined across edges with that label on
@@ -102,6 +103,7 @@ struct ExactPlan::State {
   std::vector<std::pair<exact::Arrangement::Halfedge_const_handle, LineKind>> edges;  // inner edges, upper face first
   std::vector<std::uint8_t> cut_out;                                                  // per piece: a crumb, cut out
   Plan plan;                                                                          // the verdict
+  ChainFallbacks fallbacks;  // chains drawn short of simplified
 
   // Vertical ray shooting (faces_reached). The exact numbers are read under the lock held alone,
   // while a line is made; lines made are looked up under it shared. They keep their crossings as

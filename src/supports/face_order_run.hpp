@@ -76,8 +76,9 @@ class FaceOrderRun {
   }
   // The verdict of the exact plan of the raster plan as it is.
   void confirm() {
+    const ChainFallbacks known = last_exact_plan_->fallbacks();
     last_exact_plan_.reset();  // one arrangement at a time in memory
-    adopt(std::make_shared<const ExactPlan>(setting_.maps, raster_plan_, setting_.sheet, setting_.plan_options));
+    adopt(std::make_shared<const ExactPlan>(setting_.maps, raster_plan_, setting_.sheet, setting_.plan_options, known));
   }
   // Why rounds stopped, and how many faces were invalid then (SupportStop::None: none was).
   struct Stopped {
