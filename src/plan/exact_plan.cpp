@@ -316,9 +316,11 @@ void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& ra
   Plan& plan = state.plan;
   plan.sheet = sheet;
   Built& built = state.built;
-  const std::vector<Fallback> fallback =
-      arrangement_without_crossings({chains, faces, lattice, sheet, simplify_mm, aligned_fold_tolerance_mm(maps.grid)},
-                                    known, built, plan.unresolved_crossings, state.fallbacks);
+  exact::ArrangementFallbacks fell = arrangement_without_crossings(
+      {chains, faces, lattice, sheet, simplify_mm, aligned_fold_tolerance_mm(maps.grid)}, known, built);
+  const std::vector<Fallback>& fallback = fell.fallback;
+  plan.unresolved_crossings = fell.unresolved;
+  state.fallbacks = std::move(fell.unsimplified);
   plan.raw_chains = static_cast<int>(std::ranges::count(fallback, Fallback::Unsimplified));
   plan.arrangement_builds = built.builds;
   plan.unsnapped_chains = static_cast<int>(std::ranges::count(fallback, Fallback::PixelContour));

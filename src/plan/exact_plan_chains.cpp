@@ -499,7 +499,9 @@ void build_arrangement(const ArrangementInput& in, const std::vector<Fallback>& 
 }
 
 // A chain by its corners and the planes of the faces on its sides (their ids change from plan to
-// plan), hashed (FNV-1a). Two chains sharing a hash would only start one more chain fallen back.
+// plan), hashed (FNV-1a): the same chain in the run's next plan, whose ids are new. A chain that shares
+// another's hash would start unsimplified, as a stale one does (ChainFallbacks). The floor and the
+// back plane are told apart by label: their planes are both 0.
 std::uint64_t chain_fallback_key(const Chain& chain, const std::vector<RasterFace>& faces) {
   std::uint64_t hash = 14695981039346656037ULL;
   const auto mix = [&](std::uint64_t x) {
@@ -523,26 +525,26 @@ std::uint64_t chain_fallback_key(const Chain& chain, const std::vector<RasterFac
 // do the chains round a face no label has a majority of (most often one of no length in doubles,
 // where lines nearly meet): on the Menger slice at W = 2 mm, a simplified cut passing a hair beside a
 // fold's end left one, and the lines read back with a fold inside a face.
-// Returns how far each chain fell back; `unresolved` counts chains that cross on their contour.
-std::vector<Fallback> arrangement_without_crossings(const ArrangementInput& in, const ChainFallbacks& known,
-                                                    Built& built, int& unresolved, ChainFallbacks& fell) {
-  std::vector<Fallback> fallback(in.chains.size(), Fallback::None);
+ArrangementFallbacks arrangement_without_crossings(const ArrangementInput& in, const ChainFallbacks& known,
+                                                   Built& built) {
+  ArrangementFallbacks result;
+  std::vector<Fallback>& fallback = result.fallback;
+  fallback.assign(in.chains.size(), Fallback::None);
   std::vector<std::uint64_t> keys(in.chains.size());
   for (std::size_t i = 0; i < in.chains.size(); ++i) {
     keys[i] = chain_fallback_key(in.chains[i], in.faces);
-    if (const auto it = known.by_chain.find(keys[i]); it != known.by_chain.end())
-      fallback[i] = static_cast<Fallback>(it->second);
+    if (known.by_chain.contains(keys[i])) fallback[i] = Fallback::Unsimplified;
   }
   for (int builds = 1;; ++builds) {
     built = Built{};
     built.builds = builds;
     build_arrangement(in, fallback, built);
     bool again = false;
-    unresolved = 0;
+    result.unresolved = 0;
     for (std::size_t i = 0; i < fallback.size(); ++i) {
       if (!built.crossed[i] && !built.disputed[i]) continue;
       if (fallback[i] == Fallback::PixelContour) {
-        unresolved += built.crossed[i];
+        result.unresolved += built.crossed[i];
         continue;
       }
       fallback[i] = fallback[i] == Fallback::None ? Fallback::Unsimplified : Fallback::PixelContour;
@@ -551,8 +553,8 @@ std::vector<Fallback> arrangement_without_crossings(const ArrangementInput& in, 
     if (!again) break;
   }
   for (std::size_t i = 0; i < fallback.size(); ++i)
-    if (fallback[i] != Fallback::None) fell.by_chain[keys[i]] = static_cast<std::uint8_t>(fallback[i]);
-  return fallback;
+    if (fallback[i] == Fallback::Unsimplified) result.unsimplified.by_chain.emplace(keys[i], Fallback::Unsimplified);
+  return result;
 }
 
 }  // namespace origamic::exact

@@ -62,9 +62,15 @@ struct ArrangementInput {
 // Simplification or snapping that makes two boundaries cross would change the plan's topology:
 // the chains involved fall back a step (unsimplified, then their pixel contour) until none does.
 // Returns how far each chain fell back; `unresolved` counts chains that cross on their contour.
-// Chains `known` to fall back (by chain_fallback_key) start where they fell; `fell` gets every
-// chain that falls back.
-std::vector<Fallback> arrangement_without_crossings(const ArrangementInput& in, const ChainFallbacks& known,
-                                                    Built& built, int& unresolved, ChainFallbacks& fell);
+// How far each chain fell back, how many still cross on their contour, and the chains drawn
+// unsimplified, for the next plan of the run (ChainFallbacks).
+struct ArrangementFallbacks {
+  std::vector<Fallback> fallback;
+  int unresolved = 0;
+  ChainFallbacks unsimplified;
+};
+// The chains `known` start unsimplified.
+ArrangementFallbacks arrangement_without_crossings(const ArrangementInput& in, const ChainFallbacks& known,
+                                                   Built& built);
 
 }  // namespace origamic::exact

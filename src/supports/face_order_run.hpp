@@ -3,6 +3,7 @@
 // resort, faces no support holds given away or cut out (support_last_resort.cpp).
 #pragma once
 
+#include <cassert>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -76,6 +77,7 @@ class FaceOrderRun {
   }
   // The verdict of the exact plan of the raster plan as it is.
   void confirm() {
+    assert(last_exact_plan_);  // run() adopts the initial plan first
     const ChainFallbacks known = last_exact_plan_->fallbacks();
     last_exact_plan_.reset();  // one arrangement at a time in memory
     adopt(std::make_shared<const ExactPlan>(setting_.maps, raster_plan_, setting_.sheet, setting_.plan_options, known));
