@@ -59,9 +59,6 @@ struct ArrangementInput {
   double fold_tolerance;
 };
 
-// Simplification or snapping that makes two boundaries cross would change the plan's topology:
-// the chains involved fall back a step (unsimplified, then their pixel contour) until none does.
-// Returns how far each chain fell back; `unresolved` counts chains that cross on their contour.
 // How far each chain fell back, how many still cross on their contour, and the chains drawn
 // unsimplified, for the next plan of the run (ChainFallbacks).
 struct ArrangementFallbacks {
@@ -69,6 +66,9 @@ struct ArrangementFallbacks {
   int unresolved = 0;
   ChainFallbacks unsimplified;
 };
+
+// Simplification or snapping that makes two boundaries cross would change the plan's topology:
+// the chains involved fall back a step (unsimplified, then their pixel contour) until none does.
 // The chains `known` start unsimplified.
 ArrangementFallbacks arrangement_without_crossings(const ArrangementInput& in, const ChainFallbacks& known,
                                                    Built& built);
