@@ -784,7 +784,7 @@ TEST(Plan, AnExactPlanKnowingTheChainsDrawnUnsimplifiedBuildsItsArrangementOnce)
   const DesignResult r = design(test::models_dir() / "seedlike" / "sphere.stl", options);
   const ExactPlan fresh(r.maps, r.raster_plan, options.sheet, options.plan);
   ASSERT_GE(fresh.verdict().arrangement_builds, 2) << "the case this test is about: chains that cross simplified";
-  ASSERT_FALSE(fresh.fallbacks().by_chain.empty());
+  ASSERT_FALSE(fresh.fallbacks().unsimplified.empty());
   const ExactPlan knowing(r.maps, r.raster_plan, options.sheet, options.plan, fresh.fallbacks());
   EXPECT_EQ(knowing.verdict().arrangement_builds, 1);
   EXPECT_TRUE(knowing.full().lines == fresh.full().lines) << "the same lines, point for point";

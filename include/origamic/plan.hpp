@@ -83,9 +83,9 @@ struct Plan {
   int crumbs_cut_out = 0;               // floating pieces under W x W / 8 or among holes: on CUTOUT
   int label_conflicts = 0;              // arrangement faces without a clear majority label
   int raw_chains = 0;                   // boundaries left unsimplified to avoid a crossing
-  int arrangement_builds = 0;           // of the arrangement: more where simplified chains crossed
   int unsnapped_chains = 0;             // boundaries kept as pixel contours (no fold snapping) for it
   int unresolved_crossings = 0;         // boundaries that still touch another: must be 0
+  int arrangement_builds = 0;           // of the arrangement: more where simplified chains crossed
   int lost_faces = 0;                   // raster faces that no arrangement face carries
   int collapsed_faces = 0;              // faces at most 2 px tall whose folds met when snapped
   int folds_snapped = 0;                // V/H boundaries moved onto their fold line

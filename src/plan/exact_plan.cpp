@@ -320,10 +320,10 @@ void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& ra
       {chains, faces, lattice, sheet, simplify_mm, aligned_fold_tolerance_mm(maps.grid)}, known, built);
   const std::vector<Fallback>& fallback = fell.fallback;
   plan.unresolved_crossings = fell.unresolved;
-  state.fallbacks = std::move(fell.unsimplified);
+  state.fallbacks = std::move(fell.passed_on);
   plan.raw_chains = static_cast<int>(std::ranges::count(fallback, Fallback::Unsimplified));
-  plan.arrangement_builds = built.builds;
   plan.unsnapped_chains = static_cast<int>(std::ranges::count(fallback, Fallback::PixelContour));
+  plan.arrangement_builds = built.builds;
   plan.simplified = plan.raw_chains + plan.unsnapped_chains == 0;
   plan.trimmed_to_card = keep_faces_on_the_card(faces, built);
   const Arrangement& arr = built.arrangement;

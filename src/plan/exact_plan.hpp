@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
-#include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "origamic/grid.hpp"
@@ -47,10 +47,6 @@ struct PaintedBand {
   FoldLine a, b;
 };
 
-namespace exact {
-enum class Fallback : std::uint8_t;  // how far a chain fell back from its simplified drawing
-}
-
 /// The chains an exact plan drew unsimplified, each by its corners and the planes on its sides:
 /// simplified, they crossed another boundary (exact_plan_chains.hpp), and the arrangement was
 /// built again with them unsimplified. The same chains cross in plan after plan of a run of
@@ -62,7 +58,7 @@ enum class Fallback : std::uint8_t;  // how far a chain fell back from its simpl
 /// fresh. A chain that fell back to its pixel contour, drawn so a V/H boundary is a cut and its
 /// fold lost, is not passed on: it starts simplified again.
 struct ChainFallbacks {
-  std::unordered_map<std::uint64_t, exact::Fallback> by_chain;  // by chain_fallback_key
+  std::unordered_set<std::uint64_t> unsimplified;  // each chain by chain_fallback_key
 };
 
 /// build_plan in two steps, for a loop that decides on many verdicts and keeps one: the verdict

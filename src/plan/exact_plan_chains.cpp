@@ -533,7 +533,7 @@ ArrangementFallbacks arrangement_without_crossings(const ArrangementInput& in, c
   std::vector<std::uint64_t> keys(in.chains.size());
   for (std::size_t i = 0; i < in.chains.size(); ++i) {
     keys[i] = chain_fallback_key(in.chains[i], in.faces);
-    if (known.by_chain.contains(keys[i])) fallback[i] = Fallback::Unsimplified;
+    if (known.unsimplified.contains(keys[i])) fallback[i] = Fallback::Unsimplified;
   }
   for (int builds = 1;; ++builds) {
     built = Built{};
@@ -553,7 +553,7 @@ ArrangementFallbacks arrangement_without_crossings(const ArrangementInput& in, c
     if (!again) break;
   }
   for (std::size_t i = 0; i < fallback.size(); ++i)
-    if (fallback[i] == Fallback::Unsimplified) result.unsimplified.by_chain.emplace(keys[i], Fallback::Unsimplified);
+    if (fallback[i] == Fallback::Unsimplified) result.passed_on.unsimplified.insert(keys[i]);
   return result;
 }
 

@@ -64,7 +64,7 @@ struct ArrangementInput {
 struct ArrangementFallbacks {
   std::vector<Fallback> fallback;
   int unresolved = 0;
-  ChainFallbacks unsimplified;
+  ChainFallbacks passed_on;  // to the run's next plan
 };
 
 // Simplification or snapping that makes two boundaries cross would change the plan's topology:
