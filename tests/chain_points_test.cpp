@@ -292,6 +292,41 @@ TEST(ChainPoints, AJunctionsLegReachesPastTheContoursLastPixelEdgesUnlessBesideA
   EXPECT_TRUE(chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}}).moved.empty());
 }
 
+// The staircase split at its corner (12, 12) into two chains on the model's edge, and a third
+// leaving that corner down-left in single steps, on no break and no lattice line (a level
+// contour): the edge runs straight through the junction and no leg crosses it, so the junction
+// moves square onto the edge, 0.53 mm across; not where a chain holds it, nor where one of the two
+// is off the break.
+TEST(ChainPoints, AJunctionTheModelsEdgeRunsThroughMovesSquareOntoIt) {
+  StaircaseOnAnEdge s;
+  const LatticePoint j{12, 12};
+  Chain before{2, 3, {}}, after{4, 3, {}}, contour{2, 4, {j}};
+  const auto at_j = std::ranges::find_if(s.stairs.corners, [&](LatticePoint p) { return p.u == j.u && p.v == j.v; });
+  ASSERT_NE(at_j, s.stairs.corners.end());
+  before.corners.assign(s.stairs.corners.begin(), at_j + 1);
+  after.corners.assign(at_j, s.stairs.corners.end());
+  for (int k = 1; k <= 4; ++k) {
+    contour.corners.push_back({j.u - 2 * k, j.v + 2 * (k - 1)});
+    contour.corners.push_back({j.u - 2 * k, j.v + 2 * k});
+  }
+  const std::vector<Chain> chains = {before, after, contour};
+  const chains::JunctionMoves moves = chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}, {}});
+  ASSERT_EQ(moves.moved.size(), 1u);
+  const chains::MovedJunction& m = moves.moved[0];
+  EXPECT_EQ(m.corner.u, j.u);
+  EXPECT_EQ(m.corner.v, j.v);
+  EXPECT_LE(s.off_edge(m.X, m.Y), 1e-9);
+  const double X = s.lattice.X(j.u), Y = s.lattice.Y(j.v);
+  EXPECT_NEAR(m.X - X, m.Y - Y, 1e-9);  // along the edge's normal (1, 1)
+  EXPECT_NEAR(std::hypot(m.X - X, m.Y - Y), 0.75 / std::sqrt(2.0), 1e-9);
+  EXPECT_EQ(m.on_fold_of, -1);
+  EXPECT_TRUE(chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}, {.pinned = true}}).moved.empty());
+  // The chain after the junction off the break (its first three pixel edges, past what a level
+  // contour keeps beside a third face): no edge through the junction, no move.
+  for (int k = 6; k <= 7; ++k) s.right(k, k) = s.below(k, k - 1) = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_TRUE(chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}, {}}).moved.empty());
+}
+
 // A loop (a slice's level contour closing round a dome, no junction on it) drawn on the picture's
 // breaks all round: it starts and ends on its first edge's point, not on the lattice corner it was
 // traced from, which the drawing went out to and back from in a spike.

@@ -198,7 +198,8 @@ bool inside(const PlanRegion& region, PlanPoint p) {
 // `before` (the plan's regions as supported) that holds the point its origin gives and has its
 // plane, else the region of its plane with a corner nearest that point (of two faces in one
 // plane, it may be either). A region takes its face's plane as the design has it: placed from the
-// lines, as doubles, its depth can be an ulp off (seedlike/capitol: 9 of its regions).
+// lines, as doubles, its depth can be an ulp off (seedlike/capitol: 9 of its regions). A hole
+// read from lines has no plane (its folds are cut out with it): it is the hole of `before` there.
 std::vector<PlanRegion> regions_named(std::vector<PlanRegion> regions, const std::vector<PlanPoint>& origin,
                                       const std::vector<PlanRegion>& before) {
   const auto same_plane = [](const PlanRegion& a, const PlanRegion& b) {
@@ -208,7 +209,9 @@ std::vector<PlanRegion> regions_named(std::vector<PlanRegion> regions, const std
     PlanRegion& region = regions[i];
     for (const PlanRegion& old : before)
       if (inside(old, origin[i])) {
-        if (same_plane(region, old)) region.face = old.face, region.depth_mm = old.depth_mm;
+        const bool holes = region.status == FaceStatus::Removed && old.status == FaceStatus::Removed;
+        if (holes) region.orientation = old.orientation;
+        if (holes || same_plane(region, old)) region.face = old.face, region.depth_mm = old.depth_mm;
         break;
       }
     if (region.face >= 0) continue;
