@@ -294,13 +294,15 @@ TEST(ChainPoints, AJunctionsLegReachesPastTheContoursLastPixelEdgesUnlessBesideA
 
 // The staircase split at its corner (12, 12) into two chains on the model's edge, and a third
 // leaving that corner down-left in single steps, on no break and no lattice line (a level
-// contour): the edge runs straight through the junction and no leg crosses it, so the junction
-// moves square onto the edge, 0.53 mm across; not where a chain holds it, nor where one of the two
-// is off the break.
+// contour): the edge runs through the junction and no leg crosses it, so the junction moves to the
+// foot of the perpendicular from the corner onto the edge, 0.75 / sqrt 2 = 0.53 mm across, on no
+// lattice line. Not where a chain holds it; not where the chain after it runs on a parallel edge
+// 0.14 mm off; not where it has no leg on the edge. Where the third chain is a straight run on its
+// lattice column, that leg crosses the edge and the junction moves along it (meeting_point).
 TEST(ChainPoints, AJunctionTheModelsEdgeRunsThroughMovesSquareOntoIt) {
   StaircaseOnAnEdge s;
   const LatticePoint j{12, 12};
-  Chain before{2, 3, {}}, after{4, 3, {}}, contour{2, 4, {j}};
+  Chain before{2, 3, {}}, after{4, 3, {}}, contour{2, 4, {j}}, column{2, 4, {j}};
   const auto at_j = std::ranges::find_if(s.stairs.corners, [&](LatticePoint p) { return p.u == j.u && p.v == j.v; });
   ASSERT_NE(at_j, s.stairs.corners.end());
   before.corners.assign(s.stairs.corners.begin(), at_j + 1);
@@ -308,6 +310,7 @@ TEST(ChainPoints, AJunctionTheModelsEdgeRunsThroughMovesSquareOntoIt) {
   for (int k = 1; k <= 4; ++k) {
     contour.corners.push_back({j.u - 2 * k, j.v + 2 * (k - 1)});
     contour.corners.push_back({j.u - 2 * k, j.v + 2 * k});
+    column.corners.push_back({j.u, j.v + 2 * k});
   }
   const std::vector<Chain> chains = {before, after, contour};
   const chains::JunctionMoves moves = chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}, {}});
@@ -315,14 +318,26 @@ TEST(ChainPoints, AJunctionTheModelsEdgeRunsThroughMovesSquareOntoIt) {
   const chains::MovedJunction& m = moves.moved[0];
   EXPECT_EQ(m.corner.u, j.u);
   EXPECT_EQ(m.corner.v, j.v);
+  EXPECT_EQ(m.u_on_lattice, -1);
+  EXPECT_EQ(m.v_on_lattice, -1);
+  EXPECT_EQ(m.on_fold_of, -1);
   EXPECT_LE(s.off_edge(m.X, m.Y), 1e-9);
   const double X = s.lattice.X(j.u), Y = s.lattice.Y(j.v);
   EXPECT_NEAR(m.X - X, m.Y - Y, 1e-9);  // along the edge's normal (1, 1)
   EXPECT_NEAR(std::hypot(m.X - X, m.Y - Y), 0.75 / std::sqrt(2.0), 1e-9);
-  EXPECT_EQ(m.on_fold_of, -1);
   EXPECT_TRUE(chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}, {.pinned = true}}).moved.empty());
-  // The chain after the junction off the break (its first three pixel edges, past what a level
-  // contour keeps beside a third face): no edge through the junction, no move.
+  // A straight run down the corner's lattice column crosses the edge: the junction moves along it.
+  const chains::JunctionMoves along =
+      chains::moved_junctions({before, after, column}, s.lattice, s.breaks(), {{}, {}, {}});
+  ASSERT_EQ(along.moved.size(), 1u);
+  EXPECT_EQ(along.moved[0].u_on_lattice, j.u);
+  EXPECT_LE(s.off_edge(along.moved[0].X, along.moved[0].Y), 1e-9);
+  // The chain after the junction on a parallel edge, 0.2 mm lower and 0.2 mm left at its crossings.
+  StaircaseOnAnEdge shifted;
+  for (int k = 6; k <= shifted.steps; ++k) shifted.below(k, k - 1) = 0.45f, shifted.right(k, k) = 0.55f;
+  EXPECT_TRUE(chains::moved_junctions(chains, shifted.lattice, shifted.breaks(), {{}, {}, {}}).moved.empty());
+  // Its first four pixel edges off the break, more than a level contour keeps beside a third face:
+  // no leg on the edge after the junction.
   for (int k = 6; k <= 7; ++k) s.right(k, k) = s.below(k, k - 1) = std::numeric_limits<float>::quiet_NaN();
   EXPECT_TRUE(chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}, {}}).moved.empty());
 }

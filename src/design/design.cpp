@@ -198,34 +198,40 @@ bool inside(const PlanRegion& region, PlanPoint p) {
 // `before` (the plan's regions as supported) that holds the point its origin gives and has its
 // plane, else the region of its plane with a corner nearest that point (of two faces in one
 // plane, it may be either). A region takes its face's plane as the design has it: placed from the
-// lines, as doubles, its depth can be an ulp off (seedlike/capitol: 9 of its regions). A hole
-// read from lines has no plane (its folds are cut out with it): it is the hole of `before` there.
+// lines, as doubles, its depth can be an ulp off (seedlike/capitol: 9 of its regions). A hole read
+// from lines has no plane (its folds go with it; read as V(0), it took the back plane's name and
+// the hole's face lost its area: seedlike/torus at W = 4 mm): it is named by the holes of `before`
+// alone, and takes their plane.
 std::vector<PlanRegion> regions_named(std::vector<PlanRegion> regions, const std::vector<PlanPoint>& origin,
                                       const std::vector<PlanRegion>& before) {
   const auto same_plane = [](const PlanRegion& a, const PlanRegion& b) {
     return a.orientation == b.orientation && std::abs(a.depth_mm - b.depth_mm) <= kFoldLineTolerance_mm;
   };
+  const auto hole = [](const PlanRegion& r) { return r.status == FaceStatus::Removed; };
   for (std::size_t i = 0; i < regions.size(); ++i) {
     PlanRegion& region = regions[i];
+    const auto named_by = [&](const PlanRegion& old) {
+      return hole(region) ? hole(old) : !hole(old) && same_plane(region, old);
+    };
+    const auto take = [&](const PlanRegion& old) {
+      region.face = old.face, region.orientation = old.orientation, region.depth_mm = old.depth_mm;
+    };
     for (const PlanRegion& old : before)
       if (inside(old, origin[i])) {
-        const bool holes = region.status == FaceStatus::Removed && old.status == FaceStatus::Removed;
-        if (holes) region.orientation = old.orientation;
-        if (holes || same_plane(region, old)) region.face = old.face, region.depth_mm = old.depth_mm;
+        if (named_by(old)) take(old);
         break;
       }
     if (region.face >= 0) continue;
     // The point rounded onto a boundary, or in a tip its region took from a face of another plane:
-    // the region of its plane with a corner nearest it.
+    // the region of its plane (or hole) with a corner nearest it.
     double nearest = std::numeric_limits<double>::infinity();
-    double depth = region.depth_mm;
+    const PlanRegion* by = nullptr;
     for (const PlanRegion& old : before)
-      if (same_plane(region, old))
+      if (named_by(old))
         for (const std::vector<PlanPoint>& ring : old.rings)
           for (const PlanPoint& p : ring)
-            if (const double d = std::hypot(p.X - origin[i].X, p.Y - origin[i].Y); d < nearest)
-              nearest = d, region.face = old.face, depth = old.depth_mm;
-    region.depth_mm = depth;
+            if (const double d = std::hypot(p.X - origin[i].X, p.Y - origin[i].Y); d < nearest) nearest = d, by = &old;
+    if (by) take(*by);
   }
   return regions;
 }

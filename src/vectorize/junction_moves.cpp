@@ -54,30 +54,38 @@ std::optional<MovedJunction> meeting_point(const std::vector<Leg>& legs) {
   return best;
 }
 
-// Where the model's edge runs straight through a junction of one corner (two legs on a break,
-// opposite ways, crossing at under kLegMinSine) and its other chains have no leg (a level
-// contour, on no break and no lattice line at its end), the junction moves square onto the edge:
-// the contour then ends on the edge, where from the lattice corner a fraction of a pixel beside it
-// a connector went to the edge and left a notch. Over the 27 MANIFEST models at W = 3 mm, places
-// under 0.25 mm wide 1,314 -> 1,207 and chords under W 41,583 -> 40,701; places 3,519 -> 3,522
-// (their faces keep other chords under W, 12 a place). Moved so also where a lattice leg crosses
-// the edge too far off, 1,055 and 39,971, but the box turned 30 degrees then had a vertex on its
-// straight back edge (ModelEdges.TheBackEdgesOfABoxTurned30DegreesAreDrawnOnTheirLines).
+// Two legs on the model's edge, opposite ways, are taken as one edge through their junction where
+// they cross at under this sine (14.5 degrees; 0.1 left 9 more places under 0.25 mm below) and
+// each one's point lies within this of the other's line, the tolerance for a drawn edge
+// (any distance: 2 places under 0.25 mm fewer; 0.02 mm: 6 more).
+constexpr double kEdgeThroughSine = 0.25, kEdgeThroughOff_mm = 0.05;
+
+// Where the model's edge runs through a junction of one corner (two legs on a break, as above)
+// and the junction's other chains gave no leg (no straight run on a lattice line or on a break at
+// their end: a level contour, mostly), the junction moves to the foot of the perpendicular from
+// its corner onto the edge: the contour ends on the edge, where from the lattice corner, a fraction
+// of a pixel beside it, a connector went to the edge and left a notch. Over the 27 MANIFEST models
+// at W = 3 mm: places under 0.25 mm wide 1,314 -> 1,209, chords under W 41,583 -> 40,695, but
+// places 3,519 -> 3,522 (their faces keep other chords under W, 12 a place: the notch gone, the
+// next chord stands).
 std::optional<MovedJunction> onto_the_edge(const std::vector<Leg>& legs, const std::vector<LatticePoint>& members,
                                            const LatticeScale& lattice) {
   if (members.size() != 1 || legs.size() != 2) return std::nullopt;
-  for (const Leg& p : legs)
-    for (const Leg& q : legs) {
-      if (&p == &q || !p.on_break || !q.on_break) continue;
-      if (std::abs(p.dx * q.dy - p.dy * q.dx) >= kLegMinSine || p.dx * q.dx + p.dy * q.dy >= 0) continue;
-      // The line through both legs' points, along their mean direction; the corner's foot on it.
-      const double along_X = p.dx - q.dx, along_Y = p.dy - q.dy, length = std::hypot(along_X, along_Y);
-      const double dx = along_X / length, dy = along_Y / length;
-      const double X0 = (p.X + q.X) / 2, Y0 = (p.Y + q.Y) / 2;
-      const double t = (lattice.X(members.front().u) - X0) * dx + (lattice.Y(members.front().v) - Y0) * dy;
-      return MovedJunction{{}, X0 + t * dx, Y0 + t * dy};
-    }
-  return std::nullopt;
+  const Leg &p = legs[0], &q = legs[1];
+  if (!p.on_break || !q.on_break) return std::nullopt;
+  const auto off_line = [](const Leg& leg, const Leg& of) {
+    return std::abs((leg.X - of.X) * of.dy - (leg.Y - of.Y) * of.dx);
+  };
+  if (!(std::abs(p.dx * q.dy - p.dy * q.dx) < kEdgeThroughSine && p.dx * q.dx + p.dy * q.dy < 0 &&
+        off_line(p, q) <= kEdgeThroughOff_mm && off_line(q, p) <= kEdgeThroughOff_mm))
+    return std::nullopt;
+  // Along the legs' mean direction (|p - q| > sqrt 2 for unit legs at over 90 degrees), through
+  // the midpoint of their points.
+  const double along_X = p.dx - q.dx, along_Y = p.dy - q.dy, length = std::hypot(along_X, along_Y);
+  const double dx = along_X / length, dy = along_Y / length;
+  const double X0 = (p.X + q.X) / 2, Y0 = (p.Y + q.Y) / 2;
+  const double t = (lattice.X(members.front().u) - X0) * dx + (lattice.Y(members.front().v) - Y0) * dy;
+  return MovedJunction{{}, X0 + t * dx, Y0 + t * dy};
 }
 
 // The line the folds snapping at a junction end on (with one of those folds), if they all end on one.
