@@ -523,6 +523,16 @@ TEST(Plan, AFaceReachingBehindTheBackPlaneIsTrimmedToIt) {
   expect_exact_construction(plan);
   EXPECT_GE(plan.trimmed_to_card, 1) << "the case this test is about";
   EXPECT_TRUE(plan.validity.ok());
+  // Its tips parted, the plan is read back from its lines, where a hole has no plane: each face
+  // cut out is still the hole it was, with its area (read as V(0), it took the back plane's name).
+  EXPECT_GT(r.tips_parted, 0);
+  const auto removed =
+      std::ranges::count_if(plan.faces, [](const PlanFace& f) { return f.status == FaceStatus::Removed; });
+  EXPECT_GE(removed, 1);
+  for (const PlanFace& face : plan.faces) {
+    if (face.status != FaceStatus::Removed) continue;
+    EXPECT_GT(face.area_mm2, 0) << "a hole lost its face";
+  }
   for (const PlanRegion& region : plan.regions)
     for (const auto& ring : region.rings)
       for (const PlanPoint& p : ring)
