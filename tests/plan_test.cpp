@@ -524,7 +524,7 @@ TEST(Plan, AFaceReachingBehindTheBackPlaneIsTrimmedToIt) {
   EXPECT_GE(plan.trimmed_to_card, 1) << "the case this test is about";
   EXPECT_TRUE(plan.validity.ok());
   // Its tips parted, the plan is read back from its lines, where a hole has no plane: each face
-  // cut out is still the hole it was, with its area (read as V(0), it took the back plane's name).
+  // cut out is still the hole it was, with its area (read as V(0), it took a face of that plane's).
   EXPECT_GT(r.tips_parted, 0);
   const auto removed =
       std::ranges::count_if(plan.faces, [](const PlanFace& f) { return f.status == FaceStatus::Removed; });

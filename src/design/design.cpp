@@ -199,9 +199,9 @@ bool inside(const PlanRegion& region, PlanPoint p) {
 // plane, else the region of its plane with a corner nearest that point (of two faces in one
 // plane, it may be either). A region takes its face's plane as the design has it: placed from the
 // lines, as doubles, its depth can be an ulp off (seedlike/capitol: 9 of its regions). A hole read
-// from lines has no plane (its folds go with it; read as V(0), it took the back plane's name and
-// the hole's face lost its area: seedlike/torus at W = 4 mm): it is named by the holes of `before`
-// alone, and takes their plane.
+// from lines has no plane (its folds go with it; read as V(0), it took the name of a face in that
+// plane and the hole's face lost its area: seedlike/torus at W = 4 mm): it is named by the holes
+// of `before` alone, and takes their plane.
 std::vector<PlanRegion> regions_named(std::vector<PlanRegion> regions, const std::vector<PlanPoint>& origin,
                                       const std::vector<PlanRegion>& before) {
   const auto same_plane = [](const PlanRegion& a, const PlanRegion& b) {
