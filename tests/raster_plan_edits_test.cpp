@@ -161,18 +161,25 @@ TEST(RasterPlanEdits, AFaceNarrowerThanTheRunAlreadyMayGiveRows) {
   const std::optional<RasterPlan> moved = move_plane(s, grid, 3, 1.5, 0.3, 13);  // 12 of 13 before
   ASSERT_TRUE(moved.has_value());
   expect_columns(*moved, grid, 10, 26);
-  // It keeps one row at least: of an H face of 6 rows (6-11), the V face 1.25 mm back takes 5 and
-  // leaves row 6; 1.5 mm back it would take all 6.
+  // It keeps one row at least, or gives its whole run: of an H face of 6 rows (6-11), the V face
+  // 1.25 mm back takes 5 and leaves row 6; 1.5 mm back it takes all 6 and meets the back plane.
   RasterPlan thin = s;
   for (int c = 0; c < grid.cols; ++c)
     for (int r = 0; r < 6; ++r) thin.face(c, r) = kBackFace;
+  thin.faces[2].pixels = 6 * grid.cols;
   const std::optional<RasterPlan> one_left = move_plane(thin, grid, 3, 0.75, 0.3, 13);
   ASSERT_TRUE(one_left.has_value());
   for (int c = 0; c < grid.cols; ++c) {
     EXPECT_EQ(one_left->face(c, 6), 2);
     EXPECT_EQ(one_left->face(c, 7), 3);
   }
-  EXPECT_FALSE(move_plane(thin, grid, 3, 0.5, 0.3, 13).has_value());
+  const std::optional<RasterPlan> none_left = move_plane(thin, grid, 3, 0.5, 0.3, 13);
+  ASSERT_TRUE(none_left.has_value());
+  for (int c = 0; c < grid.cols; ++c)
+    for (int r = 0; r < grid.rows; ++r)
+      EXPECT_EQ(none_left->face(c, r), r < 6 ? kBackFace : r < 22 ? 3 : kFloorFace) << c << ", " << r;
+  EXPECT_EQ(none_left->faces[2].pixels, 0);
+  EXPECT_EQ(none_left->faces[3].pixels, 16 * grid.cols);
 }
 
 // A fold moves only where the face giving rows keeps `min_run_px` of them (a tread no narrower), and
@@ -226,11 +233,16 @@ TEST(RasterPlanEdits, AFaceMovedOntoTheFaceBeyondItsStripClosesIt) {
     EXPECT_EQ(closed->faces[static_cast<std::size_t>(f)].depth_mm, depth);
   }
   EXPECT_FALSE(move_plane(s, grid, 2, 0, 0.3, 1, std::nullopt, kFloorFace).has_value());
-  // Beside the floor in one column, H(4)'s fold with the strip would move onto the floor's row
-  // there, leaving the strip none: nothing moves.
+  // Beside the floor in one column, H(4)'s fold with the strip moves onto the floor's row there:
+  // the strip gives its whole run to H(4), which meets the floor, and closes elsewhere.
   RasterPlan beside_floor = s;
   for (int r = 14; r < grid.rows; ++r) beside_floor.face(2, r) = kFloorFace;
-  EXPECT_FALSE(move_plane(beside_floor, grid, 2, 3.5, 0.3, 1, std::nullopt, 4).has_value());
+  const std::optional<RasterPlan> over_floor = move_plane(beside_floor, grid, 2, 3.5, 0.3, 1, std::nullopt, 4);
+  ASSERT_TRUE(over_floor.has_value());
+  for (int c = 0; c < grid.cols; ++c)
+    for (int r = 0; r < grid.rows; ++r)
+      EXPECT_EQ(over_floor->face(c, r), c == 2 && r >= 14 ? kFloorFace : 4) << c << ", " << r;
+  EXPECT_EQ(over_floor->faces[3].pixels, 0);
   // A row longer in one column, the strip meets H(3.5) a row off its fold line (0.25 mm, over the
   // 0.2 mm tolerance): closed elsewhere, it would lie there between two parts of H(3.5).
   RasterPlan longer = s;
