@@ -215,12 +215,23 @@ std::optional<PieceEnd> fold_end_on_edge(const Chain& chain, CornerSpan span, bo
 // same to 3 of their 61,000 chords under W.
 constexpr double kFoldEndSlide_px = 1.0;
 
+// A cut leaning back over the fold it leaves by at most this (its run across over its run along,
+// under 2 degrees) meets it at a corner of 88 degrees or more, no tip: the fold ends on the cut's
+// line, as where it leans forward. A support's side below a wall's edge leans so, from the edge to
+// its corner on the lattice; refused, the fold ended a connector's length off (the demo house: a
+// notch 0.185 mm deep at each support's foot). Over the 37 models at W = 3 mm, places narrower than
+// W 3,945 -> 3,917, no plan with more; leaning back by up to 0.05 / 0.1 / 0.25 / 0.5, 3,911 /
+// 3,911 / 3,932 / 3,924, some plans with more (the fold's end slid along a connector from the
+// model's edge to the lattice, a notch 1.4 mm long on arch_stepped_tower at 0.1).
+constexpr double kFoldEndLeanBack = 0.03;
+
 // Where the cut piece `span` of a chain, leaving a fold run at its front end (front) or its back
 // end, meets the fold's line as it is drawn: its first segment from that end, on from the corner or
 // back short of it. The fold then ends there, and no connector along the lattice column joins the
 // corner to the line (a cut arriving slanted at the corner met the connector in a notch). Not where
 // the cut turns back over the fold (the run goes `forward`, +1 or -1 along X, towards the piece's
-// front end or from its back end): the two would meet at an acute corner, a tip of the face there.
+// front end or from its back end) by more than kFoldEndLeanBack: the two would meet at an acute
+// corner, a tip of the face there.
 // Only at a run's ends inside the chain (a junction's moves are junction_moves.cpp's). With this
 // and loops closed on their breaks (chain_points.cpp), the 37 models' sliced plans (no supports)
 // at W = 3 mm: places narrower than W 4,540 -> 4,515, the chords under W across them 63,772 ->
@@ -245,7 +256,7 @@ std::optional<PieceEnd> fold_end_along_cut(const Chain& chain, CornerSpan span, 
   };
   const std::array<double, 2> q = at(front ? 0 : points.size() - 1), p = at(front ? 1 : points.size() - 2);
   const double dy = q[1] - p[1];
-  if (dy == 0 || (front ? p[0] - q[0] : q[0] - p[0]) * forward < 0) return std::nullopt;
+  if (dy == 0 || (front ? p[0] - q[0] : q[0] - p[0]) * forward < -kFoldEndLeanBack * std::abs(dy)) return std::nullopt;
   const double back = (fold.Y - q[1]) / dy;  // how far back along the segment, in its lengths
   const double X = q[0] + back * (q[0] - p[0]);
   if (!(back > -1) || !(std::abs(X - q[0]) <= kFoldEndSlide_px * lattice.px_mm)) return std::nullopt;
