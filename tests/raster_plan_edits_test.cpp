@@ -180,6 +180,34 @@ TEST(RasterPlanEdits, AFaceNarrowerThanTheRunAlreadyMayGiveRows) {
       EXPECT_EQ(none_left->face(c, r), r < 6 ? kBackFace : r < 22 ? 3 : kFloorFace) << c << ", " << r;
   EXPECT_EQ(none_left->faces[2].pixels, 0);
   EXPECT_EQ(none_left->faces[3].pixels, 16 * grid.cols);
+  // 1.75 mm back its line lies a row past the H face's run: the V face takes the 6 rows it has and
+  // meets the back plane a row below the line, its fold with the floor 7 rows up.
+  const std::optional<RasterPlan> past = move_plane(thin, grid, 3, 0.25, 0.3, 13);
+  ASSERT_TRUE(past.has_value());
+  for (int c = 0; c < grid.cols; ++c)
+    for (int r = 0; r < grid.rows; ++r)
+      EXPECT_EQ(past->face(c, r), r < 6 ? kBackFace : r < 21 ? 3 : kFloorFace) << c << ", " << r;
+  EXPECT_EQ(past->faces[3].pixels, 15 * grid.cols);
+}
+
+// A face moved whose own run ends short of its new line at one fold while its other fold moves too
+// does not move: a V strip 2 rows deep between H(4) and H(3.5), 0.75 mm forward, would give H(3.5)
+// its 2 rows and take 3 of H(4)'s, its fold with H(3.5) a row off the line.
+TEST(RasterPlanEdits, AFaceFoldedOnBothSidesDoesNotGiveItsWholeRunAtOne) {
+  const PixelGrid grid = three_columns(40, 20);
+  RasterPlan s;
+  s.face = Grid<std::int32_t>(grid.cols, grid.rows, 4);
+  s.faces = {{Orientation::V, 0}, {Orientation::H, 0}, {Orientation::H, 4}, {Orientation::V, 2}, {Orientation::H, 3.5}};
+  for (int c = 0; c < grid.cols; ++c)
+    for (int r = 0; r < 14; ++r) s.face(c, r) = r < 12 ? 2 : 3;
+  s.faces[2].pixels = 12 * grid.cols, s.faces[3].pixels = 2 * grid.cols, s.faces[4].pixels = 26 * grid.cols;
+  EXPECT_FALSE(move_plane(s, grid, 3, 1.25, 0.3, 1).has_value());
+  EXPECT_FALSE(move_plane(s, grid, 3, 1.0, 0.3, 1).has_value());
+  // A quarter of a millimetre back, both folds move down a row and the strip keeps its 2 rows.
+  const std::optional<RasterPlan> back = move_plane(s, grid, 3, 2.25, 0.3, 1);
+  ASSERT_TRUE(back.has_value());
+  for (int c = 0; c < grid.cols; ++c)
+    for (int r = 0; r < grid.rows; ++r) EXPECT_EQ(back->face(c, r), r < 13 ? 2 : r < 15 ? 3 : 4) << c << ", " << r;
 }
 
 // A fold moves only where the face giving rows keeps `min_run_px` of them (a tread no narrower), and

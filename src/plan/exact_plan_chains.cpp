@@ -219,10 +219,10 @@ constexpr double kFoldEndSlide_px = 1.0;
 // under 2 degrees) meets it at a corner of 88 degrees or more, no tip: the fold ends on the cut's
 // line, as where it leans forward. A support's side below a wall's edge leans so, from the edge to
 // its corner on the lattice; refused, the fold ended a connector's length off (the demo house: a
-// notch 0.185 mm deep at each support's foot). Over the 37 models at W = 3 mm, places narrower than
-// W 3,945 -> 3,917, no plan with more; leaning back by up to 0.05 / 0.1 / 0.25 / 0.5, 3,911 /
-// 3,911 / 3,932 / 3,924, some plans with more (the fold's end slid along a connector from the
-// model's edge to the lattice, a notch 1.4 mm long on arch_stepped_tower at 0.1).
+// notch 0.185 mm deep at two of its stilts' feet). Over the 37 models at W = 3 mm, places
+// narrower than W 3,945 -> 3,917, no plan with more; leaning back by up to 0.05 / 0.1 / 0.25 /
+// 0.5, 3,911 / 3,911 / 3,932 / 3,924, some plans with more (the fold's end slid along a connector
+// from the model's edge to the lattice, a notch 1.4 mm long on arch_stepped_tower at 0.1).
 constexpr double kFoldEndLeanBack = 0.03;
 
 // Where the cut piece `span` of a chain, leaving a fold run at its front end (front) or its back

@@ -260,6 +260,14 @@ struct FoldRows {
   }
 };
 
+// The last row of the run of face(col, start) in its column, from `start` on the way `away` (+1
+// down, -1 up).
+int run_end(const Grid<std::int32_t>& face, int col, int start, int away) {
+  int end = start;
+  while (0 <= end + away && end + away < face.rows && face(col, end + away) == face(col, start)) end += away;
+  return end;
+}
+
 // Face g's run in a column from its boundary with f (below row r if f is above it, else above it)
 // to where it meets face `onto`: its first and last rows, and onto's row beyond them; none if the
 // run ends on another face.
@@ -268,9 +276,7 @@ struct RunTo {
 };
 std::optional<RunTo> run_to(const Grid<std::int32_t>& face, int col, int r, bool f_above, std::int32_t onto) {
   const int start = f_above ? r + 1 : r, away = f_above ? 1 : -1;
-  const std::int32_t g = face(col, start);
-  int end = start;
-  while (0 <= end + away && end + away < face.rows && face(col, end + away) == g) end += away;
+  const int end = run_end(face, col, start, away);
   const int beyond = end + away;
   if (beyond < 0 || beyond >= face.rows || face(col, beyond) != onto) return std::nullopt;
   return RunTo{std::min(start, end), std::max(start, end), beyond};
@@ -348,7 +354,7 @@ std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& gr
   struct Rows {
     int col, first, last;
     std::int32_t taker, giver;
-    int kept_row, away;      // the giver's first row kept, and the way its run goes on from it
+    int kept_row, away;      // the giver's first row kept (-1: none), and the way its run goes on
     bool closes;             // a strip between f and `onto`: the giver keeps none
     bool gives_all = false;  // the giver's run ends short of the new line: it keeps none
   };
@@ -378,20 +384,29 @@ std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& gr
       if (t == r) continue;
       if (t < 0 || t + 1 >= face.rows) return std::nullopt;
       // Rows r + 1 .. t go to a, or t + 1 .. r to b, as the fold moves down or up; no other face
-      // lies between, and the face that gives them keeps a row beyond (min_run_px once all move).
+      // lies between, and the face that gives them keeps a row beyond (min_run_px once all move);
+      // or it keeps none, its run there ending short of the new line: it gives the whole run.
       auto [first, last, taker] = t > r ? std::tuple{r + 1, t, a} : std::tuple{t + 1, r, b};
       const std::int32_t giver = taker == a ? b : a;
       const int kept_row = taker == a ? t + 1 : t, away = taker == a ? 1 : -1;
-      if (kept_row < 0 || kept_row >= face.rows || face(col, kept_row) != giver) {
-        // The giver's run there ends short of the new line: it gives the whole run, and the taker
-        // meets what lay beyond it. Refused so, as before, the moves left the 37 models at W = 3
-        // mm 179 faces between two folds under W apart, now 169, and a mean p95 of 1.765 W, now
-        // 1.754 W (the refits move more faces: res_knot 2.06 -> 1.98 W); places narrower than W
-        // 3,939 -> 3,945. At W = 2 / 5 mm, 309 / 124 such faces -> 293 / 116.
-        int end = away > 0 ? first : last;  // the giver's row beside the boundary, then its run's end
-        while (0 <= end + away && end + away < face.rows && face(col, end + away) == giver) end += away;
-        (away > 0 ? last : first) = end;
-        given.push_back({col, first, last, taker, giver, kept_row, away, false, true});
+      if (face(col, kept_row) != giver) {
+        // The taker then meets the face beyond the run: not f itself (the giver lay between two
+        // parts of f), and where f gives, not across a fold of f's (that fold moves with f too,
+        // and the two moves would not agree). Refused so, as before, the moves left the 37 models
+        // at W = 3 mm 179 faces between two folds under W apart, now 171, and a mean p95 of 1.765
+        // W, now 1.756 W (the refits move more faces: res_knot 2.06 -> 1.98 W).
+        const int end = run_end(face, col, away > 0 ? first : last, away), beyond = end + away;
+        if (0 <= beyond && beyond < face.rows) {
+          const std::int32_t x = face(col, beyond);
+          const bool folded =
+              away > 0 ? old_folds.row(plan, giver, x, end) != -1 : old_folds.row(plan, x, giver, beyond) != -1;
+          if (x == f || (giver == f && folded)) return std::nullopt;
+        }
+        if (away > 0)
+          last = end;
+        else
+          first = end;
+        given.push_back({col, first, last, taker, giver, -1, away, false, true});
         continue;
       }
       for (int k = first; k <= last; ++k)
@@ -420,7 +435,7 @@ std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& gr
   // moving gives rows at one fold as it takes as many at the other (a support W wide keeps W; on
   // the plan before the move, 107 of the 434 moves refused over the 37 models at W = 3 mm). A face
   // whose run there was shorter than min_run_px before the move is a place narrower than W
-  // already: it need only keep a row (kept_row, above). Refusing those too, the refits and fold
+  // already: it need only keep a row (kept_row, above), or give its whole run. Refusing those too, the refits and fold
   // spreads of the 37 models at W = 3 mm left res_knot at 2.13 W with 10 planes refit (now 1.99 W,
   // 15) and 183 faces between two folds closer than W (now 178; places in all 3,880 and 3,879).
   for (const auto& [col, first, last, taker, giver, kept_row, away, closes, gives_all] : given) {

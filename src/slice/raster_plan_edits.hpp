@@ -53,19 +53,22 @@ RasterPlan align_folds_to_lines(RasterPlan raster_plan, const PixelGrid& grid, d
 /// and a face of the other orientation meet one above the other within `tolerance_mm` of their
 /// fold line, their boundary moves as the line does (to the pixel edge nearest the new line where
 /// it lay on the one nearest the old, as many rows off it where it lay off it), f taking the
-/// other's pixels or giving it its own. A face whose run in a column ends short of the new line
-/// gives all of it there, and the taker meets what lay beyond.
+/// other's pixels or giving it its own. A face whose run in a column ends before the new line
+/// gives the whole run there, and the taker meets the face beyond it; not where that face is f,
+/// nor, where f gives, where f is folded to it (that fold moves too).
 /// Nothing where a fold cannot move so: a face giving pixels would keep fewer than `min_run_px`
 /// rows of its run in the column, counted as all the folds' moves leave it (f gives rows at one
 /// fold as it takes as many at the other), where its run there had as many before and keeps some;
-/// or a third face lies between the old and the new line, or the new line lies off the sheet; or
-/// where the move leaves a face in more 4-connected parts than it was. `columns` (first, last), if given, holds every
-/// column of f: only those are searched for its folds. With `onto`, a face of f's orientation in the plane `depth_mm`,
-/// two folds become one step: where another face lies between f and `onto` in a column, folded to both, f takes all of
-/// its rows there (its strip closes), and f becomes part of `onto` (f keeps no pixel; the runs kept and the parts after
-/// the move are counted as one face's). Nothing if no strip closes, or where a face between them is not folded to both
-/// (it would lie between two parts of `onto`). \pre f is a face of the plan, not the back plane, the floor or a hole;
-/// `onto`, if given, is another face, not a hole, of f's orientation and depth `depth_mm`.
+/// or a third face lies between the old and the new line with the giver beyond it, or the new line
+/// lies off the sheet; or where the move leaves a face in more 4-connected parts than it was.
+/// `columns` (first, last), if given, holds every column of f: only those are searched for its
+/// folds. With `onto`, a face of f's orientation in the plane `depth_mm`, two folds become one
+/// step: where another face lies between f and `onto` in a column, folded to both, f takes all of
+/// its rows there (its strip closes), and f becomes part of `onto` (f keeps no pixel; the runs
+/// kept and the parts after the move are counted as one face's). Nothing if no strip closes, or
+/// where a face between them is not folded to both (it would lie between two parts of `onto`).
+/// \pre f is a face of the plan, not the back plane, the floor or a hole; `onto`, if given, is
+/// another face, not a hole, of f's orientation and depth `depth_mm`.
 std::optional<RasterPlan> move_plane(const RasterPlan& raster_plan, const PixelGrid& grid, std::int32_t f,
                                      double depth_mm, double tolerance_mm, int min_run_px,
                                      std::optional<std::pair<int, int>> columns = std::nullopt,
