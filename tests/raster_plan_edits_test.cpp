@@ -190,17 +190,24 @@ TEST(RasterPlanEdits, AFaceNarrowerThanTheRunAlreadyMayGiveRows) {
   EXPECT_EQ(past->faces[3].pixels, 15 * grid.cols);
 }
 
-// A face moved whose own run ends short of its new line at one fold while its other fold moves too
-// does not move: a V strip 2 rows deep between H(4) and H(3.5), 0.75 mm forward, would give H(3.5)
-// its 2 rows and take 3 of H(4)'s, its fold with H(3.5) a row off the line.
-TEST(RasterPlanEdits, AFaceFoldedOnBothSidesDoesNotGiveItsWholeRunAtOne) {
-  const PixelGrid grid = three_columns(40, 20);
+// A V(2) strip 2 rows deep between H(4) above and H(3.5) below (at 4 px a mm, F = 20: H(4) rows
+// 0-11, the strip rows 12-13, folds at Y = 2 and 1.5, H(3.5) the rows below).
+RasterPlan strip_between_two_h_faces(const PixelGrid& grid) {
   RasterPlan s;
   s.face = Grid<std::int32_t>(grid.cols, grid.rows, 4);
   s.faces = {{Orientation::V, 0}, {Orientation::H, 0}, {Orientation::H, 4}, {Orientation::V, 2}, {Orientation::H, 3.5}};
   for (int c = 0; c < grid.cols; ++c)
     for (int r = 0; r < 14; ++r) s.face(c, r) = r < 12 ? 2 : 3;
   s.faces[2].pixels = 12 * grid.cols, s.faces[3].pixels = 2 * grid.cols, s.faces[4].pixels = 26 * grid.cols;
+  return s;
+}
+
+// A face moved whose own run ends short of its new line at one fold while its other fold moves too
+// does not move: a V strip 2 rows deep between H(4) and H(3.5), 0.75 mm forward, would give H(3.5)
+// its 2 rows and take 3 of H(4)'s, its fold with H(3.5) a row off the line.
+TEST(RasterPlanEdits, AFaceFoldedOnBothSidesDoesNotGiveItsWholeRunAtOne) {
+  const PixelGrid grid = three_columns(40, 20);
+  const RasterPlan s = strip_between_two_h_faces(grid);
   EXPECT_FALSE(move_plane(s, grid, 3, 1.25, 0.3, 1).has_value());
   EXPECT_FALSE(move_plane(s, grid, 3, 1.0, 0.3, 1).has_value());
   // A quarter of a millimetre back, both folds move down a row and the strip keeps its 2 rows.
@@ -244,12 +251,7 @@ TEST(RasterPlanEdits, APlaneMovesOnlyWhereTheFacesGivingRowsKeepTheirRunAndStayW
 // of it: one face in every row. Onto a face beyond no strip (the floor), nothing moves.
 TEST(RasterPlanEdits, AFaceMovedOntoTheFaceBeyondItsStripClosesIt) {
   const PixelGrid grid = three_columns(40, 20);
-  RasterPlan s;
-  s.face = Grid<std::int32_t>(grid.cols, grid.rows, 4);
-  s.faces = {{Orientation::V, 0}, {Orientation::H, 0}, {Orientation::H, 4}, {Orientation::V, 2}, {Orientation::H, 3.5}};
-  for (int c = 0; c < grid.cols; ++c)
-    for (int r = 0; r < 14; ++r) s.face(c, r) = r < 12 ? 2 : 3;
-  s.faces[2].pixels = 12 * grid.cols, s.faces[3].pixels = 2 * grid.cols, s.faces[4].pixels = 26 * grid.cols;
+  const RasterPlan s = strip_between_two_h_faces(grid);
   for (const auto& [f, onto] : {std::pair{2, 4}, std::pair{4, 2}}) {
     const double depth = s.faces[static_cast<std::size_t>(onto)].depth_mm;
     const std::optional<RasterPlan> closed = move_plane(s, grid, f, depth, 0.3, 12, std::nullopt, onto);
