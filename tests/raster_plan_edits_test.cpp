@@ -215,6 +215,13 @@ TEST(RasterPlanEdits, AFaceFoldedOnBothSidesDoesNotGiveItsWholeRunAtOne) {
   ASSERT_TRUE(back.has_value());
   for (int c = 0; c < grid.cols; ++c)
     for (int r = 0; r < grid.rows; ++r) EXPECT_EQ(back->face(c, r), r < 13 ? 2 : r < 15 ? 3 : 4) << c << ", " << r;
+  // Nor does a face between two parts of the face moved give its run to both: with H(4) below the
+  // strip too, H(4) 1 mm lower would take the strip's rows from above and from below.
+  RasterPlan between = s;
+  for (int c = 0; c < grid.cols; ++c)
+    for (int r = 14; r < grid.rows; ++r) between.face(c, r) = 2;
+  between.faces[2].pixels += 26 * grid.cols, between.faces[4].pixels = 0;
+  EXPECT_FALSE(move_plane(between, grid, 2, 3, 0.3, 1).has_value());
 }
 
 // A fold moves only where the face giving rows keeps `min_run_px` of them (a tread no narrower), and

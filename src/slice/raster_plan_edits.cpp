@@ -390,18 +390,18 @@ std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& gr
       const std::int32_t giver = taker == a ? b : a;
       const int kept_row = taker == a ? t + 1 : t, away = taker == a ? 1 : -1;
       if (face(col, kept_row) != giver) {
-        // The taker then meets the face beyond the run: not f itself (the giver lay between two
-        // parts of f), and where f gives, not across a fold of f's (that fold moves with f too,
-        // and the two moves would not agree). Refused so, as before, the moves left the 37 models
-        // at W = 3 mm 179 faces between two folds under W apart, now 171, and a mean p95 of 1.765
-        // W, now 1.756 W (the refits move more faces: res_knot 2.06 -> 1.98 W).
+        // The taker then meets the face beyond the run (across a cut, or a fold where their line
+        // falls there): not f itself (the giver lay between two parts of f), and where f gives,
+        // not across a fold of f's (that fold moves with f too, and the two moves would not
+        // agree). While every such move was refused, the 37 models at W = 3 mm had 179 faces
+        // between two folds under W apart (now 171) and a mean p95 of 1.765 W (now 1.756 W: the
+        // refits move more faces, res_knot 2.06 -> 1.99 W).
         const int end = run_end(face, col, away > 0 ? first : last, away), beyond = end + away;
-        if (0 <= beyond && beyond < face.rows) {
-          const std::int32_t x = face(col, beyond);
-          const bool folded =
-              away > 0 ? old_folds.row(plan, giver, x, end) != -1 : old_folds.row(plan, x, giver, beyond) != -1;
-          if (x == f || (giver == f && folded)) return std::nullopt;
-        }
+        assert(0 <= beyond && beyond < face.rows);  // the run ends before kept_row, on the sheet
+        const std::int32_t x = face(col, beyond);
+        const bool folded =
+            away > 0 ? old_folds.row(plan, giver, x, end) != -1 : old_folds.row(plan, x, giver, beyond) != -1;
+        if (x == f || (giver == f && folded)) return std::nullopt;
         if (away > 0)
           last = end;
         else
