@@ -215,8 +215,9 @@ TEST(RasterPlanEdits, AFaceFoldedOnBothSidesDoesNotGiveItsWholeRunAtOne) {
   ASSERT_TRUE(back.has_value());
   for (int c = 0; c < grid.cols; ++c)
     for (int r = 0; r < grid.rows; ++r) EXPECT_EQ(back->face(c, r), r < 13 ? 2 : r < 15 ? 3 : 4) << c << ", " << r;
-  // Nor does a face between two parts of the face moved give its run to both: with H(4) below the
-  // strip too, H(4) 1 mm lower would take the strip's rows from above and from below.
+  // Nor does a face between two parts of the face moved give them its run: with H(4) below the
+  // strip too (a cut there, its fold line 2 rows up), H(4) 1 mm lower would take the strip's rows
+  // from above and meet itself below them.
   RasterPlan between = s;
   for (int c = 0; c < grid.cols; ++c)
     for (int r = 14; r < grid.rows; ++r) between.face(c, r) = 2;

@@ -435,9 +435,10 @@ std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& gr
   // moving gives rows at one fold as it takes as many at the other (a support W wide keeps W; on
   // the plan before the move, 107 of the 434 moves refused over the 37 models at W = 3 mm). A face
   // whose run there was shorter than min_run_px before the move is a place narrower than W
-  // already: it need only keep a row (kept_row, above), or give its whole run. Refusing those too, the refits and fold
-  // spreads of the 37 models at W = 3 mm left res_knot at 2.13 W with 10 planes refit (now 1.99 W,
-  // 15) and 183 faces between two folds closer than W (now 178; places in all 3,880 and 3,879).
+  // already: it need only keep a row (kept_row, above), or give its whole run. Refusing those too,
+  // the refits and fold spreads of the 37 models at W = 3 mm left res_knot at 2.13 W with 10
+  // planes refit (then 1.99 W, 15) and 183 faces between two folds closer than W (then 178; places
+  // in all 3,880 and 3,879).
   for (const auto& [col, first, last, taker, giver, kept_row, away, closes, gives_all] : given) {
     if (closes || gives_all) continue;
     int run_before = 0;  // from its row beside the old boundary on, up to min_run_px
