@@ -146,6 +146,55 @@ TEST(Plan, AFacesPieceApartFromItIsFloatingAndACrumbIsCutOut) {
   EXPECT_TRUE(analyze_plan(crumb.lines, AnalysisOptions{}).valid()) << "its lines declare it a hole";
 }
 
+// A piece of the floor that a hole parts from the rest and that hangs by the main fold alone swings
+// about it. A sliver of it, too thin for anyone to fold (twice its area over its perimeter under
+// W / 4), is cut out as a crumb is, however long: a rotated pyramid's rim left one 18 mm long and
+// 0.13 mm deep under the main fold, and its plan did not stand. A piece as long but W deep stays,
+// and the plan says it does not stand.
+TEST(Plan, ASliverOfTheFloorHangingByTheMainFoldIsCutOut) {
+  const RayScene scene(test::box({40, 0, 0}, {150, 60, 40}));
+  const Sheet sheet;
+  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
+  const RasterPlan sliced = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const int first_below = maps.grid.rows_above_fold, c0 = 40, c1 = 80;  // X 10 to 20 mm, left of the box
+  ASSERT_EQ(sliced.face(c0, first_below), kFloorFace);
+  ASSERT_EQ(sliced.face(c1, first_below), kFloorFace);
+  // A hole 10 mm wide and 5 mm deep under the main fold, but for `rows` of floor along the fold.
+  const auto with_flap = [&](int rows) {
+    RasterPlan s = sliced;
+    const auto hole = static_cast<std::int32_t>(s.faces.size());
+    s.faces.push_back({Orientation::H, 0, 0, 0, false, true});
+    for (int r = first_below; r < first_below + 20; ++r)
+      for (int c = c0; c < c1; ++c)
+        if (r >= first_below + rows || c == c0 || c == c1 - 1) s.face(c, r) = hole;
+    return build_plan(maps, s, sheet, PlanOptions{});
+  };
+  const Plan sliver = with_flap(2);  // 9.5 mm by 0.5 mm: 4.75 mm^2, over W x W / 8
+  expect_exact_construction(sliver);
+  EXPECT_EQ(sliver.loose_card_pieces, 0);
+  EXPECT_EQ(sliver.crumbs_cut_out, 1);
+  EXPECT_TRUE(sliver.validity.ok());
+  EXPECT_TRUE(analyze_plan(sliver.lines, AnalysisOptions{}).valid()) << "its lines declare it a hole";
+  const Plan flap = with_flap(12);  // 9.5 mm by 3 mm
+  EXPECT_EQ(flap.loose_card_pieces, 1);
+  EXPECT_EQ(flap.crumbs_cut_out, 0);
+  EXPECT_EQ(flap.validity.dangling, 1);
+  EXPECT_FALSE(analyze_plan(flap.lines, AnalysisOptions{}).valid()) << "its lines say so too";
+}
+
+// The case above as a design met it: ../shared/models' pyramid turned 30 degrees about its up axis.
+TEST(Plan, ARotatedPyramidStandsWithNoFlapUnderTheMainFold) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  DesignOptions options;
+  options.placement.up = UpAxis::Z;
+  options.placement.rotate_deg = 30;
+  const DesignResult r = design(test::models_dir() / "prim_pyramid.stl", options);
+  EXPECT_EQ(r.plan.loose_card_pieces, 0);
+  EXPECT_EQ(r.plan.validity.dangling + r.plan.validity.floating + r.plan.validity.invalid, 0);
+  const PlanAnalysis read = analyze_plan(r.plan.lines, AnalysisOptions{});
+  EXPECT_EQ(read.errors, 0) << analysis_summary_line(read);
+}
+
 // A box's sliced plan, with a support V(20) to be painted on the back plane above the box, at
 // (col, row) and k = W in pixels.
 struct SupportAboveABox {

@@ -278,6 +278,24 @@ std::vector<std::uint8_t> among_holes(const Arrangement& arr, const Pieces& piec
   return among;
 }
 
+// Per piece: the length of its boundary, each edge between it and another piece, a hole or the
+// sheet's outside counted once.
+std::vector<double> piece_perimeters(const Arrangement& arr, const Pieces& pieces) {
+  std::vector<double> perimeter(pieces.label.size(), 0.0);
+  const auto piece = [&](Arrangement::Face_const_handle f) -> std::int32_t {
+    const auto it = pieces.of.find(f);
+    return it == pieces.of.end() ? -1 : it->second;
+  };
+  for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
+    const std::int32_t a = piece(e->face()), b = piece(e->twin()->face());
+    if (a == b) continue;
+    const double length = exact::length_of(e);
+    if (a >= 0) perimeter[static_cast<std::size_t>(a)] += length;
+    if (b >= 0) perimeter[static_cast<std::size_t>(b)] += length;
+  }
+  return perimeter;
+}
+
 // The plan's faces: each raster face's plane, exact area, folded sides and verdict.
 std::vector<PlanFace> plan_faces(const std::vector<RasterFace>& faces, const std::vector<double>& area,
                                  const EdgeReading& reading, const Validity& validity) {
@@ -352,7 +370,8 @@ void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& ra
   state.edges = std::move(reading.edges);
   const std::vector<std::uint8_t> bordering_holes = among_holes(arr, pieces, faces);
   const PieceVerdict verdict =
-      face_validity(validity_of(graph), {pieces, node, areas.of_piece, bordering_holes}, n, aligned.min_strip_mm);
+      face_validity(validity_of(graph), {pieces, node, areas.of_piece, piece_perimeters(arr, pieces), bordering_holes},
+                    n, aligned.min_strip_mm);
   plan.validity = verdict.validity;
   plan.loose_card_pieces = verdict.loose_card_pieces;
   plan.crumbs_cut_out = static_cast<int>(std::ranges::count(verdict.cut_out, 1));

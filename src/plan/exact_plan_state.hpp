@@ -66,20 +66,22 @@ bool negligible(Arrangement::Halfedge_const_handle he);
 /// The verdict per raster face from the verdict per piece: a face stands when every piece of it does.
 /// A floating crumb (a piece under W x W / 8, cut off where a snapped fold met a slanted cut) falls
 /// out when the card is cut and is no part of the likeness: it is cut out (a hole) and does not count.
-/// So does a floating piece with holes all round it: it falls out with them, and a crumb of the back
-/// plane or the floor that hangs by one fold line (a flap too small to fold).
+/// So does a floating piece with holes all round it: it falls out with them, a crumb of the back
+/// plane or the floor that hangs by one fold line (a flap too small to fold), and a sliver of them
+/// that floats or hangs so (too thin to fold, however long).
 /// Pieces of the back plane and the floor that came loose count as faces of their own.
 struct PieceVerdict {
   Validity validity;                  // per raster face
   int loose_card_pieces = 0;          // pieces of the back plane or the floor no fold holds
-  std::vector<std::uint8_t> cut_out;  // per piece: a floating crumb, cut out
+  std::vector<std::uint8_t> cut_out;  // per piece: a crumb or a sliver, cut out
 };
 /// What face_validity reads of each piece besides its label: its node in the face graph, its area,
-/// and whether it borders only holes.
+/// its perimeter, and whether it borders only holes.
 struct PieceFacts {
   const Pieces& pieces;
   const std::vector<std::int32_t>& node;
   const std::vector<double>& area;
+  const std::vector<double>& perimeter;
   const std::vector<std::uint8_t>& among_holes;
 };
 PieceVerdict face_validity(const Validity& by_node, const PieceFacts& piece, std::size_t faces, double min_strip_mm);
