@@ -37,6 +37,9 @@ struct FoldSpacingOptions {
   double may_add_p95_W = 0.05;
   // And this much worse at its mean error, in W, likewise.
   double may_add_mean_W = 0.02;
+  // Exact plans built at most: where one does not stand, the moves beside the faces it leaves
+  // unheld are taken back and the rest built again.
+  int exact_builds = 3;
 };
 
 /// Whether the plan with the fold pairs parted is to be kept instead of the plan given (the design
@@ -52,6 +55,8 @@ using FoldSpacingCheck = std::function<bool(const Plan& given, const Plan& parte
 /// parted by a boundary of two coplanar faces (a support beside a slice in its plane) is not seen.
 /// The exact plan of all moves is kept if it stands, shows the model within the options' bounds of
 /// the plan given, and `keep` accepts it; the moves are listed in SupportReport::planes_spread.
+/// Where it does not stand, the faces whose moves changed a pixel of a face it leaves unheld, or
+/// one beside it, may not move, and the pairs are spread again (up to `exact_builds` plans).
 /// \pre W (the raster plan's min_strip_mm) > 0.
 SupportedPlan spread_fold_pairs(const RasterMaps& maps, SupportedPlan supported, const Sheet& sheet,
                                 const PlanOptions& plan_options, bool allow_dangling, const FoldSpacingCheck& keep,
