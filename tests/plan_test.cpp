@@ -175,11 +175,49 @@ TEST(Plan, ASliverOfTheFloorHangingByTheMainFoldIsCutOut) {
   EXPECT_EQ(sliver.crumbs_cut_out, 1);
   EXPECT_TRUE(sliver.validity.ok());
   EXPECT_TRUE(analyze_plan(sliver.lines, AnalysisOptions{}).valid()) << "its lines declare it a hole";
-  const Plan flap = with_flap(12);  // 9.5 mm by 3 mm
-  EXPECT_EQ(flap.loose_card_pieces, 1);
-  EXPECT_EQ(flap.crumbs_cut_out, 0);
-  EXPECT_EQ(flap.validity.dangling, 1);
-  EXPECT_FALSE(analyze_plan(flap.lines, AnalysisOptions{}).valid()) << "its lines say so too";
+  for (const int rows : {4, 12}) {  // 9.5 mm by 1 mm (0.3 W across by the measure) and by 3 mm
+    SCOPED_TRACE(rows);
+    const Plan flap = with_flap(rows);
+    EXPECT_EQ(flap.loose_card_pieces, 1);
+    EXPECT_EQ(flap.crumbs_cut_out, 0);
+    EXPECT_EQ(flap.validity.dangling, 1);
+    EXPECT_FALSE(analyze_plan(flap.lines, AnalysisOptions{}).valid()) << "its lines say so too";
+  }
+}
+
+// A sliver of the floor that nothing holds, beside a face of the model (so not among holes alone):
+// cut out too; a piece as long but 1 mm deep stays, floating.
+TEST(Plan, AFloatingSliverOfTheFloorBesideAFaceIsCutOut) {
+  const RayScene scene(test::box({40, 0, 0}, {150, 60, 40}));
+  const Sheet sheet;
+  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
+  const RasterPlan sliced = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  // The box's front V(40) from X = 40 mm (column 160), Y = -40 to 20 mm; the floor left of it.
+  const int box_col = 160, top = maps.grid.rows_above_fold + 20, c0 = box_col - 40;  // Y -5 mm, X 30 mm
+  const std::int32_t front = sliced.face(box_col, top + 40);
+  ASSERT_GE(front, 2);
+  ASSERT_EQ(sliced.faces[static_cast<std::size_t>(front)].orientation, Orientation::V);
+  ASSERT_EQ(sliced.face(box_col - 1, top + 40), kFloorFace);
+  // A hole 10 mm wide and 15 mm deep against the box's side, but for `rows` of floor across it.
+  const auto with_strip = [&](int rows) {
+    RasterPlan s = sliced;
+    const auto hole = static_cast<std::int32_t>(s.faces.size());
+    s.faces.push_back({Orientation::H, 0, 0, 0, false, true});
+    for (int r = top; r < top + 60; ++r)
+      for (int c = c0; c < box_col; ++c)
+        if (r < top + 30 || r >= top + 30 + rows || c == c0) s.face(c, r) = hole;
+    return build_plan(maps, s, sheet, PlanOptions{});
+  };
+  const Plan sliver = with_strip(2);  // 9.75 mm by 0.5 mm
+  expect_exact_construction(sliver);
+  EXPECT_EQ(sliver.loose_card_pieces, 0);
+  EXPECT_EQ(sliver.crumbs_cut_out, 1);
+  EXPECT_TRUE(sliver.validity.ok());
+  EXPECT_TRUE(analyze_plan(sliver.lines, AnalysisOptions{}).valid()) << "its lines declare it a hole";
+  const Plan strip = with_strip(4);  // 9.75 mm by 1 mm
+  EXPECT_EQ(strip.loose_card_pieces, 1);
+  EXPECT_EQ(strip.crumbs_cut_out, 0);
+  EXPECT_EQ(strip.validity.floating, 1);
 }
 
 // The case above as a design met it: ../shared/models' pyramid turned 30 degrees about its up axis.

@@ -80,7 +80,8 @@ struct Plan {
   int arrangement_faces = 0;
   int pieces = 0;                       // pieces of paper: validity is decided on them
   int loose_card_pieces = 0;            // pieces of the back plane or the floor no fold holds
-  int crumbs_cut_out = 0;               // floating pieces under W x W / 8 or among holes: on CUTOUT
+  int crumbs_cut_out = 0;               // floating pieces under W x W / 8 or among holes, and pieces of the back plane
+                                        // or the floor that fall out (crumbs, slivers): on CUTOUT
   int label_conflicts = 0;              // arrangement faces without a clear majority label
   int raw_chains = 0;                   // boundaries left unsimplified to avoid a crossing
   int unsnapped_chains = 0;             // boundaries kept as pixel contours (no fold snapping) for it

@@ -369,9 +369,26 @@ void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& ra
   graph.folds = std::move(reading.folds);
   state.edges = std::move(reading.edges);
   const std::vector<std::uint8_t> bordering_holes = among_holes(arr, pieces, faces);
+  const std::vector<double> perimeter = piece_perimeters(arr, pieces);
+  Validity by_node = validity_of(graph);
+  // The faces are judged again without the folds of the card's pieces that fall out: a face folded
+  // to one, and held through it, would stand by paper that is not there.
+  std::vector<bool> falls_out(static_cast<std::size_t>(nodes), false);
+  bool any_falls_out = false;
+  for (std::size_t p = 0; p < pieces.label.size(); ++p) {
+    const auto k = static_cast<std::size_t>(node[p]);
+    if (pieces.label[p] < 2 && k >= 2 &&
+        exact::card_piece_falls_out(by_node.status[k], areas.of_piece[p], perimeter[p], aligned.min_strip_mm))
+      falls_out[k] = any_falls_out = true;
+  }
+  if (any_falls_out) {
+    std::erase_if(graph.folds, [&](const Fold& fold) {
+      return falls_out[static_cast<std::size_t>(fold.a)] || falls_out[static_cast<std::size_t>(fold.b)];
+    });
+    by_node = validity_of(graph);
+  }
   const PieceVerdict verdict =
-      face_validity(validity_of(graph), {pieces, node, areas.of_piece, piece_perimeters(arr, pieces), bordering_holes},
-                    n, aligned.min_strip_mm);
+      face_validity(by_node, {pieces, node, areas.of_piece, perimeter, bordering_holes}, n, aligned.min_strip_mm);
   plan.validity = verdict.validity;
   plan.loose_card_pieces = verdict.loose_card_pieces;
   plan.crumbs_cut_out = static_cast<int>(std::ranges::count(verdict.cut_out, 1));

@@ -63,12 +63,20 @@ Pieces pieces_of(const Arrangement& arr);
 /// files may not even keep it apart from its end points.
 bool negligible(Arrangement::Halfedge_const_handle he);
 
+/// Whether a piece of the back plane or the floor (not the card's halves themselves) falls out of the
+/// card: a crumb (under W x W / 8) that hangs by one fold line, a flap too small to fold (what a face
+/// trimmed to the card leaves where the card's own piece is not beside it), or a sliver (twice its
+/// area over its perimeter, a strip's width, under W / 4), however long, that floats or hangs so.
+/// Card, not a face of the model: its hole takes from the likeness only the model pixels the card
+/// showed on it (parts of faces beyond the card become back plane or floor), a sliver's worth.
+bool card_piece_falls_out(FaceStatus status, double area_mm2, double perimeter_mm, double min_strip_mm);
+
 /// The verdict per raster face from the verdict per piece: a face stands when every piece of it does.
 /// A floating crumb (a piece under W x W / 8, cut off where a snapped fold met a slanted cut) falls
 /// out when the card is cut and is no part of the likeness: it is cut out (a hole) and does not count.
 /// So does a floating piece with holes all round it: it falls out with them, a crumb of the back
-/// plane or the floor that hangs by one fold line (a flap too small to fold), and a sliver of them
-/// that floats or hangs so (too thin to fold, however long).
+/// plane or the floor that falls out (card_piece_falls_out): `by_node` must judge the faces without
+/// the folds of such pieces.
 /// Pieces of the back plane and the floor that came loose count as faces of their own.
 struct PieceVerdict {
   Validity validity;                  // per raster face
@@ -103,7 +111,7 @@ struct ExactPlan::State {
   exact::Pieces pieces;
   std::vector<double> area;                                                           // per raster face
   std::vector<std::pair<exact::Arrangement::Halfedge_const_handle, LineKind>> edges;  // inner edges, upper face first
-  std::vector<std::uint8_t> cut_out;                                                  // per piece: a crumb, cut out
+  std::vector<std::uint8_t> cut_out;                                                  // per piece: cut out
   Plan plan;                                                                          // the verdict
   ChainFallbacks fallbacks;                                                           // the chains drawn unsimplified
 
