@@ -146,28 +146,39 @@ TEST(Plan, AFacesPieceApartFromItIsFloatingAndACrumbIsCutOut) {
   EXPECT_TRUE(analyze_plan(crumb.lines, AnalysisOptions{}).valid()) << "its lines declare it a hole";
 }
 
-// A piece of the floor that a hole parts from the rest and that hangs by the main fold alone swings
-// about it. A sliver of it, too thin for anyone to fold (twice its area over its perimeter under
-// W / 4), is cut out as a crumb is, however long: a rotated pyramid's rim left one 18 mm long and
-// 0.13 mm deep under the main fold, and its plan did not stand. A piece as long but W deep stays,
-// and the plan says it does not stand.
-TEST(Plan, ASliverOfTheFloorHangingByTheMainFoldIsCutOut) {
-  const RayScene scene(test::box({40, 0, 0}, {150, 60, 40}));
-  const Sheet sheet;
-  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
-  const RasterPlan sliced = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
-  const int first_below = maps.grid.rows_above_fold, c0 = 40, c1 = 80;  // X 10 to 20 mm, left of the box
-  ASSERT_EQ(sliced.face(c0, first_below), kFloorFace);
-  ASSERT_EQ(sliced.face(c1, first_below), kFloorFace);
-  // A hole 10 mm wide and 5 mm deep under the main fold, but for `rows` of floor along the fold.
-  const auto with_flap = [&](int rows) {
+// A box's sliced plan; and its exact plan with a hole over the pixels of a box of rows and
+// columns (half-open) that `in_hole(c, r)` picks, the back plane or the floor elsewhere in it.
+struct SlicedBox {
+  Sheet sheet;
+  RasterMaps maps = raster(RayScene(test::box({40, 0, 0}, {150, 60, 40})), sheet, RasterOptions{});
+  RasterPlan sliced = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+
+  template <typename InHole>
+  Plan with_hole(int c0, int c1, int r0, int r1, InHole in_hole) const {
     RasterPlan s = sliced;
     const auto hole = static_cast<std::int32_t>(s.faces.size());
     s.faces.push_back({Orientation::H, 0, 0, 0, false, true});
-    for (int r = first_below; r < first_below + 20; ++r)
+    for (int r = r0; r < r1; ++r)
       for (int c = c0; c < c1; ++c)
-        if (r >= first_below + rows || c == c0 || c == c1 - 1) s.face(c, r) = hole;
+        if (in_hole(c, r)) s.face(c, r) = hole;
     return build_plan(maps, s, sheet, PlanOptions{});
+  }
+};
+
+// A piece of the floor that a hole parts from the rest and that hangs by the main fold alone swings
+// about it. A sliver of it, too thin for anyone to fold (twice its area over its perimeter under
+// W / 4), is cut out as a crumb is, however long: a rotated pyramid's rim left one 18 mm long and
+// 0.13 mm deep under the main fold, and its plan did not stand. A piece as long but 1 or 3 mm deep
+// stays, and the plan says it does not stand.
+TEST(Plan, ASliverOfTheFloorHangingByTheMainFoldIsCutOut) {
+  const SlicedBox box;
+  const int first_below = box.maps.grid.rows_above_fold, c0 = 40, c1 = 80;  // X 10 to 20 mm, left of the box
+  ASSERT_EQ(box.sliced.face(c0, first_below), kFloorFace);
+  ASSERT_EQ(box.sliced.face(c1, first_below), kFloorFace);
+  // A hole 10 mm wide and 5 mm deep under the main fold, but for `rows` of floor along the fold.
+  const auto with_flap = [&](int rows) {
+    return box.with_hole(c0, c1, first_below, first_below + 20,
+                         [&](int c, int r) { return r >= first_below + rows || c == c0 || c == c1 - 1; });
   };
   const Plan sliver = with_flap(2);  // 9.5 mm by 0.5 mm: 4.75 mm^2, over W x W / 8
   expect_exact_construction(sliver);
@@ -188,25 +199,17 @@ TEST(Plan, ASliverOfTheFloorHangingByTheMainFoldIsCutOut) {
 // A sliver of the floor that nothing holds, beside a face of the model (so not among holes alone):
 // cut out too; a piece as long but 1 mm deep stays, floating.
 TEST(Plan, AFloatingSliverOfTheFloorBesideAFaceIsCutOut) {
-  const RayScene scene(test::box({40, 0, 0}, {150, 60, 40}));
-  const Sheet sheet;
-  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
-  const RasterPlan sliced = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const SlicedBox box;
   // The box's front V(40) from X = 40 mm (column 160), Y = -40 to 20 mm; the floor left of it.
-  const int box_col = 160, top = maps.grid.rows_above_fold + 20, c0 = box_col - 40;  // Y -5 mm, X 30 mm
-  const std::int32_t front = sliced.face(box_col, top + 40);
+  const int box_col = 160, top = box.maps.grid.rows_above_fold + 20, c0 = box_col - 40;  // Y -5 mm, X 30 mm
+  const std::int32_t front = box.sliced.face(box_col, top + 40);
   ASSERT_GE(front, 2);
-  ASSERT_EQ(sliced.faces[static_cast<std::size_t>(front)].orientation, Orientation::V);
-  ASSERT_EQ(sliced.face(box_col - 1, top + 40), kFloorFace);
+  ASSERT_EQ(box.sliced.faces[static_cast<std::size_t>(front)].orientation, Orientation::V);
+  ASSERT_EQ(box.sliced.face(box_col - 1, top + 40), kFloorFace);
   // A hole 10 mm wide and 15 mm deep against the box's side, but for `rows` of floor across it.
   const auto with_strip = [&](int rows) {
-    RasterPlan s = sliced;
-    const auto hole = static_cast<std::int32_t>(s.faces.size());
-    s.faces.push_back({Orientation::H, 0, 0, 0, false, true});
-    for (int r = top; r < top + 60; ++r)
-      for (int c = c0; c < box_col; ++c)
-        if (r < top + 30 || r >= top + 30 + rows || c == c0) s.face(c, r) = hole;
-    return build_plan(maps, s, sheet, PlanOptions{});
+    return box.with_hole(c0, box_col, top, top + 60,
+                         [&](int c, int r) { return r < top + 30 || r >= top + 30 + rows || c == c0; });
   };
   const Plan sliver = with_strip(2);  // 9.75 mm by 0.5 mm
   expect_exact_construction(sliver);
@@ -220,7 +223,7 @@ TEST(Plan, AFloatingSliverOfTheFloorBesideAFaceIsCutOut) {
   EXPECT_EQ(strip.validity.floating, 1);
 }
 
-// The case above as a design met it: ../shared/models' pyramid turned 30 degrees about its up axis.
+// The hanging sliver as a design met it: ../shared/models' pyramid turned 30 degrees about its up axis.
 TEST(Plan, ARotatedPyramidStandsWithNoFlapUnderTheMainFold) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   DesignOptions options;
