@@ -257,5 +257,23 @@ TEST(FoldSpacing, MovesBesideAFaceTheExactPlanLeavesUnheldAreTakenBackAndTheRest
   EXPECT_TRUE(analyze_plan(again.plan.lines, AnalysisOptions{}).valid()) << "its lines stand too";
 }
 
+// A plan the supports drew in the mirror image, its drawing in the user's frame not standing, has its
+// fold pairs spread and its planes refit in that image too: bad_motorbike at W = 2 mm, whose every
+// spread plan and refit had failed in the user's frame (a face V(32.38) dangling there, 17 mm^2).
+TEST(FoldSpacing, APlanDrawnInTheMirrorImageIsSpreadThere) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  DesignOptions options;
+  options.placement.up = UpAxis::Z;
+  options.slice.min_strip_mm = 2;
+  const DesignResult r = design(test::models_dir() / "bad_motorbike.obj.gz", options);
+  ASSERT_TRUE(r.supports.drawn_in_mirror_image) << "the case this test is about";
+  EXPECT_FALSE(plan_stands(build_plan(r.maps, r.raster_plan, options.sheet, options.plan), false))
+      << "drawn in the user's frame, the plan does not stand";
+  EXPECT_TRUE(plan_stands(r.plan, false));
+  EXPECT_EQ(r.supports.planes_spread.size(), 31u);
+  EXPECT_EQ(r.supports.planes_refit.size(), 6u);
+  EXPECT_TRUE(analyze_plan(r.plan.lines, AnalysisOptions{}).valid()) << "its lines stand too";
+}
+
 }  // namespace
 }  // namespace origamic

@@ -17,6 +17,7 @@
 #include "origamic/plan_export.hpp"
 #include "plane_refit.hpp"
 #include "raster_plan_edits.hpp"
+#include "support_mirror.hpp"
 
 namespace origamic {
 namespace {
@@ -97,6 +98,20 @@ bool model_faces_put_p95_over(const DesignResult& sliced, const Plan& plan, doub
   return static_cast<double>(off) > kPastP95 * static_cast<double>(model);
 }
 
+// A supported plan's exact plans drawn as it was: in the mirror image where the supports drew it so.
+PlanBuilder drawn_as(RasterMaps& maps, const SupportedPlan& supported, const DesignOptions& options) {
+  if (!supported.report.drawn_in_mirror_image) return {};
+  return [&maps, &options](const RasterPlan& raster_plan) {
+    SupportedPlan drawn;
+    {
+      const MirroredMaps mirror(maps);
+      drawn.raster_plan = mirror_image(raster_plan);
+      drawn.plan = build_plan(maps, drawn.raster_plan, options.sheet, options.plan);
+    }
+    return mirror_image(std::move(drawn), options.sheet).plan;
+  };
+}
+
 SupportedPlan supported_plan(DesignResult& sliced, const DesignOptions& options) {
   const bool allow_dangling = options.supports.allow_dangling;
   const double W = options.slice.min_strip_mm;
@@ -107,7 +122,8 @@ SupportedPlan supported_plan(DesignResult& sliced, const DesignOptions& options)
   // frame, 1.98 W as supported, 1.80 W refit, within the bound; its other frame was 45% of its time.
   const auto refit = [&](SupportedPlan supported) {
     if (!options.refit_planes) return supported;
-    return refit_planes(sliced.maps, std::move(supported), options.sheet, options.plan, allow_dangling);
+    const PlanBuilder build = drawn_as(sliced.maps, supported, options);
+    return refit_planes(sliced.maps, std::move(supported), options.sheet, options.plan, allow_dangling, {}, build);
   };
   const auto in_other_frame = [&](const SupportOptions& supports) -> std::optional<SupportedPlan> {
     std::optional<SupportedPlan> other =
@@ -168,7 +184,7 @@ class NarrowPlaces {
 // between two folds cannot be folded at all, a place elsewhere can be cut with care. Kept only
 // with no more places, 5 of the 27 plans the 37 models gave at W = 3 mm were refused, each with 1
 // or 2 more places and 1 to 10 fewer fold pairs (res_dragon_full: 34 -> 24 and 420 -> 421).
-SupportedPlan spread_folds(const RasterMaps& maps, SupportedPlan supported, const DesignOptions& options,
+SupportedPlan spread_folds(RasterMaps& maps, SupportedPlan supported, const DesignOptions& options,
                            NarrowPlaces& narrow) {
   const auto fold_pairs = [](const std::vector<PlanProblem>& places) {
     return std::ranges::count_if(places, [](const PlanProblem& p) { return p.folds_apart_mm > 0; });
@@ -179,8 +195,9 @@ SupportedPlan spread_folds(const RasterMaps& maps, SupportedPlan supported, cons
     const auto more_places = static_cast<std::ptrdiff_t>(after.size()) - static_cast<std::ptrdiff_t>(before.size());
     return parted_pairs > 0 && 2 * more_places <= parted_pairs;
   };
+  const PlanBuilder build = drawn_as(maps, supported, options);
   return spread_fold_pairs(maps, std::move(supported), options.sheet, options.plan, options.supports.allow_dangling,
-                           keep);
+                           keep, {}, build);
 }
 
 // Whether a plan point lies inside a region's rings (even-odd).

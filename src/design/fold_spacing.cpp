@@ -283,7 +283,7 @@ std::vector<FoldPair> fold_pairs_under_W(const RasterPlan& raster_plan, const Pi
 
 SupportedPlan spread_fold_pairs(const RasterMaps& maps, SupportedPlan supported, const Sheet& sheet,
                                 const PlanOptions& plan_options, bool allow_dangling, const FoldSpacingCheck& keep,
-                                const FoldSpacingOptions& options) {
+                                const FoldSpacingOptions& options, const PlanBuilder& build) {
   const double W = supported.raster_plan.min_strip_mm;
   const double tolerance = fold_snap_tolerance_mm(plan_options, supported.raster_plan, maps.grid);
   std::vector<FoldPair> pairs = fold_pairs_under_W(supported.raster_plan, maps.grid, tolerance);
@@ -292,7 +292,7 @@ SupportedPlan spread_fold_pairs(const RasterMaps& maps, SupportedPlan supported,
   std::ranges::stable_sort(pairs, [](const FoldPair& a, const FoldPair& b) { return a.apart_mm > b.apart_mm; });
   std::optional<PlanFares> before;  // the plan given's, once a spread is to be judged against it
   std::vector<bool> barred(supported.raster_plan.faces.size(), false);
-  for (int build = 0;; ++build) {
+  for (int attempt = 0;; ++attempt) {
     Spreader spreader(maps, supported.raster_plan, tolerance, allow_dangling, options, barred);
     std::vector<RefitPlane> spread;
     for (const FoldPair& pair : pairs)
@@ -301,12 +301,12 @@ SupportedPlan spread_fold_pairs(const RasterMaps& maps, SupportedPlan supported,
     // Faces closed onto others, left without pixels, go (the ids close up).
     RasterPlan spread_plan =
         std::ranges::any_of(spread, &RefitPlane::closed) ? merge_coplanar_faces(spreader.plan()) : spreader.plan();
-    Plan plan = build_plan(maps, spread_plan, sheet, plan_options);
+    Plan plan = build ? build(spread_plan) : build_plan(maps, spread_plan, sheet, plan_options);
     const PlanFares fared = plan_fares(maps, plan, W, allow_dangling);
     if (fared.fails) {
       // The exact plan snaps folds the raster plan's do not show: the moves that changed a pixel of,
       // or next to, a face it leaves unheld are not made again, and the rest are.
-      if (build + 1 >= options.exact_builds ||
+      if (attempt + 1 >= options.exact_builds ||
           !bar_moves_beside_unheld(spreader, spread_plan, plan, allow_dangling, barred))
         return supported;
       continue;
@@ -317,7 +317,7 @@ SupportedPlan spread_fold_pairs(const RasterMaps& maps, SupportedPlan supported,
       return supported;
     supported.raster_plan = std::move(spread_plan);
     supported.plan = std::move(plan);
-    supported.report.drawn_in_mirror_image = false;  // drawn here, from the raster plan moved
+    if (!build) supported.report.drawn_in_mirror_image = false;  // drawn here, from the raster plan moved
     supported.report.narrow = narrow_strips(supported.raster_plan, maps.grid);
     supported.report.planes_spread = std::move(spread);
     return supported;

@@ -15,6 +15,7 @@
 #include "origamic/plan.hpp"
 #include "origamic/raster.hpp"
 #include "origamic/supports.hpp"
+#include "plane_refit.hpp"
 
 namespace origamic {
 
@@ -63,6 +64,6 @@ using FoldSpacingCheck = std::function<bool(const Plan& given, const Plan& parte
 /// \pre W (the raster plan's min_strip_mm) > 0.
 SupportedPlan spread_fold_pairs(const RasterMaps& maps, SupportedPlan supported, const Sheet& sheet,
                                 const PlanOptions& plan_options, bool allow_dangling, const FoldSpacingCheck& keep,
-                                const FoldSpacingOptions& options = {});
+                                const FoldSpacingOptions& options = {}, const PlanBuilder& build = {});
 
 }  // namespace origamic

@@ -212,8 +212,8 @@ struct RefitPass {
 // One pass: the planes found on the plan given (how it fares, if known), the exact plan of their
 // moves if it stands and shows the model better; none else.
 std::optional<RefitPass> refit_pass(const RasterMaps& maps, const SupportedPlan& given, std::optional<PlanFares> known,
-                                    const Sheet& sheet, const PlanOptions& plan_options, bool allow_dangling,
-                                    const PlaneRefitOptions& options) {
+                                    const PlanOptions& plan_options, bool allow_dangling,
+                                    const PlaneRefitOptions& options, const PlanBuilder& build) {
   const double W = given.raster_plan.min_strip_mm;
   const auto fares = [&](const Plan& plan) { return plan_fares(maps, plan, W, allow_dangling); };
   // A boundary the exact plan snaps onto its fold line is a fold to move (exact_plan.cpp).
@@ -221,14 +221,14 @@ std::optional<RefitPass> refit_pass(const RasterMaps& maps, const SupportedPlan&
   std::vector<PlaneMove> moves = find_planes(maps, given.raster_plan, fold_tolerance, allow_dangling, options);
   if (moves.empty()) return std::nullopt;
   const PlanFares before = known ? *known : fares(given.plan);
-  for (int build = 0; build < options.exact_builds && !moves.empty(); ++build) {
+  for (int attempt = 0; attempt < options.exact_builds && !moves.empty(); ++attempt) {
     // The moves again from the plan given, one after another as they were found.
     RefitPass pass{given.raster_plan, {}, {}, {}};
     for (const PlaneMove& move : moves)
       if (std::optional<RasterPlan> moved =
               move_plane(pass.raster_plan, maps.grid, move.face, move.to_mm, fold_tolerance, pass.raster_plan.block_px))
         pass.raster_plan = std::move(*moved), pass.made.push_back(move);
-    pass.plan = build_plan(maps, pass.raster_plan, sheet, plan_options);
+    pass.plan = build(pass.raster_plan);
     pass.fares = fares(pass.plan);
     const PlanFares& fared = pass.fares;
     if (!fared.fails && fared < before) return pass;
@@ -255,7 +255,10 @@ std::optional<RefitPass> refit_pass(const RasterMaps& maps, const SupportedPlan&
 }  // namespace
 
 SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, const Sheet& sheet,
-                           const PlanOptions& plan_options, bool allow_dangling, const PlaneRefitOptions& options) {
+                           const PlanOptions& plan_options, bool allow_dangling, const PlaneRefitOptions& options,
+                           const PlanBuilder& build) {
+  const PlanBuilder built =
+      build ? build : [&](const RasterPlan& raster_plan) { return build_plan(maps, raster_plan, sheet, plan_options); };
   // Per entry of the report's planes_refit, the face it tells of: a face moved again (a later turn
   // or pass) has its one entry brought up to date.
   std::vector<std::int32_t> listed;
@@ -263,7 +266,7 @@ SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, cons
   const std::size_t first = report.planes_refit.size();
   std::optional<PlanFares> fares;  // the plan's, once a pass has built it
   for (int pass = 0; pass < options.passes; ++pass) {
-    std::optional<RefitPass> refit = refit_pass(maps, supported, fares, sheet, plan_options, allow_dangling, options);
+    std::optional<RefitPass> refit = refit_pass(maps, supported, fares, plan_options, allow_dangling, options, built);
     if (!refit) break;
     supported.raster_plan = std::move(refit->raster_plan);
     supported.plan = std::move(refit->plan);
@@ -280,7 +283,7 @@ SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, cons
     }
   }
   if (!listed.empty()) {
-    report.drawn_in_mirror_image = false;  // drawn here, from the raster plan refit
+    if (!build) report.drawn_in_mirror_image = false;  // drawn here, from the raster plan refit
     report.narrow = narrow_strips(supported.raster_plan, maps.grid);
   }
   return supported;

@@ -7,6 +7,8 @@
 // result still stands and shows the model better.
 #pragma once
 
+#include <functional>
+
 #include "origamic/plan.hpp"
 #include "origamic/raster.hpp"
 #include "origamic/supports.hpp"
@@ -50,7 +52,13 @@ struct PlaneRefitOptions {
 /// kept, up to options.passes times; the report lists each face moved once
 /// (SupportReport::planes_refit).
 /// \pre W (the raster plan's min_strip_mm) > 0.
+/// The exact plan of a raster plan as the plan it changes was drawn (build_plan where empty): a plan
+/// the supports drew in the mirror image (SupportReport::drawn_in_mirror_image), whose drawing in
+/// the user's frame does not stand, is judged so, its moves too.
+using PlanBuilder = std::function<Plan(const RasterPlan&)>;
+
 SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, const Sheet& sheet,
-                           const PlanOptions& plan_options, bool allow_dangling, const PlaneRefitOptions& options = {});
+                           const PlanOptions& plan_options, bool allow_dangling, const PlaneRefitOptions& options = {},
+                           const PlanBuilder& build = {});
 
 }  // namespace origamic
