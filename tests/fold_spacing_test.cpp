@@ -273,6 +273,18 @@ TEST(FoldSpacing, APlanDrawnInTheMirrorImageIsSpreadThere) {
   EXPECT_EQ(r.supports.planes_spread.size(), 31u);
   EXPECT_EQ(r.supports.planes_refit.size(), 6u);
   EXPECT_TRUE(analyze_plan(r.plan.lines, AnalysisOptions{}).valid()) << "its lines stand too";
+  // Mirrored back to the user's frame: the faces' points inside them lie on their own pixels.
+  ASSERT_EQ(r.plan.faces.size(), r.raster_plan.faces.size());
+  int faces = 0, on_their_pixels = 0;
+  for (std::size_t f = kFloorFace + 1; f < r.plan.faces.size(); ++f) {
+    const PlanFace& face = r.plan.faces[f];
+    if (face.area_mm2 < 20 || face.status == FaceStatus::Removed) continue;
+    const auto col = static_cast<int>(std::floor(face.inside.X * r.maps.grid.px_per_mm));
+    const auto row = static_cast<int>(std::floor(r.maps.grid.rows_above_fold - face.inside.Y * r.maps.grid.px_per_mm));
+    ++faces, on_their_pixels += r.raster_plan.face(col, row) == static_cast<std::int32_t>(f);
+  }
+  EXPECT_GT(faces, 100);
+  EXPECT_EQ(on_their_pixels, faces);
 }
 
 }  // namespace

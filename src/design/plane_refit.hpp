@@ -54,7 +54,8 @@ struct PlaneRefitOptions {
 /// \pre W (the raster plan's min_strip_mm) > 0.
 /// The exact plan of a raster plan as the plan it changes was drawn (build_plan where empty): a plan
 /// the supports drew in the mirror image (SupportReport::drawn_in_mirror_image), whose drawing in
-/// the user's frame does not stand, is judged so, its moves too.
+/// the user's frame does not stand, is judged so, its moves too. Such a builder may mirror the maps
+/// that refit_planes and spread_fold_pairs are given in place while it runs, and gives them back.
 using PlanBuilder = std::function<Plan(const RasterPlan&)>;
 
 SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, const Sheet& sheet,
