@@ -660,6 +660,40 @@ TEST(Supports, AFaceHeldForLessThanItsHoleIsNotCutOut) {
   EXPECT_LT(r.likeness.p95_W, 3);
 }
 
+// Stairs falling away from the viewer (z up, five steps, the tallest in front): no fold can hold
+// a tread behind a taller step, and one, 6.6 % of the model, is held only by supports that cost the
+// picture more than its hole. Cutting out is the last resort: the faces cut out may take 3 % of the
+// model, so it is held, and the report says why; with the holes unbounded it is cut out.
+TEST(Supports, AFaceWhoseHoleWouldTakeMoreThanTheHolesMayIsHeldAtAnyCost) {
+  const test::TempDir dir;
+  TriangleMesh stairs = test::box({0, 0, 0}, {80, 100, 12});
+  for (int step = 1; step < 5; ++step)
+    stairs = test::merged(stairs, test::box({0, 0, 0}, {80, 100 - 20.0 * step, 12.0 * (step + 1)}));
+  test::write_obj(dir / "stairs.obj", stairs);
+  DesignOptions options;
+  options.placement.up = UpAxis::Z;
+
+  options.supports.holes_model_share = 1;
+  const DesignResult unbounded = design(dir / "stairs.obj", options);
+  expect_exact_and_standing(unbounded.plan);
+  EXPECT_GT(unbounded.likeness.cut_out_share, 0.03);
+  EXPECT_TRUE(unbounded.supports.spared_faces.empty());
+
+  options.supports.holes_model_share = DesignOptions{}.supports.holes_model_share;
+  EXPECT_EQ(options.supports.holes_model_share, 0.03);
+  const DesignResult r = design(dir / "stairs.obj", options);
+  expect_exact_and_standing(r.plan);
+  EXPECT_EQ(r.supports.cut_out, 0);
+  EXPECT_EQ(r.likeness.cut_out_share, 0);
+  EXPECT_EQ(r.likeness.coverage, 1);
+  ASSERT_FALSE(r.supports.spared_faces.empty());
+  for (const CutOutFace& face : r.supports.spared_faces) {
+    EXPECT_GT(face.hold_cost, face.hole_cost);
+    EXPECT_GT(face.area_mm2, 0.03 * static_cast<double>(r.likeness.model_pixels) / 16);  // 16 px a mm^2
+    EXPECT_EQ(face.reason, "its hole would take more than 3 % of the model");
+  }
+}
+
 // The sphere's rim crumbs that no support holds (6, each under 1 % of the model) are given away
 // together, as the support loop's last resort, where giving them a quarter at a time (one or two a
 // step, each step a pass of rounds) took 8 exact plans to judge the loop. Now 4 do: the first

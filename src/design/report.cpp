@@ -244,6 +244,7 @@ std::string report_json(const DesignResult& result, const DesignOptions& options
         {"cut_out", result.supports.cut_out},
         {"cut_out_share", result.supports.cut_out_share},
         {"cut_out_faces", cut_out_json(result.supports.cut_out_faces)},
+        {"spared_from_cut_out", cut_out_json(result.supports.spared_faces)},
         {"joined_to_neighbour", joined_json(result.supports.joined_faces)},
         {"planes_refit", refit_json(result.supports.planes_refit)},
         {"planes_spread", refit_json(result.supports.planes_spread, true)},

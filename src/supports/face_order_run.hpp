@@ -128,14 +128,37 @@ class FaceOrderRun {
       faces.push_back(c.face), pixels_before.push_back(raster_plan_.faces[static_cast<std::size_t>(c.face)].pixels);
     std::vector<std::int32_t> kept;
     std::vector<std::pair<double, double>> costs;
+    const auto holes_may_take =
+        static_cast<std::int64_t>(setting_.options.holes_model_share * static_cast<double>(model_pixels_));
+    std::int64_t cut = cut_out_pixels_;
     for (const std::size_t i : give_away(faces, Grown::KeptForNextRound)) {
-      const bool grew = raster_plan_.faces[static_cast<std::size_t>(faces[i])].pixels > pixels_before[i];
-      if (card_piece(faces[i]) || (!grew && costly[i].hold > costly[i].hole))
+      const RasterFace& face = raster_plan_.faces[static_cast<std::size_t>(faces[i])];
+      const bool grew = face.pixels > pixels_before[i];
+      if (card_piece(faces[i])) {
         kept.push_back(faces[i]), costs.emplace_back(costly[i].hold, costly[i].hole);
+      } else if (!grew && costly[i].hold > costly[i].hole) {
+        if (cut + face.pixels > holes_may_take) {
+          spare(faces[i], costly[i].hold, costly[i].hole);
+          continue;
+        }
+        cut += face.pixels;
+        kept.push_back(faces[i]), costs.emplace_back(costly[i].hold, costly[i].hole);
+      }
     }
     cut_out(kept, costs, "holding it would cost the picture more than its hole");
   }
   SupportedPlan finish();
+  // Face f is not cut out: its hole would take more than SupportOptions::holes_model_share of the
+  // model. The next
+  // rounds hold it whatever that costs (or give it to a neighbour); the report says so.
+  void spare(std::int32_t f, double hold_cost, double hole_cost);
+  // The faces the holes may not take (hold_anyway_), by id as the raster plan numbers them now.
+  std::vector<std::uint8_t> held_at_any_cost() const {
+    std::vector<std::uint8_t> held(raster_plan_.faces.size(), 0);
+    for (const PixelAt p : hold_anyway_)
+      if (const std::int32_t f = raster_plan_.face(p.c, p.r); f > kFloorFace) held[static_cast<std::size_t>(f)] = 1;
+    return held;
+  }
 
   const OrderSetting& setting_;
   RasterPlan raster_plan_;
@@ -160,6 +183,8 @@ class FaceOrderRun {
   // not on another thread: CGAL is built without thread support, its reference counts not atomic.)
   std::shared_ptr<const ExactPlan> last_exact_plan_;
   std::int64_t model_pixels_ = 0, cut_out_pixels_ = 0;
+  // A pixel of each face spared (spare): it is held from then on.
+  std::vector<PixelAt> hold_anyway_;
 };
 
 }  // namespace origamic

@@ -126,7 +126,7 @@ namespace {
 class EarTaker {
  public:
   EarTaker(const SupportRound& round, const FaceVerdicts& verdicts, const std::vector<std::int32_t>& invalid,
-           const SupportOptions& options, SupportReach reach)
+           const SupportOptions& options, SupportReach reach, const std::vector<std::uint8_t>& hold_at_any_cost)
       : round_(round),
         options_(options),
         picture_(round.maps, round.raster_plan),
@@ -155,7 +155,10 @@ class EarTaker {
       open_[f] = 1;
       const bool within_cap = picture_.mean_error_mm(joins[i].error, faces[f].pixels) <= options.join_error_cap_W * W;
       const double join = within_cap ? joins[i].error : std::numeric_limits<double>::infinity();
-      limit_[f] = std::max(0.0, std::min(picture_.hole_error(invalid[i]), join)) / (W * W);
+      // A face the holes may not take has no hole to weigh: it is held, or joined.
+      const double hole = f < hold_at_any_cost.size() && hold_at_any_cost[f] ? std::numeric_limits<double>::infinity()
+                                                                             : picture_.hole_error(invalid[i]);
+      limit_[f] = std::max(0.0, std::min(hole, join)) / (W * W);
     }
   }
 
@@ -268,8 +271,8 @@ class EarTaker {
 
 SupportChoice choose_supports(const SupportRound& round, const FaceVerdicts& verdicts,
                               const std::vector<std::int32_t>& invalid, const SupportOptions& options,
-                              SupportReach reach) {
-  return EarTaker(round, verdicts, invalid, options, reach).choose();
+                              SupportReach reach, const std::vector<std::uint8_t>& hold_at_any_cost) {
+  return EarTaker(round, verdicts, invalid, options, reach, hold_at_any_cost).choose();
 }
 
 }  // namespace origamic

@@ -122,10 +122,11 @@ struct SupportChoice {
 /// and the supports painted since (ExactPlan::faces_reached). A candidate costs the error it adds
 /// to the picture and a little for its length (and much for each face it cuts in two). A face is
 /// held only where that costs no more than the error a hole in its place would add (seed §4.4 shows
-/// supports always exist; here they must also be worth it).
+/// supports always exist; here they must also be worth it). A face `hold_at_any_cost` marks (by
+/// id) is held whatever that costs, or given to a neighbour: no hole is weighed for it.
 SupportChoice choose_supports(const SupportRound& round, const FaceVerdicts& verdicts,
                               const std::vector<std::int32_t>& invalid, const SupportOptions& options,
-                              SupportReach reach);
+                              SupportReach reach, const std::vector<std::uint8_t>& hold_at_any_cost = {});
 
 /// Makes every face of the raster plan one piece of paper, as the exact plan judges them: each
 /// 4-connected part of a face (a loose piece of the back plane or the floor too) becomes a face of

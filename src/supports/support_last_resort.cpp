@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "face_order_run.hpp"
+#include "number_text.hpp"
 
 namespace origamic {
 namespace {
@@ -174,6 +175,20 @@ void FaceOrderRun::cut_out(const std::vector<std::int32_t>& faces, const std::ve
   }
   report().cut_out_share =
       static_cast<double>(cut_out_pixels_) / static_cast<double>(std::max<std::int64_t>(1, model_pixels_));
+}
+
+void FaceOrderRun::spare(std::int32_t f, double hold_cost, double hole_cost) {
+  const std::vector<PixelAt> own = pixels_of({f}).front();
+  if (own.empty()) return;
+  hold_anyway_.push_back(own.front());
+  const PixelGrid& grid = setting_.maps.grid;
+  CutOutFace entry;
+  entry.at = {grid.X(own.front().c), grid.Y(own.front().r)};
+  entry.area_mm2 = static_cast<double>(own.size()) / (grid.px_per_mm * grid.px_per_mm);
+  entry.hold_cost = hold_cost, entry.hole_cost = hole_cost;
+  entry.reason =
+      "its hole would take more than " + number_text(100 * setting_.options.holes_model_share) + " % of the model";
+  report().spared_faces.push_back(std::move(entry));
 }
 
 // Gives each of face f's pixels (in row order) to the face `shares` names for it, and reports it;

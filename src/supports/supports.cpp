@@ -113,7 +113,7 @@ FaceOrderRun::Stopped FaceOrderRun::support_rounds() {
         raster_folds(setting_.maps.grid, raster_plan_, aligned_fold_tolerance_mm(setting_.maps.grid));
     const SupportChoice choice =
         choose_supports({setting_.maps, raster_plan_, *last_exact_plan_, painted_since_, folds}, verdicts_, invalid,
-                        setting_.options, round_reach);
+                        setting_.options, round_reach, held_at_any_cost());
     const std::vector<Candidate>& chosen = choice.supports;
     if (chosen.empty() && choice.cut_out.empty()) return {SupportStop::Unreachable, count};
     tally.supports += static_cast<int>(chosen.size());
