@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
 #include <set>
 
@@ -202,7 +203,8 @@ TEST(Slice, TheLowestTerraceOfARampStandsAtLeastWAboveTheFloor) {
 }
 
 TEST(Slice, ThinPoleIsRemovedAndItsHoleFilled) {
-  // A box with a 1 mm pole standing in front of it; W = 3 mm.
+  // A box with a 1 mm pole standing in front of it; W = 3 mm. Beside the pole where it stands
+  // before the box lie the box's pixels, no background to widen it over: it goes.
   const TriangleMesh house = test::box({60, 0, 0}, {150, 50, 30});
   const TriangleMesh pole = test::box({100, 0, 50}, {101, 80, 51});
   const Planned p = plan_of_oa_mesh(test::merged(house, pole));
@@ -215,7 +217,47 @@ TEST(Slice, ThinPoleIsRemovedAndItsHoleFilled) {
       EXPECT_LT(face.depth_mm, face.orientation == Orientation::V ? 49.0 : 79.0);
     }
   EXPECT_GE(p.raster_plan.removed_thin, 1);
+  EXPECT_EQ(p.raster_plan.widened_thin, 0);
   EXPECT_EQ(p.raster_plan.faces.size(), 4u);  // back, floor, and the house's front and top
+}
+
+// A pole 1 mm square and 80 mm tall standing on the floor 50 mm before the back plane, alone: W =
+// 3 mm wide it can be cut, so it is kept, each row of its front widened along X over the back plane
+// and the floor beside it to W and a pixel (13 pixels at 4 px/mm). Its model pixels all lie in its
+// face, which takes no pixel of the model beyond them; its top, a square 1 mm across, goes.
+TEST(Slice, AThinPoleStandingClearIsWidenedToWOverTheBackPlaneAndTheFloor) {
+  const Planned p = plan_of_oa_mesh(test::box({100, 0, 50}, {101, 80, 51}));
+  const PixelGrid& grid = p.maps.grid;
+  std::int32_t pole = -1;
+  for (std::size_t f = kFloorFace + 1; f < p.raster_plan.faces.size(); ++f)
+    if (p.raster_plan.faces[f].orientation == Orientation::V && p.raster_plan.faces[f].pixels > 0)
+      pole = static_cast<std::int32_t>(f);
+  ASSERT_GE(pole, 0);
+  EXPECT_NEAR(p.raster_plan.faces[static_cast<std::size_t>(pole)].depth_mm, 51, 0.5);
+  EXPECT_GE(p.raster_plan.removed_thin, 1);  // the top
+  EXPECT_EQ(p.raster_plan.widened_thin, 1);
+  int rows = 0;
+  for (int r = 0; r < grid.rows; ++r) {
+    int first = -1, last = -1, runs = 0;
+    for (int c = 0; c < grid.cols; ++c) {
+      const bool in = p.raster_plan.face(c, r) == pole;
+      if (in && (c == 0 || p.raster_plan.face(c - 1, r) != pole)) ++runs, first = c;
+      if (in) last = c;
+      // Model pixels in the pole's rows are the pole's; the face's others are the back plane's or
+      // the floor's pixels, no model's.
+      if (p.maps.kind(c, r) == HitKind::Model && p.raster_plan.face(c, r) != pole) {
+        const RasterFace& other = p.raster_plan.faces[static_cast<std::size_t>(p.raster_plan.face(c, r))];
+        EXPECT_NE(other.orientation, Orientation::V) << c << ", " << r;  // only the pole's top, filled
+      }
+    }
+    if (runs == 0) continue;
+    ++rows;
+    EXPECT_EQ(runs, 1) << r;
+    EXPECT_EQ(last - first + 1, static_cast<int>(std::ceil(3 * grid.px_per_mm)) + 1) << r;
+    EXPECT_LE(grid.X(first), 100);
+    EXPECT_GE(grid.X(last), 101);
+  }
+  EXPECT_GE(rows, 79 * grid.px_per_mm);  // the front, 80 mm tall, less a pixel's rounding at each end
 }
 
 // A plate 1.5 mm wide against the left side of a box, its front 10 mm behind the box's: too thin to

@@ -49,6 +49,7 @@ struct RasterPlan {
   std::vector<RasterFace> faces;                 // faces[kBackFace] is V(0), faces[kFloorFace] is H(0)
   int subsegments = 0;
   int removed_thin = 0;  // pieces whose oriented box had a side under W, filled from their neighbours
+  int widened_thin = 0;  // such pieces standing clear, widened along X to W over the back plane and the floor
 };
 
 /// Slices every segment. Deterministic: the same maps and options give the same face map.

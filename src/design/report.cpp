@@ -46,10 +46,15 @@ nlohmann::json raster_plan_json(const DesignResult& result, const DesignOptions&
                      {"area_mm2", static_cast<double>(f.pixels) * pixel_area_mm2}});
   }
   return {
-      {"min_strip_mm", options.slice.min_strip_mm}, {"merge_thin_slices", options.slice.merge_thin_slices},
-      {"block_px", raster_plan.block_px},           {"segments", result.segmentation.count},
-      {"subsegments", raster_plan.subsegments},     {"removed_thin_faces", raster_plan.removed_thin},
-      {"face_count", raster_plan.faces.size()},     {"faces", faces},
+      {"min_strip_mm", options.slice.min_strip_mm},
+      {"merge_thin_slices", options.slice.merge_thin_slices},
+      {"block_px", raster_plan.block_px},
+      {"segments", result.segmentation.count},
+      {"subsegments", raster_plan.subsegments},
+      {"removed_thin_faces", raster_plan.removed_thin},
+      {"widened_thin_parts", raster_plan.widened_thin},
+      {"face_count", raster_plan.faces.size()},
+      {"faces", faces},
   };
 }
 

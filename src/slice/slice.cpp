@@ -365,6 +365,57 @@ bool stands_clear(const ThinPiece& piece, const RasterPlan& plan, const RasterMa
 // the largest pieces among arch_temple's and arch_water_tower's faces 0.9% and 1.0%.
 constexpr double kPartShare = 0.05;
 
+// Widens each row's runs of `cells` along X to need_px over the pixels `free` allows and `taken`
+// does not mark (both sides out by as much, or the free one by all), marking those it takes. The
+// pixels taken, and whether every run is then at least min_px wide.
+template <typename Free>
+std::pair<std::vector<std::pair<int, int>>, bool> widen_runs(std::vector<std::pair<int, int>> cells, Free free,
+                                                             Grid<std::uint8_t>& taken, int need_px, double min_px) {
+  const auto open = [&](int c, int r) { return free(c, r) && !taken(c, r); };
+  std::ranges::sort(cells, {}, [](const auto& p) { return std::pair{p.second, p.first}; });  // by row
+  std::vector<std::pair<int, int>> added;
+  bool wide = true;
+  for (std::size_t i = 0; i < cells.size();) {
+    const int r = cells[i].second;
+    int c0 = cells[i].first, c1 = c0;  // the run from column c0 to c1
+    std::size_t j = i + 1;
+    while (j < cells.size() && cells[j].second == r && cells[j].first == c1 + 1) c1 = cells[j++].first;
+    i = j;
+    for (bool left = true; c1 - c0 + 1 < need_px; left = !left) {
+      if (left && open(c0 - 1, r))
+        taken(--c0, r) = 1, added.emplace_back(c0, r);
+      else if (!left && open(c1 + 1, r))
+        taken(++c1, r) = 1, added.emplace_back(c1, r);
+      else if (!open(c0 - 1, r) && !open(c1 + 1, r))
+        break;
+    }
+    wide &= c1 - c0 + 1 >= min_px;
+  }
+  return {std::move(added), wide};
+}
+
+// A thin piece that stands clear (a pole, a spire, a sail narrower than W) had gone from the card,
+// its pixels filled from the back plane or the floor: the cutter needs W of paper. Instead its rows
+// are widened along X over the back plane and the floor beside it (pixels of no model, which no
+// other widened piece took: `taken`) to `need_px`, where every run then is W wide. No model pixel
+// changes plane; a pole before a face of the model, which it could only widen over, stays thin and
+// goes.
+bool widen_over_background(ThinPiece& piece, const Grid<std::int32_t>& face, Grid<std::uint8_t>& taken, int need_px,
+                           double min_side_px) {
+  const auto background = [&](int c, int r) {
+    return face.contains(c, r) && (face(c, r) == kBackFace || face(c, r) == kFloorFace);
+  };
+  auto [added, wide] = widen_runs(piece.pixels, background, taken, need_px, min_side_px);
+  std::vector<std::pair<int, int>> all = piece.pixels;
+  all.insert(all.end(), added.begin(), added.end());
+  if (added.empty() || !wide || oriented_box_min_side_px(all) < min_side_px) {
+    for (const auto& [c, r] : added) taken(c, r) = 0;
+    return false;
+  }
+  piece.pixels = std::move(all);
+  return true;
+}
+
 // Connected pieces of each full-resolution subsegment become faces; pieces whose oriented box has a
 // side under W are removed and their holes filled from the neighbours (§4.3.3, last paragraph).
 void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vector<Subsegment>& subsegments, double W,
@@ -412,11 +463,18 @@ void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vec
   // neither decides for another (two levels of one sail).
   std::vector<ThinPiece> joined = join_coplanar_thin_pieces(std::move(thin), cols, rows, W);
   std::vector<std::uint8_t> kept(joined.size());
+  Grid<std::uint8_t> widened(cols, rows, 0);
+  // A run W and a pixel wide: the side that stays the model's edge may be drawn up to half a pixel in.
+  const int need_px = static_cast<int>(std::ceil(min_side_px)) + 1;
+  std::vector<std::uint8_t> widen(joined.size());
   for (std::size_t i = 0; i < joined.size(); ++i) {
     const bool part = static_cast<double>(joined[i].pixels.size()) >= kPartShare * static_cast<double>(model_pixels);
-    kept[i] =
-        oriented_box_min_side_px(joined[i].pixels) >= min_side_px && (part || stands_clear(joined[i], result, maps, W));
+    const bool wide = oriented_box_min_side_px(joined[i].pixels) >= min_side_px;
+    const bool clear = part || stands_clear(joined[i], result, maps, W);
+    widen[i] = clear && !wide && widen_over_background(joined[i], result.face, widened, need_px, min_side_px);
+    kept[i] = clear && (wide || widen[i]);
   }
+  std::vector<std::int32_t> widened_faces;
   for (std::size_t i = 0; i < joined.size(); ++i) {
     if (!kept[i]) {
       result.removed_thin += joined[i].pieces;
@@ -425,8 +483,23 @@ void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vec
     const auto id = static_cast<std::int32_t>(result.faces.size());
     result.faces.push_back({joined[i].plane.orientation, joined[i].plane.depth_mm, joined[i].plane.segment, 0});
     for (const auto& [col, row] : joined[i].pixels) result.face(col, row) = id;
+    if (widen[i]) widened_faces.push_back(id), result.widened_thin += joined[i].pieces;
   }
   fill_holes(maps.grid, seg.segment, result.faces, result.face);
+  // The holes a widened piece filled (a pole's top, too shallow to widen) are widened with it.
+  if (!widened_faces.empty()) {
+    std::vector<std::vector<std::pair<int, int>>> cells(widened_faces.size());
+    for (int r = 0; r < rows; ++r)
+      for (int c = 0; c < cols; ++c)
+        if (const auto it = std::ranges::find(widened_faces, result.face(c, r)); it != widened_faces.end())
+          cells[static_cast<std::size_t>(it - widened_faces.begin())].emplace_back(c, r);
+    const auto background = [&](int c, int r) {
+      return result.face.contains(c, r) && (result.face(c, r) == kBackFace || result.face(c, r) == kFloorFace);
+    };
+    for (std::size_t k = 0; k < widened_faces.size(); ++k)
+      for (const auto& [c, r] : widen_runs(cells[k], background, widened, need_px, min_side_px).first)
+        result.face(c, r) = widened_faces[k];
+  }
   keep_within_card(maps.grid, result);
   result = merge_coplanar_faces(std::move(result));
   // Slices of one segment are W apart; faces of different segments nearer than a quarter of it in
