@@ -214,6 +214,13 @@ TEST(Cli, BadInputFilesExitWithStatusTwo) {
   test::write_text(dir / "model.3ds", "x");
   test::write_stl_binary(dir / "whole.stl", test::box({0, 0, 0}, {1, 1, 1}));
   std::filesystem::resize_file(dir / "whole.stl", 300);
+  // A binary STL whose header begins with "solid", as some exporters write, cut short.
+  test::write_stl_binary(dir / "solid.stl", test::box({0, 0, 0}, {1, 1, 1}));
+  {
+    std::fstream header(dir / "solid.stl", std::ios::in | std::ios::out | std::ios::binary);
+    header.write("solid box", 9);
+  }
+  std::filesystem::resize_file(dir / "solid.stl", 300);
   test::write_text(dir / "bad.obj.gz", "not gzip data at all, but named .gz");
   expect_rejected(quoted(dir / "missing.obj"), "missing.obj", "no such file");
   expect_rejected(quoted(dir / "empty.stl"), "empty.stl", "empty");
@@ -225,6 +232,7 @@ TEST(Cli, BadInputFilesExitWithStatusTwo) {
   expect_rejected(quoted(dir / "short.stl"), "short.stl", "line 6: a vertex needs three finite numbers");
   expect_rejected(quoted(dir / "model.3ds"), "model.3ds", "unknown mesh format");
   expect_rejected(quoted(dir / "whole.stl"), "whole.stl", "truncated");
+  expect_rejected(quoted(dir / "solid.stl"), "solid.stl", "truncated or corrupt binary STL (header says 12 triangles");
   expect_rejected(quoted(dir / "bad.obj.gz"), "bad.obj.gz", "no faces");
 }
 
@@ -251,6 +259,12 @@ TEST(Cli, AbsurdOptionsExitWithStatusTwo) {
   expect_rejected(house + " --min-strip 1e9", "--min-strip", "a quarter of the card");
   expect_rejected(house + " --rotate 1e308", "--rotate", "from -360 to 360");
   expect_rejected(house + " --scale 1e-308", "house.obj", "leaves no face on the card");
+  // A rod 1 mm thick lying on the floor against the back plane: its front and top are thin across
+  // their length, which no widening along X mends.
+  const test::TempDir dir;
+  test::write_obj(dir / "rod.obj", test::box({0, 0, -1}, {60, 1, 0}));
+  expect_rejected(quoted(dir / "rod.obj") + " --scale 1", "rod.obj",
+                  "parts are narrower than the strip width W (3 mm) across");
 }
 
 // Out of memory is a clean failure: one line, exit 2, nothing written (mimalloc's own operator new

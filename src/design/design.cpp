@@ -314,10 +314,18 @@ void design_loaded(LoadedMesh loaded, const std::filesystem::path& model_file, c
   starting("slicing");
   result.raster_plan = slice(result.maps, result.segmentation, options.slice);
   if (std::none_of(result.raster_plan.faces.begin() + 2, result.raster_plan.faces.end(),
-                   [](const RasterFace& f) { return !f.hole && f.pixels > 0; }))
-    throw InputError((model_file.empty() ? std::string("the model") : model_file.string()) +
+                   [](const RasterFace& f) { return !f.hole && f.pixels > 0; })) {
+    const std::string model = model_file.empty() ? std::string("the model") : model_file.string();
+    if (result.raster_plan.removed_thin > 0)
+      throw InputError(model + ": the model leaves no face on the card: all its " +
+                       std::to_string(result.raster_plan.removed_thin) +
+                       " parts are narrower than the strip width W (" + number_text(options.slice.min_strip_mm) +
+                       " mm) across, and no paper strip so thin can be cut (a larger --scale or a smaller "
+                       "--min-strip may help)");
+    throw InputError(model +
                      ": the model leaves no face on the card (it is smaller than a strip width W or seen edge on: "
                      "a larger scale, a smaller W or another up axis may help)");
+  }
   const double fold_snap_mm = fold_snap_tolerance_mm(options.plan, result.raster_plan, result.maps.grid);
   result.raster_plan = align_folds_to_lines(std::move(result.raster_plan), result.maps.grid, fold_snap_mm);
   if (!options.keep_normals) result.maps.normal = {};

@@ -227,7 +227,13 @@ bool is_binary_stl(const std::filesystem::path& file, const std::string& bytes) 
   if (sized) return true;
   std::size_t start = 0;
   while (start < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[start]))) ++start;
-  if (bytes.compare(start, 5, "solid") == 0) return false;
+  // A binary STL's header may begin with "solid" too; its triangles' bytes are no text.
+  const auto binary_byte = [](char c) {
+    const auto b = static_cast<unsigned char>(c);
+    return b == 0 || (b < 32 && !std::isspace(b));
+  };
+  const std::string_view after_header = std::string_view(bytes).substr(std::min<std::size_t>(bytes.size(), 84), 1024);
+  if (bytes.compare(start, 5, "solid") == 0 && std::ranges::none_of(after_header, binary_byte)) return false;
   if (bytes.size() < 84) fail(file, "truncated binary STL (shorter than its 84-byte header)");
   std::uint32_t count = 0;
   std::memcpy(&count, bytes.data() + 80, 4);
