@@ -264,7 +264,7 @@ TEST(Cli, AbsurdOptionsExitWithStatusTwo) {
   const test::TempDir dir;
   test::write_obj(dir / "rod.obj", test::box({0, 0, -1}, {60, 1, 0}));
   expect_rejected(quoted(dir / "rod.obj") + " --scale 1", "rod.obj",
-                  "parts are narrower than the strip width W (3 mm) across");
+                  "is narrower than the strip width W (3 mm) across");
 }
 
 // Out of memory is a clean failure: one line, exit 2, nothing written (mimalloc's own operator new

@@ -689,7 +689,8 @@ TEST(Supports, AFaceWhoseHoleWouldTakeMoreThanTheHolesMayIsHeldAtAnyCost) {
   ASSERT_FALSE(r.supports.spared_faces.empty());
   for (const CutOutFace& face : r.supports.spared_faces) {
     EXPECT_GT(face.hold_cost, face.hole_cost);
-    EXPECT_GT(face.area_mm2, 0.03 * static_cast<double>(r.likeness.model_pixels) / 16);  // 16 px a mm^2
+    const double px_mm2 = 1 / (r.maps.grid.px_per_mm * r.maps.grid.px_per_mm);
+    EXPECT_GT(face.area_mm2, 0.03 * static_cast<double>(r.likeness.model_pixels) * px_mm2);
     EXPECT_EQ(face.reason, "its hole would take more than 3 % of the model");
   }
 }

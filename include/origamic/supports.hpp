@@ -152,8 +152,10 @@ struct SupportReport {
   int cut_out = 0;                        // faces cut out of the sheet as the last resort
   std::vector<CutOutFace> cut_out_faces;  // each, with its place and why
   // Faces whose holding costs the picture more than their holes, not cut out: their holes would
-  // have taken more of the model than the faces cut out may (1 %); held from then on, or given to
-  // a neighbour. Each with its place, its costs when it was spared and why.
+  // have taken more of the model than the faces cut out for their cost may
+  // (SupportOptions::holes_model_share); held from then on, or given to a neighbour (where no
+  // support reaches one at all, the last resort may still cut it out). Each with its place, its
+  // costs when it was spared and why.
   std::vector<CutOutFace> spared_faces;
   std::vector<JoinedFace> joined_faces;   // faces given to a neighbour instead of cut out
   std::vector<RefitPlane> planes_refit;   // faces moved to a plane that shows the model better

@@ -317,9 +317,9 @@ void design_loaded(LoadedMesh loaded, const std::filesystem::path& model_file, c
                    [](const RasterFace& f) { return !f.hole && f.pixels > 0; })) {
     const std::string model = model_file.empty() ? std::string("the model") : model_file.string();
     if (result.raster_plan.removed_thin > 0)
-      throw InputError(model + ": the model leaves no face on the card: all its " +
-                       std::to_string(result.raster_plan.removed_thin) +
-                       " parts are narrower than the strip width W (" + number_text(options.slice.min_strip_mm) +
+      throw InputError(model + ": the model leaves no face on the card: every piece of it there (" +
+                       std::to_string(result.raster_plan.removed_thin) + ") is narrower than the strip width W (" +
+                       number_text(options.slice.min_strip_mm) +
                        " mm) across, and no paper strip so thin can be cut (a larger --scale or a smaller "
                        "--min-strip may help)");
     throw InputError(model +

@@ -217,7 +217,7 @@ std::string read_gzipped(const std::filesystem::path& file) {
 
 // A binary STL is an 80-byte header, a triangle count and 50 bytes a triangle. Files that begin
 // with "solid" are ASCII unless their size matches that layout exactly (some binary writers put
-// "solid" in the header).
+// "solid" in the header) or NUL bytes follow the header (such a file cut short).
 bool is_binary_stl(const std::filesystem::path& file, const std::string& bytes) {
   const bool sized = bytes.size() >= 84 && [&] {
     std::uint32_t count = 0;
@@ -227,13 +227,10 @@ bool is_binary_stl(const std::filesystem::path& file, const std::string& bytes) 
   if (sized) return true;
   std::size_t start = 0;
   while (start < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[start]))) ++start;
-  // A binary STL's header may begin with "solid" too; its triangles' bytes are no text.
-  const auto binary_byte = [](char c) {
-    const auto b = static_cast<unsigned char>(c);
-    return b == 0 || (b < 32 && !std::isspace(b));
-  };
+  // A binary STL's header may begin with "solid" too: its first triangles (floats, and attribute
+  // words mostly 0) hold NUL bytes, which no text has.
   const std::string_view after_header = std::string_view(bytes).substr(std::min<std::size_t>(bytes.size(), 84), 1024);
-  if (bytes.compare(start, 5, "solid") == 0 && std::ranges::none_of(after_header, binary_byte)) return false;
+  if (bytes.compare(start, 5, "solid") == 0 && after_header.find('\0') == std::string_view::npos) return false;
   if (bytes.size() < 84) fail(file, "truncated binary STL (shorter than its 84-byte header)");
   std::uint32_t count = 0;
   std::memcpy(&count, bytes.data() + 80, 4);

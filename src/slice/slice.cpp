@@ -365,6 +365,16 @@ bool stands_clear(const ThinPiece& piece, const RasterPlan& plan, const RasterMa
 // the largest pieces among arch_temple's and arch_water_tower's faces 0.9% and 1.0%.
 constexpr double kPartShare = 0.05;
 
+// Whether pixel (c, r) is the back plane's or the floor's and no face of the model but `self` meets
+// it above (on the floor) or below (on the back plane), where the two may fold: those stay.
+bool widenable(const Grid<std::int32_t>& face, int c, int r, std::int32_t self = kNoFace) {
+  if (!face.contains(c, r)) return false;
+  const auto model_at = [&](int cc, int rr) {
+    return face.contains(cc, rr) && face(cc, rr) > kFloorFace && face(cc, rr) != self;
+  };
+  return (face(c, r) == kFloorFace && !model_at(c, r - 1)) || (face(c, r) == kBackFace && !model_at(c, r + 1));
+}
+
 // Widens each row's runs of `cells` along X to need_px over the pixels `free` allows and `taken`
 // does not mark (both sides out by as much, or the free one by all), marking those it takes. The
 // pixels taken, and whether every run is then at least min_px wide.
@@ -397,14 +407,12 @@ std::pair<std::vector<std::pair<int, int>>, bool> widen_runs(std::vector<std::pa
 // A thin piece that stands clear (a pole, a spire, a sail narrower than W) had gone from the card,
 // its pixels filled from the back plane or the floor: the cutter needs W of paper. Instead its rows
 // are widened along X over the back plane and the floor beside it (pixels of no model, which no
-// other widened piece took: `taken`) to `need_px`, where every run then is W wide. No model pixel
-// changes plane; a pole before a face of the model, which it could only widen over, stays thin and
-// goes.
+// other widened piece took: `taken`; not where a face of the model folds with them) to `need_px`,
+// where every run then is W wide. No model pixel of it changes plane; a pole before a face of the
+// model, which it could only widen over, stays thin and goes.
 bool widen_over_background(ThinPiece& piece, const Grid<std::int32_t>& face, Grid<std::uint8_t>& taken, int need_px,
                            double min_side_px) {
-  const auto background = [&](int c, int r) {
-    return face.contains(c, r) && (face(c, r) == kBackFace || face(c, r) == kFloorFace);
-  };
+  const auto background = [&](int c, int r) { return widenable(face, c, r); };
   auto [added, wide] = widen_runs(piece.pixels, background, taken, need_px, min_side_px);
   std::vector<std::pair<int, int>> all = piece.pixels;
   all.insert(all.end(), added.begin(), added.end());
@@ -488,17 +496,19 @@ void build_faces(const RasterMaps& maps, const Segmentation& seg, const std::vec
   fill_holes(maps.grid, seg.segment, result.faces, result.face);
   // The holes a widened piece filled (a pole's top, too shallow to widen) are widened with it.
   if (!widened_faces.empty()) {
+    std::vector<std::int32_t> slot(result.faces.size(), -1);  // each widened face's in widened_faces
+    for (std::size_t k = 0; k < widened_faces.size(); ++k)
+      slot[static_cast<std::size_t>(widened_faces[k])] = static_cast<std::int32_t>(k);
     std::vector<std::vector<std::pair<int, int>>> cells(widened_faces.size());
     for (int r = 0; r < rows; ++r)
       for (int c = 0; c < cols; ++c)
-        if (const auto it = std::ranges::find(widened_faces, result.face(c, r)); it != widened_faces.end())
-          cells[static_cast<std::size_t>(it - widened_faces.begin())].emplace_back(c, r);
-    const auto background = [&](int c, int r) {
-      return result.face.contains(c, r) && (result.face(c, r) == kBackFace || result.face(c, r) == kFloorFace);
-    };
-    for (std::size_t k = 0; k < widened_faces.size(); ++k)
+        if (const std::int32_t f = result.face(c, r); f >= 0 && slot[static_cast<std::size_t>(f)] >= 0)
+          cells[static_cast<std::size_t>(slot[static_cast<std::size_t>(f)])].emplace_back(c, r);
+    for (std::size_t k = 0; k < widened_faces.size(); ++k) {
+      const auto background = [&](int c, int r) { return widenable(result.face, c, r, widened_faces[k]); };
       for (const auto& [c, r] : widen_runs(cells[k], background, widened, need_px, min_side_px).first)
         result.face(c, r) = widened_faces[k];
+    }
   }
   keep_within_card(maps.grid, result);
   result = merge_coplanar_faces(std::move(result));

@@ -149,16 +149,13 @@ class FaceOrderRun {
   }
   SupportedPlan finish();
   // Face f is not cut out: its hole would take more than SupportOptions::holes_model_share of the
-  // model. The next
-  // rounds hold it whatever that costs (or give it to a neighbour); the report says so.
+  // model. The next rounds hold it whatever that costs (or give it to a neighbour); the report says
+  // so.
   void spare(std::int32_t f, double hold_cost, double hole_cost);
-  // The faces the holes may not take (hold_anyway_), by id as the raster plan numbers them now.
-  std::vector<std::uint8_t> held_at_any_cost() const {
-    std::vector<std::uint8_t> held(raster_plan_.faces.size(), 0);
-    for (const PixelAt p : hold_anyway_)
-      if (const std::int32_t f = raster_plan_.face(p.c, p.r); f > kFloorFace) held[static_cast<std::size_t>(f)] = 1;
-    return held;
-  }
+  // The faces the holes may not take, by id as the raster plan numbers them now: those at least
+  // half of whose pixels were a spared face's (a spared face in pieces, each piece; a support across
+  // one holds it already).
+  std::vector<std::uint8_t> held_at_any_cost() const;
 
   const OrderSetting& setting_;
   RasterPlan raster_plan_;
@@ -183,8 +180,8 @@ class FaceOrderRun {
   // not on another thread: CGAL is built without thread support, its reference counts not atomic.)
   std::shared_ptr<const ExactPlan> last_exact_plan_;
   std::int64_t model_pixels_ = 0, cut_out_pixels_ = 0;
-  // A pixel of each face spared (spare): it is held from then on.
-  std::vector<PixelAt> hold_anyway_;
+  // The pixels of each face spared (spare), as report().spared_faces lists them.
+  std::vector<std::vector<PixelAt>> spared_pixels_;
 };
 
 }  // namespace origamic

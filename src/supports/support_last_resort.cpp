@@ -88,6 +88,7 @@ std::vector<std::size_t> FaceOrderRun::give_away(const std::vector<std::int32_t>
   std::vector<std::size_t> kept;
   std::vector<std::int32_t> kept_faces;
   const double cap_mm = setting_.options.join_error_cap_W * raster_plan_.min_strip_mm;
+  const std::vector<std::uint8_t> held = held_at_any_cost();
   // The picture as the plan is now, each face given to it: it changes the faces around the next.
   std::vector<std::vector<PixelAt>> pixels = pixels_of(faces);
   std::vector<std::size_t> own_pixels;
@@ -98,8 +99,10 @@ std::vector<std::size_t> FaceOrderRun::give_away(const std::vector<std::int32_t>
     const std::int32_t f = faces[i];
     if (!card_piece(f) && !(grown == Grown::KeptForNextRound && pixels[i].size() > own_pixels[i])) {
       if (!picture) picture.emplace(setting_.maps, raster_plan_);
+      // A spared face has no hole to weigh: any join within the cap is worth it.
+      const bool spared = static_cast<std::size_t>(f) < held.size() && held[static_cast<std::size_t>(f)];
       const auto worth = [&](double error) {
-        return error < picture->hole_error(f) &&
+        return (spared || error < picture->hole_error(f)) &&
                picture->mean_error_mm(error, static_cast<std::int64_t>(pixels[i].size())) <= cap_mm;
       };
       SupportPicture::Shares shares = picture->shared_join(raster_plan_, pixels[i], kept_faces);
@@ -177,10 +180,22 @@ void FaceOrderRun::cut_out(const std::vector<std::int32_t>& faces, const std::ve
       static_cast<double>(cut_out_pixels_) / static_cast<double>(std::max<std::int64_t>(1, model_pixels_));
 }
 
+std::vector<std::uint8_t> FaceOrderRun::held_at_any_cost() const {
+  std::vector<std::uint8_t> held(raster_plan_.faces.size(), 0);
+  if (spared_pixels_.empty()) return held;
+  std::vector<std::int64_t> spared(raster_plan_.faces.size(), 0), all(raster_plan_.faces.size(), 0);
+  for (const std::int32_t f : raster_plan_.face.values)
+    if (f >= 0) ++all[static_cast<std::size_t>(f)];
+  for (const std::vector<PixelAt>& pixels : spared_pixels_)
+    for (const PixelAt p : pixels)
+      if (const std::int32_t f = raster_plan_.face(p.c, p.r); f > kFloorFace) ++spared[static_cast<std::size_t>(f)];
+  for (std::size_t f = 0; f < held.size(); ++f) held[f] = spared[f] > 0 && 2 * spared[f] >= all[f];
+  return held;
+}
+
 void FaceOrderRun::spare(std::int32_t f, double hold_cost, double hole_cost) {
-  const std::vector<PixelAt> own = pixels_of({f}).front();
+  std::vector<PixelAt> own = pixels_of({f}).front();
   if (own.empty()) return;
-  hold_anyway_.push_back(own.front());
   const PixelGrid& grid = setting_.maps.grid;
   CutOutFace entry;
   entry.at = {grid.X(own.front().c), grid.Y(own.front().r)};
@@ -189,6 +204,7 @@ void FaceOrderRun::spare(std::int32_t f, double hold_cost, double hole_cost) {
   entry.reason =
       "its hole would take more than " + number_text(100 * setting_.options.holes_model_share) + " % of the model";
   report().spared_faces.push_back(std::move(entry));
+  spared_pixels_.push_back(std::move(own));
 }
 
 // Gives each of face f's pixels (in row order) to the face `shares` names for it, and reports it;

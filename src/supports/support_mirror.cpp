@@ -149,6 +149,7 @@ SupportedPlan mirror_image(SupportedPlan supported, const Sheet& sheet) {
   }
   SupportReport& report = supported.report;
   for (CutOutFace& face : report.cut_out_faces) face.at = mirrored(face.at, width);
+  for (CutOutFace& face : report.spared_faces) face.at = mirrored(face.at, width);
   for (JoinedFace& face : report.joined_faces) face.at = mirrored(face.at, width);
   for (NarrowStrip& strip : report.narrow) strip.at = mirrored(strip.at, width);
   return supported;

@@ -144,6 +144,7 @@ FaceOrderRun::Stopped FaceOrderRun::pass() {
   const int supports_before = report().supports, cut_out_before = report().cut_out;
   const std::size_t cut_out_faces_before = report().cut_out_faces.size();
   const std::size_t joined_faces_before = report().joined_faces.size();
+  const std::size_t spared_before = spared_pixels_.size();
   const std::int64_t cut_out_pixels_before = cut_out_pixels_;
   const Stopped why = support_rounds();
   if (from_exact && why.why != SupportStop::None && invalid_faces().size() > invalid_before) {
@@ -153,6 +154,7 @@ FaceOrderRun::Stopped FaceOrderRun::pass() {
     report().cut_out = cut_out_before;
     report().cut_out_faces.resize(cut_out_faces_before);
     report().joined_faces.resize(joined_faces_before);
+    report().spared_faces.resize(spared_before), spared_pixels_.resize(spared_before);
     cut_out_pixels_ = cut_out_pixels_before;
     report().cut_out_share =
         static_cast<double>(cut_out_pixels_) / static_cast<double>(std::max<std::int64_t>(1, model_pixels_));
