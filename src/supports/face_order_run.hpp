@@ -131,12 +131,13 @@ class FaceOrderRun {
     const auto holes_may_take =
         static_cast<std::int64_t>(setting_.options.holes_model_share * static_cast<double>(model_pixels_));
     std::int64_t cut = cut_out_pixels_;
+    const std::vector<std::uint8_t> held = held_at_any_cost();  // spared before: neither cut nor spared again
     for (const std::size_t i : give_away(faces, Grown::KeptForNextRound)) {
       const RasterFace& face = raster_plan_.faces[static_cast<std::size_t>(faces[i])];
       const bool grew = face.pixels > pixels_before[i];
       if (card_piece(faces[i])) {
         kept.push_back(faces[i]), costs.emplace_back(costly[i].hold, costly[i].hole);
-      } else if (!grew && costly[i].hold > costly[i].hole) {
+      } else if (!grew && costly[i].hold > costly[i].hole && !held[static_cast<std::size_t>(faces[i])]) {
         if (cut + face.pixels > holes_may_take) {
           spare(faces[i], costly[i].hold, costly[i].hole);
           continue;
