@@ -940,6 +940,31 @@ TEST(Plan, ThePlanASupportRunKeepsIsItsRasterPlanBuiltFresh) {
   EXPECT_GE(fewer_builds, 1) << "a run that knew the chains to draw unsimplified";
 }
 
+// A plan built again of a supported raster plan, changed a little (planes refit, fold pairs
+// spread), starts from the chains the supported plan drew unsimplified. Built fresh, the chains of
+// res_dragon_res4's supported plan at W = 2 mm cross in another order: one falls back to its pixel
+// contour, its fold is lost and two faces dangle, so no spread of its fold pairs stood.
+TEST(Plan, APlanBuiltAgainStartsFromTheChainsItsPlanDrewUnsimplified) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  DesignOptions options;
+  options.slice.min_strip_mm = 2;
+  options.refit_planes = options.spread_fold_pairs = false;  // the plan as the support run left it
+  options.tip_rounds = 0;
+  const DesignResult r = design(test::models_dir() / "res_dragon_res4.ply", options);
+  ASSERT_TRUE(plan_stands(r.plan, false));
+  const Plan fresh = build_plan(r.maps, r.raster_plan, options.sheet, options.plan);
+  ASSERT_FALSE(plan_stands(fresh, false)) << "the case this test is about: a fresh build loses a fold";
+  EXPECT_GE(fresh.unsnapped_chains, 1);
+  const Plan again = build_plan(r.maps, r.raster_plan, options.sheet, options.plan, r.plan.fallbacks);
+  EXPECT_TRUE(again.lines == r.plan.lines) << "the same lines, point for point";
+  EXPECT_EQ(again.validity.status, r.plan.validity.status);
+
+  options.spread_fold_pairs = true;
+  const DesignResult spread = design(test::models_dir() / "res_dragon_res4.ply", options);
+  EXPECT_FALSE(spread.supports.planes_spread.empty()) << "the fold pairs' moves stand";
+  EXPECT_TRUE(plan_stands(spread.plan, false));
+}
+
 // The support loop builds only verdicts: they must be the full plan's, to the last face.
 TEST(Plan, AVerdictBuildDecidesAsTheFullBuildAndDrawsNothing) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <unordered_set>
 #include <vector>
 
 #include "origamic/oa.hpp"
@@ -65,6 +66,22 @@ struct PlanOptions {
   double fold_snap_fraction_of_W = 0.5;
 };
 
+/// The chains an exact plan drew unsimplified, each by its corners and the planes on its sides:
+/// simplified, they crossed another boundary (exact_plan_chains.hpp), and the arrangement was
+/// built again with them unsimplified. The same chains cross in plan after plan of a run of
+/// supports (res_dragon_full: the same two in each of its 7 plans; res_knot: 66 rebuilds in 45
+/// plans), so the run's next plan starts them unsimplified and builds its arrangement once. A chain
+/// so started that would not have crossed this time is drawn unsimplified all the same: a valid
+/// plan, a few more vertices. None did on the 27 MANIFEST models at W = 3 mm, the 10 seedlike
+/// shapes, res_knot and res_dragon_full at W = 2 mm: their DXFs are byte for byte the plans built
+/// fresh. A chain that fell back to its pixel contour, drawn so a V/H boundary is a cut and its
+/// fold lost, is not passed on: it starts simplified again. A plan built again of a raster plan
+/// changed a little starts with them too: built fresh, res_dragon_res4's supported plan at W = 2 mm
+/// lost a fold to a chain's pixel contour, and two faces dangled.
+struct ChainFallbacks {
+  std::unordered_set<std::uint64_t> unsimplified;  // each chain by chain_fallback_key
+};
+
 struct Plan {
   Sheet sheet;
   std::vector<PlanFace> faces;          // indexed like the raster plan's faces: 0 back, 1 floor
@@ -93,6 +110,7 @@ struct Plan {
   double off_model_edges_mm = 0;        // the farthest a cut drawn on the model's edge passes from it
   int trimmed_to_card = 0;              // arrangement faces beyond the back plane or floor given to them
   bool simplified = false;              // every cut simplified, every fold candidate snapped
+  ChainFallbacks fallbacks;             // the chains drawn unsimplified (build_plan's `known`)
 };
 
 /// Folds closer than this are one line, and an edge shorter than it joins nothing: the rounding of a
@@ -111,7 +129,9 @@ inline double aligned_fold_tolerance_mm(const PixelGrid& grid) { return 1 / grid
 
 /// Builds the exact plan from the raster plan (sheet in mm). Deterministic. The exact numbers are built
 /// without thread safety, so calls from several threads take turns (one exact run at a time per
-/// process, as for ExactPlan, add_supports, design and analyze_plan).
-Plan build_plan(const RasterMaps& maps, const RasterPlan& raster_plan, const Sheet& sheet, const PlanOptions& options);
+/// process, as for ExactPlan, add_supports, design and analyze_plan). The chains `known` start
+/// unsimplified: those of a plan of the raster plan before a change (Plan::fallbacks).
+Plan build_plan(const RasterMaps& maps, const RasterPlan& raster_plan, const Sheet& sheet, const PlanOptions& options,
+                const ChainFallbacks& known = {});
 
 }  // namespace origamic

@@ -101,12 +101,12 @@ bool model_faces_put_p95_over(const DesignResult& sliced, const Plan& plan, doub
 // A supported plan's exact plans drawn as it was: in the mirror image where the supports drew it so.
 PlanBuilder drawn_as(RasterMaps& maps, const SupportedPlan& supported, const DesignOptions& options) {
   if (!supported.report.drawn_in_mirror_image) return {};
-  return [&maps, &options](const RasterPlan& raster_plan) {
+  return [&maps, &options, known = supported.plan.fallbacks](const RasterPlan& raster_plan) {
     SupportedPlan drawn;
     {
       const MirroredMaps mirror(maps);
       drawn.raster_plan = mirror_image(raster_plan);
-      drawn.plan = build_plan(maps, drawn.raster_plan, options.sheet, options.plan);
+      drawn.plan = build_plan(maps, drawn.raster_plan, options.sheet, options.plan, known);
     }
     return mirror_image(std::move(drawn), options.sheet).plan;
   };

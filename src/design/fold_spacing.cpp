@@ -301,7 +301,8 @@ SupportedPlan spread_fold_pairs(const RasterMaps& maps, SupportedPlan supported,
     // Faces closed onto others, left without pixels, go (the ids close up).
     RasterPlan spread_plan =
         std::ranges::any_of(spread, &RefitPlane::closed) ? merge_coplanar_faces(spreader.plan()) : spreader.plan();
-    Plan plan = build ? build(spread_plan) : build_plan(maps, spread_plan, sheet, plan_options);
+    Plan plan =
+        build ? build(spread_plan) : build_plan(maps, spread_plan, sheet, plan_options, supported.plan.fallbacks);
     const PlanFares fared = plan_fares(maps, plan, W, allow_dangling);
     if (fared.fails) {
       // The exact plan snaps folds the raster plan's do not show: the moves that changed a pixel of,

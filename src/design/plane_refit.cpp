@@ -257,8 +257,10 @@ std::optional<RefitPass> refit_pass(const RasterMaps& maps, const SupportedPlan&
 SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, const Sheet& sheet,
                            const PlanOptions& plan_options, bool allow_dangling, const PlaneRefitOptions& options,
                            const PlanBuilder& build) {
-  const PlanBuilder built =
-      build ? build : [&](const RasterPlan& raster_plan) { return build_plan(maps, raster_plan, sheet, plan_options); };
+  const ChainFallbacks known = supported.plan.fallbacks;
+  const PlanBuilder built = build ? build : [&](const RasterPlan& raster_plan) {
+    return build_plan(maps, raster_plan, sheet, plan_options, known);
+  };
   // Per entry of the report's planes_refit, the face it tells of: a face moved again (a later turn
   // or pass) has its one entry brought up to date.
   std::vector<std::int32_t> listed;

@@ -338,7 +338,7 @@ void ExactPlan::build(State& state, const RasterMaps& maps, const RasterPlan& ra
       {chains, faces, lattice, sheet, simplify_mm, aligned_fold_tolerance_mm(maps.grid)}, known, built);
   const std::vector<Fallback>& fallback = fell.fallback;
   plan.unresolved_crossings = fell.unresolved;
-  state.fallbacks = std::move(fell.passed_on);
+  plan.fallbacks = std::move(fell.passed_on);
   plan.raw_chains = static_cast<int>(std::ranges::count(fallback, Fallback::Unsimplified));
   plan.unsnapped_chains = static_cast<int>(std::ranges::count(fallback, Fallback::PixelContour));
   plan.arrangement_builds = built.builds;
@@ -411,13 +411,14 @@ ExactPlan& ExactPlan::operator=(ExactPlan&& other) noexcept {
 }
 
 const Plan& ExactPlan::verdict() const { return state_->plan; }
-const ChainFallbacks& ExactPlan::fallbacks() const { return state_->fallbacks; }
+const ChainFallbacks& ExactPlan::fallbacks() const { return state_->plan.fallbacks; }
 const Grid<std::int32_t>& ExactPlan::face_map() const { return state_->labels; }
 const std::vector<RasterFace>& ExactPlan::faces() const { return state_->faces; }
 
-Plan build_plan(const RasterMaps& maps, const RasterPlan& raster_plan, const Sheet& sheet, const PlanOptions& options) {
+Plan build_plan(const RasterMaps& maps, const RasterPlan& raster_plan, const Sheet& sheet, const PlanOptions& options,
+                const ChainFallbacks& known) {
   const auto lock = exact_run_lock();
-  return ExactPlan(maps, raster_plan, sheet, options).full();
+  return ExactPlan(maps, raster_plan, sheet, options, known).full();
 }
 
 }  // namespace origamic

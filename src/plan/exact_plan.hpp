@@ -7,7 +7,6 @@
 #include <cstdint>
 #include <memory>
 #include <span>
-#include <unordered_set>
 #include <vector>
 
 #include "origamic/grid.hpp"
@@ -45,20 +44,6 @@ struct PaintedBand {
   Orientation orientation = Orientation::V;
   double depth_mm = 0;
   FoldLine a, b;
-};
-
-/// The chains an exact plan drew unsimplified, each by its corners and the planes on its sides:
-/// simplified, they crossed another boundary (exact_plan_chains.hpp), and the arrangement was
-/// built again with them unsimplified. The same chains cross in plan after plan of a run of
-/// supports (res_dragon_full: the same two in each of its 7 plans; res_knot: 66 rebuilds in 45
-/// plans), so the run's next plan starts them unsimplified and builds its arrangement once. A chain
-/// so started that would not have crossed this time is drawn unsimplified all the same: a valid
-/// plan, a few more vertices. None did on the 27 MANIFEST models at W = 3 mm, the 10 seedlike
-/// shapes, res_knot and res_dragon_full at W = 2 mm: their DXFs are byte for byte the plans built
-/// fresh. A chain that fell back to its pixel contour, drawn so a V/H boundary is a cut and its
-/// fold lost, is not passed on: it starts simplified again.
-struct ChainFallbacks {
-  std::unordered_set<std::uint64_t> unsimplified;  // each chain by chain_fallback_key
 };
 
 /// build_plan in two steps, for a loop that decides on many verdicts and keeps one: the verdict

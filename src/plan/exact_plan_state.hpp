@@ -113,7 +113,6 @@ struct ExactPlan::State {
   std::vector<std::pair<exact::Arrangement::Halfedge_const_handle, LineKind>> edges;  // inner edges, upper face first
   std::vector<std::uint8_t> cut_out;                                                  // per piece: cut out
   Plan plan;                                                                          // the verdict
-  ChainFallbacks fallbacks;                                                           // the chains drawn unsimplified
 
   // Vertical ray shooting (faces_reached). The exact numbers are read under the lock held alone,
   // while a line is made; lines made are looked up under it shared. They keep their crossings as
