@@ -66,18 +66,11 @@ struct PlanOptions {
   double fold_snap_fraction_of_W = 0.5;
 };
 
-/// The chains an exact plan drew unsimplified, each by its corners and the planes on its sides:
-/// simplified, they crossed another boundary (exact_plan_chains.hpp), and the arrangement was
-/// built again with them unsimplified. The same chains cross in plan after plan of a run of
-/// supports (res_dragon_full: the same two in each of its 7 plans; res_knot: 66 rebuilds in 45
-/// plans), so the run's next plan starts them unsimplified and builds its arrangement once. A chain
-/// so started that would not have crossed this time is drawn unsimplified all the same: a valid
-/// plan, a few more vertices. None did on the 27 MANIFEST models at W = 3 mm, the 10 seedlike
-/// shapes, res_knot and res_dragon_full at W = 2 mm: their DXFs are byte for byte the plans built
-/// fresh. A chain that fell back to its pixel contour, drawn so a V/H boundary is a cut and its
-/// fold lost, is not passed on: it starts simplified again. A plan built again of a raster plan
-/// changed a little starts with them too: built fresh, res_dragon_res4's supported plan at W = 2 mm
-/// lost a fold to a chain's pixel contour, and two faces dangled.
+/// The chains an exact plan drew unsimplified (simplified, they crossed another boundary), each by
+/// an opaque key of its pixel corners and the planes on its sides, in the frame the plan was drawn
+/// in. A plan built of the same raster plan changed a little starts them unsimplified and builds its
+/// arrangement once; a key that matches no chain, or a chain that would not have crossed this time,
+/// costs only a few vertices. A chain that fell back to its pixel contour is not among them.
 struct ChainFallbacks {
   std::unordered_set<std::uint64_t> unsimplified;  // each chain by chain_fallback_key
 };
@@ -110,7 +103,7 @@ struct Plan {
   double off_model_edges_mm = 0;        // the farthest a cut drawn on the model's edge passes from it
   int trimmed_to_card = 0;              // arrangement faces beyond the back plane or floor given to them
   bool simplified = false;              // every cut simplified, every fold candidate snapped
-  ChainFallbacks fallbacks;             // the chains drawn unsimplified (build_plan's `known`)
+  ChainFallbacks fallbacks;             // the chains drawn unsimplified: `known` for a plan built again
 };
 
 /// Folds closer than this are one line, and an edge shorter than it joins nothing: the rounding of a

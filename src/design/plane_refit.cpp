@@ -257,7 +257,7 @@ std::optional<RefitPass> refit_pass(const RasterMaps& maps, const SupportedPlan&
 SupportedPlan refit_planes(const RasterMaps& maps, SupportedPlan supported, const Sheet& sheet,
                            const PlanOptions& plan_options, bool allow_dangling, const PlaneRefitOptions& options,
                            const PlanBuilder& build) {
-  const ChainFallbacks known = supported.plan.fallbacks;
+  const ChainFallbacks known = supported.plan.fallbacks;  // the supported plan's, pass after pass
   const PlanBuilder built = build ? build : [&](const RasterPlan& raster_plan) {
     return build_plan(maps, raster_plan, sheet, plan_options, known);
   };

@@ -411,7 +411,6 @@ ExactPlan& ExactPlan::operator=(ExactPlan&& other) noexcept {
 }
 
 const Plan& ExactPlan::verdict() const { return state_->plan; }
-const ChainFallbacks& ExactPlan::fallbacks() const { return state_->plan.fallbacks; }
 const Grid<std::int32_t>& ExactPlan::face_map() const { return state_->labels; }
 const std::vector<RasterFace>& ExactPlan::faces() const { return state_->faces; }
 

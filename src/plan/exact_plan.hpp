@@ -59,8 +59,6 @@ class ExactPlan {
   ExactPlan& operator=(ExactPlan&&) noexcept;
 
   const Plan& verdict() const;
-  /// The chains this plan drew unsimplified, for the next plan of the same run.
-  const ChainFallbacks& fallbacks() const;
   Plan full() const;
   /// The raster plan the arrangement was built of (its boundaries aligned to their fold lines), and
   /// its faces: what the arrangement's labels name.

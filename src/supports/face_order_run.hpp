@@ -78,7 +78,7 @@ class FaceOrderRun {
   // The verdict of the exact plan of the raster plan as it is.
   void confirm() {
     assert(last_exact_plan_);  // run() adopts the initial plan first
-    const ChainFallbacks known = last_exact_plan_->fallbacks();
+    const ChainFallbacks known = last_exact_plan_->verdict().fallbacks;
     last_exact_plan_.reset();  // one arrangement at a time in memory
     adopt(std::make_shared<const ExactPlan>(setting_.maps, raster_plan_, setting_.sheet, setting_.plan_options, known));
   }

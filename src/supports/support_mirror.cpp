@@ -132,6 +132,7 @@ RasterPlan with_faces_in_scan_order(RasterPlan raster_plan) {
 }
 
 SupportedPlan mirror_image(SupportedPlan supported, const Sheet& sheet) {
+  // Plan::fallbacks stay keyed in the frame the plan was drawn in (drawn_as builds again there).
   const double width = sheet.width_mm;
   supported.raster_plan = mirror_image(std::move(supported.raster_plan));
   Plan& plan = supported.plan;
