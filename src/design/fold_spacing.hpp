@@ -40,9 +40,8 @@ struct FoldSpacingOptions {
   double may_add_mean_W = 0.02;
   // Exact plans built at most: where one does not stand, the moves beside the faces it leaves
   // unheld are taken back and the rest built again. Over the 37 models at W = 2, 3 and 5 mm a
-  // second plan stood on 4 (bad_motorbike at 3 mm kept 18 of its 20 moves; arch_temple,
-  // csg_menger_slice and res_armadillo at 2 mm, all but one); none has needed a third (at 2 mm
-  // bad_motorbike's second leaves a face dangling beside no move, and its moves are lost).
+  // second plan stood on 4 (bad_motorbike at 3 mm kept 17 of its 19 moves; arch_temple,
+  // csg_menger_slice and res_armadillo at 2 mm, all but one); none has needed a third.
   int exact_builds = 3;
 };
 
