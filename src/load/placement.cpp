@@ -2,12 +2,12 @@
 #include "origamic/placement.hpp"
 
 #include <cmath>
+#include <glm/common.hpp>
 #include <limits>
 #include <numbers>
 #include <sstream>
 
-#include <glm/common.hpp>
-
+#include "number_text.hpp"
 #include "origamic/error.hpp"
 
 namespace origamic {
@@ -87,7 +87,10 @@ double fit_scale(const Extents& e, const Sheet& sheet, double margin_mm) {
   return scale;
 }
 
+// A length in a message, to a tenth of a millimetre; one no card could hold (a model scaled by
+// 1e300: 300 digits before the point) in powers of ten.
 std::string mm(double v) {
+  if (!(std::abs(v) < 1e9)) return number_text(v);
   std::ostringstream s;
   s.precision(1);
   s << std::fixed << v;

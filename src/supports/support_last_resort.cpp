@@ -2,6 +2,7 @@
 // The support loop's last resort (face_order_run.hpp): faces no support holds given to their
 // neighbours, or cut out of the sheet.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -99,10 +100,12 @@ std::vector<std::size_t> FaceOrderRun::give_away(const std::vector<std::int32_t>
     const std::int32_t f = faces[i];
     if (!card_piece(f) && !(grown == Grown::KeptForNextRound && pixels[i].size() > own_pixels[i])) {
       if (!picture) picture.emplace(setting_.maps, raster_plan_);
-      // A spared face has no hole to weigh: any join within the cap is worth it.
+      // A spared face has no hole to weigh: any join within the cap is worth it. A face with no
+      // neighbour to take it (its join's error infinite) has none, spared or not: with the cap
+      // unbounded, a spared face of a scrambled knot was given to no face, and the run crashed.
       const bool spared = static_cast<std::size_t>(f) < held.size() && held[static_cast<std::size_t>(f)];
       const auto worth = [&](double error) {
-        return (spared || error < picture->hole_error(f)) &&
+        return std::isfinite(error) && (spared || error < picture->hole_error(f)) &&
                picture->mean_error_mm(error, static_cast<std::int64_t>(pixels[i].size())) <= cap_mm;
       };
       SupportPicture::Shares shares = picture->shared_join(raster_plan_, pixels[i], kept_faces);
