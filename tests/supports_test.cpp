@@ -699,10 +699,11 @@ TEST(Supports, AFaceWhoseHoleWouldTakeMoreThanTheHolesMayIsHeldAtAnyCost) {
 }
 
 // res_knot.off with its face list scrambled as tools/fuzz.py left it: a control character joining
-// two face lines (the reader takes 1,275 of the 6,400 triangles) and four face lines appended. At
-// 2 px/mm the last resort met faces spared from cut-out (their holes would take over 3 % of the
-// model) that no support reached and no neighbour could take: one was given to no face, and the run
-// wrote through index -1 and crashed. Such a face is not given away; the plan stands.
+// two face lines (the reader takes 1,275 of the 6,400 triangles) and four face lines appended, so
+// that the file still holds as many face lines as its header promises. At 2 px/mm (up z as here,
+// and up y as the fuzzer ran it) the last resort met faces spared from cut-out (their holes would
+// take over 3 % of the model) that no support reached and no neighbour could take: one was given
+// to face -1, and the run crashed. Such a face is not given away; the plan stands.
 TEST(Supports, AFaceNoNeighbourCanTakeIsNeverGivenAway) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
   std::ifstream in(test::models_dir() / "res_knot.off", std::ios::binary);
@@ -720,6 +721,7 @@ TEST(Supports, AFaceNoNeighbourCanTakeIsNeverGivenAway) {
   const DesignResult r = design(dir / "scrambled.off", options);
   ASSERT_FALSE(r.supports.spared_faces.empty());  // the case: faces the holes may not take
   expect_exact_and_standing(r.plan);
+  for (const JoinedFace& joined : r.supports.joined_faces) EXPECT_TRUE(std::isfinite(joined.joined_cost));
 }
 
 // The sphere's rim crumbs that no support holds (6, each under 1 % of the model) are given away

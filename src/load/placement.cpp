@@ -87,8 +87,8 @@ double fit_scale(const Extents& e, const Sheet& sheet, double margin_mm) {
   return scale;
 }
 
-// A length in a message, to a tenth of a millimetre; one no card could hold (a model scaled by
-// 1e300: 300 digits before the point) in powers of ten.
+// A length in a message, to a tenth of a millimetre; one no card could hold (1e9 mm is 1,000 km;
+// a model scaled by 1e300 gave 300 digits before the point) in powers of ten.
 std::string mm(double v) {
   if (!(std::abs(v) < 1e9)) return number_text(v);
   std::ostringstream s;

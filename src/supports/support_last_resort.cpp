@@ -2,6 +2,7 @@
 // The support loop's last resort (face_order_run.hpp): faces no support holds given to their
 // neighbours, or cut out of the sheet.
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -100,9 +101,10 @@ std::vector<std::size_t> FaceOrderRun::give_away(const std::vector<std::int32_t>
     const std::int32_t f = faces[i];
     if (!card_piece(f) && !(grown == Grown::KeptForNextRound && pixels[i].size() > own_pixels[i])) {
       if (!picture) picture.emplace(setting_.maps, raster_plan_);
-      // A spared face has no hole to weigh: any join within the cap is worth it. A face with no
-      // neighbour to take it (its join's error infinite) has none, spared or not: with the cap
-      // unbounded, a spared face of a scrambled knot was given to no face, and the run crashed.
+      // A spared face has no hole to weigh: any join within the cap is worth it. An infinite error
+      // is no join (no neighbour may take the face), never worth it, spared or not: the cap is
+      // unbounded by default, inf <= inf passed it, and a spared face of a scrambled knot was
+      // given to face -1 (tools/fuzz.py: the run crashed).
       const bool spared = static_cast<std::size_t>(f) < held.size() && held[static_cast<std::size_t>(f)];
       const auto worth = [&](double error) {
         return std::isfinite(error) && (spared || error < picture->hole_error(f)) &&
@@ -223,7 +225,9 @@ void FaceOrderRun::share(std::int32_t f, const SupportPicture::Shares& shares, s
   entry.joined_cost = shares.error / (W * W);  // negative where the neighbours show the model better
   entry.hole_cost = picture.hole_error(f) / (W * W);
   std::vector<std::int32_t> receivers;
+  assert(shares.into.size() == pixels.size());
   for (std::size_t k = 0; k < pixels.size(); ++k) {
+    assert(shares.into[k] >= 0);
     raster_plan_.face(pixels[k].c, pixels[k].r) = shares.into[k];
     ++raster_plan_.faces[static_cast<std::size_t>(shares.into[k])].pixels;
     if (std::ranges::find(receivers, shares.into[k]) == receivers.end()) receivers.push_back(shares.into[k]);
