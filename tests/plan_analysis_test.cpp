@@ -518,6 +518,44 @@ TEST(TipRepair, ACutWithinAHundredthOfAMillimetreOfAVertexLineGoesOnItOrNowhere)
   }
 }
 
+TEST(TipRepair, ABranchOfAForkThatEndsIsPartedWhereItForks) {
+  // A tooth of the back plane pokes 3 mm into the box's front face V(d) from its right side, its
+  // point P 2.8 mm under the mountain fold, its upper side rising to the box's corner on the fold.
+  // Through P the face is 2.8 mm high; past P it forks into the wedge over the tooth, which ends at
+  // the corner, and the face under the tooth, which is wide. The wedge is parted on P's line and
+  // joins the top H(h), whose plane lies nearest; its corner at P, with no other vertex near, leaves
+  // the top W wide through every vertex, and the plan has no place narrower than W.
+  const Box b{.d = 10};
+  const double W = 3;
+  const PlanPoint P{b.x1 - 3, b.h - b.d - 2.8};
+  std::vector<PlanPolyline> lines = box_plan(b);
+  for (PlanPolyline& line : lines)
+    if (line.kind == LineKind::Cut && line.points[0].X == b.x1) line.points = {{b.x1, b.h - b.d}, {b.x1, b.h}};
+  lines.push_back({LineKind::Cut, {{b.x1, -b.d}, {b.x1, P.Y - 4}, P, {b.x1, b.h - b.d}}});
+  const PlanAnalysis before = analyze_plan(lines, {.min_strip_mm = W});
+  const auto narrow = problems_of(before, PlanProblemKind::NarrowStrip);
+  ASSERT_EQ(narrow.size(), 1u) << listing(before);
+  EXPECT_EQ(narrow[0].region, region_at(before, {b.mid(), 10}));
+  EXPECT_EQ(narrow[0].from, P);
+  EXPECT_NEAR(narrow[0].value_mm, 2.8, 1e-12);
+
+  const TipRepair repaired = blunt_narrow_tips(lines, {.min_strip_mm = W});
+  EXPECT_EQ(repaired.tips, 1);
+  const PlanAnalysis after = analyze_plan(repaired.lines, {.min_strip_mm = W});
+  EXPECT_TRUE(after.problems.empty()) << listing(after);
+  const std::int32_t wedge = region_at(after, {b.x1 - 0.5, b.h - b.d - 0.2});
+  ASSERT_GE(wedge, 0);
+  EXPECT_EQ(wedge, region_at(after, {b.mid(), b.h - 1}));
+  EXPECT_EQ(after.regions[static_cast<std::size_t>(wedge)].orientation, Orientation::H);
+  int cuts_on_P = 0;  // the cut parting the wedge, up P's line to the fold
+  for (const PlanPolyline& line : repaired.lines)
+    for (std::size_t i = 0; i + 1 < line.points.size(); ++i)
+      cuts_on_P += line.kind == LineKind::Cut && line.points[i].X == P.X && line.points[i + 1].X == P.X &&
+                   std::min(line.points[i].Y, line.points[i + 1].Y) == P.Y &&
+                   std::max(line.points[i].Y, line.points[i + 1].Y) == b.h - b.d;
+  EXPECT_EQ(cuts_on_P, 1);
+}
+
 TEST(TipRepair, AStripNarrowerThanWAllAlongIsNoTipAndStays) {
   Box b;
   b.d = 2;  // the top face is 2 mm high from end to end
@@ -582,12 +620,19 @@ TEST(TipRepair, ATipGoesOnlyToAFaceWhosePlaneKeepsItOnTheCard) {
   ASSERT_EQ(problems_of(before, PlanProblemKind::NarrowStrip).size(), 4u) << listing(before);
   ASSERT_EQ(before.errors, 4) << listing(before);
   const TipRepair repaired = blunt_narrow_tips(lines, {.min_strip_mm = W});
-  EXPECT_EQ(repaired.tips, 1);
+  // The floor's wedge over the left tip, slit from the floor beyond by the box's right side, is a
+  // branch where the floor forks under the main fold: parted on the main fold's line, it joins the
+  // left box's front, which keeps it on the card.
+  EXPECT_EQ(repaired.tips, 2);
   const PlanAnalysis after = analyze_plan(repaired.lines, {.min_strip_mm = W});
   EXPECT_TRUE(problems_of(after, PlanProblemKind::OutsideCard).empty()) << listing(after);
   const auto narrow = problems_of(after, PlanProblemKind::NarrowStrip);
-  ASSERT_EQ(narrow.size(), 3u) << listing(after);
-  EXPECT_EQ(after.errors, 3) << listing(after);
+  ASSERT_EQ(narrow.size(), 2u) << listing(after);
+  EXPECT_EQ(after.errors, 2) << listing(after);
+  const std::int32_t floor_wedge = region_at(after, {left.x1 - 0.2, -1});
+  ASSERT_GE(floor_wedge, 0);
+  EXPECT_EQ(after.regions[static_cast<std::size_t>(floor_wedge)].orientation, Orientation::V);
+  EXPECT_EQ(after.regions[static_cast<std::size_t>(floor_wedge)].depth_mm, left.d);
   EXPECT_TRUE(std::ranges::any_of(narrow, [&](const PlanProblem& p) { return p.from.X == slant_at_0; }))
       << "the left tip stays";
   const std::int32_t tip = region_at(after, {left.x1 - 0.5, -1.8});

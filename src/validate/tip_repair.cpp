@@ -91,6 +91,10 @@ constexpr double kHair_mm = 1e-9;
 // 4,278, tips that would have parted such a sliver staying.
 constexpr double kSliver_mm = 0.01;
 
+// A forked tip's branches are followed this many vertex lines in all, at most: a tip is at most its
+// reach long, and a face with more vertex lines across it than this within its reach is no tip.
+constexpr int kMaxBranchSteps = 256;
+
 // A tip of a face: where the cut across it goes (at u, from v_lo to v_hi) and a point inside it.
 struct Tip {
   std::size_t region;
@@ -125,6 +129,8 @@ std::optional<Tip> tip_of(const std::vector<Ring>& rings, std::size_t region, bo
     const UvEdge* lo = nullptr;
     const UvEdge* hi = nullptr;
     std::optional<std::pair<FT, FT>> first_inside;  // a point inside the first stretch walked
+    std::ptrdiff_t fork_k = -1;                     // a Fork's vertex line (us), and the stretch there
+    FT fork_lo, fork_hi;
   };
   const auto walk = [&](int step) {
     Walk w;
@@ -136,7 +142,7 @@ std::optional<Tip> tip_of(const std::vector<Ring>& rings, std::size_t region, bo
       std::optional<Stretch> next;
       for (const Stretch& s : stretches_at(edges, mid))
         if (s.lo->v_at(u0) <= hi && lo <= s.hi->v_at(u0)) {
-          if (next) return w.end = End::Fork, w;
+          if (next) return w.end = End::Fork, w.fork_k = k, w.fork_lo = lo, w.fork_hi = hi, w;
           next = s;
         }
       if (!next) return w.end = End::Gone, w;
@@ -158,11 +164,52 @@ std::optional<Tip> tip_of(const std::vector<Ring>& rings, std::size_t region, bo
                                                                                                       : End::Far;
     return w;
   };
+  // Whether the face beyond the vertex line us[k], from its stretch [lo, hi] there on `step`'s side,
+  // ends within reach, however it branches, under W across all the way.
+  const auto ends_within = [&](std::ptrdiff_t k, const FT& lo, const FT& hi, int step) {
+    struct Branch {
+      std::ptrdiff_t k;
+      FT lo, hi;
+    };
+    std::vector<Branch> open{{k, lo, hi}};
+    for (int walked = 0; !open.empty(); ++walked) {
+      if (walked > kMaxBranchSteps) return false;
+      const Branch b = open.back();
+      open.pop_back();
+      const auto& u0 = us[static_cast<std::size_t>(b.k)];
+      if (CGAL::abs(u0 - chord.at) > reach) return false;
+      if (b.k + step < 0 || b.k + step >= static_cast<std::ptrdiff_t>(us.size())) continue;
+      const FT& u1 = us[static_cast<std::size_t>(b.k + step)];
+      for (const Stretch& s : stretches_at(edges, (u0 + u1) / 2))
+        if (s.lo->v_at(u0) <= b.hi && b.lo <= s.hi->v_at(u0)) {
+          if (!(s.hi->v_at(u0) - s.lo->v_at(u0) < W && s.hi->v_at(u1) - s.lo->v_at(u1) < W)) return false;
+          open.push_back({b.k + step, s.lo->v_at(u1), s.hi->v_at(u1)});
+        }
+    }
+    return true;
+  };
+  // Where the face forks on a walk (a corner of another face pokes into it), a branch that ends
+  // within reach, under W across all the way, is a tip parted where it forks, on that vertex line.
+  const auto branch_tip = [&](const Walk& w, int step) -> std::optional<Tip> {
+    if (w.end != End::Fork) return std::nullopt;
+    const FT &u0 = us[static_cast<std::size_t>(w.fork_k)], &u1 = us[static_cast<std::size_t>(w.fork_k + step)];
+    const FT mid = (u0 + u1) / 2;
+    for (const Stretch& s : stretches_at(edges, mid)) {
+      const FT lo = s.lo->v_at(u0), hi = s.hi->v_at(u0);
+      if (lo <= w.fork_hi && w.fork_lo <= hi && lo < hi && hi - lo < W && s.hi->v_at(u1) - s.lo->v_at(u1) < W &&
+          ends_within(w.fork_k + step, s.lo->v_at(u1), s.hi->v_at(u1), step))
+        return Tip{region, along_Y, u0, lo, hi, mid, (s.lo->v_at(mid) + s.hi->v_at(mid)) / 2};
+    }
+    return std::nullopt;
+  };
   const Walk down = walk(-1), up = walk(1);
   const auto widens = [](const Walk& w) { return w.end == End::Wide || w.end == End::Step; };
   const bool cut_up = down.end == End::Gone && widens(up);
   const bool cut_down = up.end == End::Gone && widens(down);
-  if (!cut_up && !cut_down) return std::nullopt;
+  if (!cut_up && !cut_down) {
+    if (std::optional<Tip> tip = branch_tip(down, -1)) return tip;
+    return branch_tip(up, 1);
+  }
   const Walk& wide_side = cut_up ? up : down;
   const Walk& tip_side = cut_up ? down : up;
   if (CGAL::abs(wide_side.u - chord.at) > reach) return std::nullopt;
