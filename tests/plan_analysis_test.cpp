@@ -556,6 +556,39 @@ TEST(TipRepair, ABranchOfAForkThatEndsIsPartedWhereItForks) {
   EXPECT_EQ(cuts_on_P, 1);
 }
 
+TEST(TipRepair, RoundsGoOnWhileTheLastTookEnoughPlacesOff) {
+  // The box's top H(h) ends on the right in a tip (narrower than W along Y) and hangs a spike of
+  // itself 2 mm down into the front face, 1 mm wide at the fold and 0.5 mm at its middle (narrower
+  // than W along X). One tip a face a round: the first round parts the right tip (2 places -> 1),
+  // the second the spike along the fold's line, which then runs the whole width. Asked for rounds
+  // that take at least 60 % of the places off, the first (50 %) is the last.
+  const Box b{.d = 10};
+  const double W = 3, spike_X = b.x0 + 10, top = b.h - b.d;
+  std::vector<PlanPolyline> lines = box_with_a_tip(b, 20, 2);
+  line_at(lines, top).points = {{b.x0, top}, {spike_X, top}};
+  lines.push_back({LineKind::Mountain, {{spike_X + 1, top}, {b.x1, top}}});
+  lines.push_back({LineKind::Cut,
+                   {{spike_X, top},
+                    {spike_X + 0.25, top - 1},
+                    {spike_X + 0.5, top - 2},
+                    {spike_X + 0.75, top - 1},
+                    {spike_X + 1, top}}});
+  const PlanAnalysis before = analyze_plan(lines, {.min_strip_mm = W});
+  ASSERT_EQ(problems_of(before, PlanProblemKind::NarrowStrip).size(), 2u) << listing(before);
+
+  const TipRepair all = blunt_narrow_tips(lines, {.min_strip_mm = W});
+  EXPECT_EQ(all.rounds, 2);
+  EXPECT_EQ(all.tips, 2);
+  const PlanAnalysis after = analyze_plan(all.lines, {.min_strip_mm = W});
+  EXPECT_TRUE(after.problems.empty()) << listing(after);
+  EXPECT_NEAR(after.mountain_mm, b.x1 - 20 * (W + 0.01) / b.d - b.x0, 1e-9);
+
+  const TipRepair first = blunt_narrow_tips(lines, {.min_strip_mm = W, .min_round_gain = 0.6});
+  EXPECT_EQ(first.rounds, 1);
+  EXPECT_EQ(first.tips, 1);
+  EXPECT_EQ(problems_of(analyze_plan(first.lines, {.min_strip_mm = W}), PlanProblemKind::NarrowStrip).size(), 1u);
+}
+
 TEST(TipRepair, AStripNarrowerThanWAllAlongIsNoTipAndStays) {
   Box b;
   b.d = 2;  // the top face is 2 mm high from end to end

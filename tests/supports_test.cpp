@@ -721,7 +721,7 @@ TEST(Supports, AFaceNoNeighbourCanTakeIsNeverGivenAway) {
   const DesignResult r = design(dir / "scrambled.off", options);
   ASSERT_FALSE(r.supports.spared_faces.empty());  // the case: faces the holes may not take
   expect_exact_and_standing(r.plan);
-  for (const JoinedFace& joined : r.supports.joined_faces) EXPECT_TRUE(std::isfinite(joined.joined_cost));
+  for (const JoinedFace& face : r.supports.joined_faces) EXPECT_TRUE(std::isfinite(face.joined_cost));
 }
 
 // The sphere's rim crumbs that no support holds (6, each under 1 % of the model) are given away

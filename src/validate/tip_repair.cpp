@@ -190,6 +190,10 @@ std::optional<Tip> tip_of(const std::vector<Ring>& rings, std::size_t region, bo
   };
   // Where the face forks on a walk (a corner of another face pokes into it), a branch that ends
   // within reach, under W across all the way, is a tip parted where it forks, on that vertex line.
+  // At W = 3 mm over the 37 models: places 3,961 -> 3,922, chords under W 45,389 -> 44,410, the
+  // mean p95 1.717 -> 1.718 W. (Parted along the chord itself where the face steps wide there, as
+  // well, places went to 3,775, but tips given across the model's silhouettes took the box turned
+  // 30 degrees' back edges under 90 % drawn: design_model_edges_test.cpp.)
   const auto branch_tip = [&](const Walk& w, int step) -> std::optional<Tip> {
     if (w.end != End::Fork) return std::nullopt;
     const FT &u0 = us[static_cast<std::size_t>(w.fork_k)], &u1 = us[static_cast<std::size_t>(w.fork_k + step)];
@@ -545,6 +549,7 @@ TipRepair blunt_narrow_tips(const std::vector<PlanPolyline>& lines, const TipRep
       kept = keep_round(cutter, out.lines);
     }
     if (!kept) break;
+    const auto places_before = narrow(current->result), places_after = narrow(kept->analyzer->result);
     // Each new region comes from the region of the cut arrangement its inside point lies in.
     std::vector<PlanPoint> origin;
     for (std::size_t i = 0; i < kept->cut_face.size(); ++i)
@@ -555,6 +560,8 @@ TipRepair blunt_narrow_tips(const std::vector<PlanPolyline>& lines, const TipRep
     out.tips += kept->tips;
     ++out.rounds;
     current = std::move(kept->analyzer);
+    if (static_cast<double>(places_before - places_after) < options.min_round_gain * static_cast<double>(places_before))
+      break;
   }
   out.analysis = std::move(current->result);
   return out;
