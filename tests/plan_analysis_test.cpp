@@ -662,6 +662,13 @@ TEST(TipRepair, ATipGoesOnlyToAFaceWhosePlaneKeepsItOnTheCard) {
   const auto narrow = problems_of(after, PlanProblemKind::NarrowStrip);
   ASSERT_EQ(narrow.size(), 2u) << listing(after);
   EXPECT_EQ(after.errors, 2) << listing(after);
+  int cuts_on_the_fold = 0;  // the cut parting the wedge, from the tip's side to the box's
+  for (const PlanPolyline& line : repaired.lines)
+    for (std::size_t i = 0; i + 1 < line.points.size(); ++i)
+      cuts_on_the_fold += line.kind == LineKind::Cut && line.points[i].Y == 0 && line.points[i + 1].Y == 0 &&
+                          std::min(line.points[i].X, line.points[i + 1].X) == slant_at_0 &&
+                          std::max(line.points[i].X, line.points[i + 1].X) == left.x1;
+  EXPECT_EQ(cuts_on_the_fold, 1);
   const std::int32_t floor_wedge = region_at(after, {left.x1 - 0.2, -1});
   ASSERT_GE(floor_wedge, 0);
   EXPECT_EQ(after.regions[static_cast<std::size_t>(floor_wedge)].orientation, Orientation::V);

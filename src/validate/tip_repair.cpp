@@ -91,8 +91,8 @@ constexpr double kHair_mm = 1e-9;
 // 4,278, tips that would have parted such a sliver staying.
 constexpr double kSliver_mm = 0.01;
 
-// A forked tip's branches are followed this many vertex lines in all, at most: a tip is at most its
-// reach long, and a face with more vertex lines across it than this within its reach is no tip.
+// A forked tip's branches are followed this many steps (a branch from one vertex line to the next)
+// in all, at most: a bound on the work for a face with very many vertex lines within a tip's reach.
 constexpr int kMaxBranchSteps = 256;
 
 // A tip of a face: where the cut across it goes (at u, from v_lo to v_hi) and a point inside it.
@@ -173,7 +173,7 @@ std::optional<Tip> tip_of(const std::vector<Ring>& rings, std::size_t region, bo
     };
     std::vector<Branch> open{{k, lo, hi}};
     for (int walked = 0; !open.empty(); ++walked) {
-      if (walked > kMaxBranchSteps) return false;
+      if (walked >= kMaxBranchSteps) return false;
       const Branch b = open.back();
       open.pop_back();
       const auto& u0 = us[static_cast<std::size_t>(b.k)];
@@ -189,11 +189,13 @@ std::optional<Tip> tip_of(const std::vector<Ring>& rings, std::size_t region, bo
     return true;
   };
   // Where the face forks on a walk (a corner of another face pokes into it), a branch that ends
-  // within reach, under W across all the way, is a tip parted where it forks, on that vertex line.
-  // At W = 3 mm over the 37 models: places 3,961 -> 3,922, chords under W 45,389 -> 44,410, the
-  // mean p95 1.717 -> 1.718 W. (Parted along the chord itself where the face steps wide there, as
-  // well, places went to 3,775, but tips given across the model's silhouettes took the box turned
-  // 30 degrees' back edges under 90 % drawn: design_model_edges_test.cpp.)
+  // within reach of the chord, under W across all the way, is a tip parted where it forks, on that
+  // vertex line (a branch of no length there leaves nothing to cut). At W = 3 mm over the 37 models:
+  // places 3,961 -> 3,922, chords under W 45,389 -> 44,410, the mean p95 1.717 -> 1.718 W, the
+  // model-edge tests as they were (design_model_edges_test.cpp), a fork on the chord's own line
+  // included. Parting a face that steps wide on the chord's line without a fork (above) as well
+  // took places to 3,775, but its spikes, given across the model's silhouettes, took the turned
+  // box's back edges under 90 % drawn.
   const auto branch_tip = [&](const Walk& w, int step) -> std::optional<Tip> {
     if (w.end != End::Fork) return std::nullopt;
     const FT &u0 = us[static_cast<std::size_t>(w.fork_k)], &u1 = us[static_cast<std::size_t>(w.fork_k + step)];
