@@ -132,6 +132,15 @@ std::optional<Tip> tip_of(const std::vector<Ring>& rings, std::size_t region, bo
     std::ptrdiff_t fork_k = -1;                     // a Fork's vertex line (us), and the stretch there
     FT fork_lo, fork_hi;
   };
+  // The stretches of the face in the slab from the vertex line us[k] to the next on `step`'s side
+  // that meet [lo, hi], its stretch on us[k].
+  const auto stretches_from = [&](std::ptrdiff_t k, int step, const FT& lo, const FT& hi) {
+    const FT &u0 = us[static_cast<std::size_t>(k)], &u1 = us[static_cast<std::size_t>(k + step)];
+    std::vector<Stretch> met;
+    for (const Stretch& s : stretches_at(edges, (u0 + u1) / 2))
+      if (s.lo->v_at(u0) <= hi && lo <= s.hi->v_at(u0)) met.push_back(s);
+    return met;
+  };
   const auto walk = [&](int step) {
     Walk w;
     FT lo = chord.lo, hi = chord.hi;
@@ -139,13 +148,10 @@ std::optional<Tip> tip_of(const std::vector<Ring>& rings, std::size_t region, bo
       const FT &u0 = us[static_cast<std::size_t>(k)], &u1 = us[static_cast<std::size_t>(k + step)];
       if (CGAL::abs(u0 - chord.at) > reach) return w;
       const FT mid = (u0 + u1) / 2;
-      std::optional<Stretch> next;
-      for (const Stretch& s : stretches_at(edges, mid))
-        if (s.lo->v_at(u0) <= hi && lo <= s.hi->v_at(u0)) {
-          if (next) return w.end = End::Fork, w.fork_k = k, w.fork_lo = lo, w.fork_hi = hi, w;
-          next = s;
-        }
-      if (!next) return w.end = End::Gone, w;
+      const std::vector<Stretch> met = stretches_from(k, step, lo, hi);
+      if (met.size() > 1) return w.end = End::Fork, w.fork_k = k, w.fork_lo = lo, w.fork_hi = hi, w;
+      if (met.empty()) return w.end = End::Gone, w;
+      const Stretch* next = &met.front();
       if (!w.first_inside) w.first_inside = {mid, (next->lo->v_at(mid) + next->hi->v_at(mid)) / 2};
       const FT w0 = next->hi->v_at(u0) - next->lo->v_at(u0), w1 = next->hi->v_at(u1) - next->lo->v_at(u1);
       if (w0 >= wide) {  // it widens at a step of its sides: the tip ends there, as wide as it was
@@ -180,11 +186,10 @@ std::optional<Tip> tip_of(const std::vector<Ring>& rings, std::size_t region, bo
       if (CGAL::abs(u0 - chord.at) > reach) return false;
       if (b.k + step < 0 || b.k + step >= static_cast<std::ptrdiff_t>(us.size())) continue;
       const FT& u1 = us[static_cast<std::size_t>(b.k + step)];
-      for (const Stretch& s : stretches_at(edges, (u0 + u1) / 2))
-        if (s.lo->v_at(u0) <= b.hi && b.lo <= s.hi->v_at(u0)) {
-          if (!(s.hi->v_at(u0) - s.lo->v_at(u0) < W && s.hi->v_at(u1) - s.lo->v_at(u1) < W)) return false;
-          open.push_back({b.k + step, s.lo->v_at(u1), s.hi->v_at(u1)});
-        }
+      for (const Stretch& s : stretches_from(b.k, step, b.lo, b.hi)) {
+        if (!(s.hi->v_at(u0) - s.lo->v_at(u0) < W && s.hi->v_at(u1) - s.lo->v_at(u1) < W)) return false;
+        open.push_back({b.k + step, s.lo->v_at(u1), s.hi->v_at(u1)});
+      }
     }
     return true;
   };
@@ -200,9 +205,9 @@ std::optional<Tip> tip_of(const std::vector<Ring>& rings, std::size_t region, bo
     if (w.end != End::Fork) return std::nullopt;
     const FT &u0 = us[static_cast<std::size_t>(w.fork_k)], &u1 = us[static_cast<std::size_t>(w.fork_k + step)];
     const FT mid = (u0 + u1) / 2;
-    for (const Stretch& s : stretches_at(edges, mid)) {
+    for (const Stretch& s : stretches_from(w.fork_k, step, w.fork_lo, w.fork_hi)) {
       const FT lo = s.lo->v_at(u0), hi = s.hi->v_at(u0);
-      if (lo <= w.fork_hi && w.fork_lo <= hi && lo < hi && hi - lo < W && s.hi->v_at(u1) - s.lo->v_at(u1) < W &&
+      if (lo < hi && hi - lo < W && s.hi->v_at(u1) - s.lo->v_at(u1) < W &&
           ends_within(w.fork_k + step, s.lo->v_at(u1), s.hi->v_at(u1), step))
         return Tip{region, along_Y, u0, lo, hi, mid, (s.lo->v_at(mid) + s.hi->v_at(mid)) / 2};
     }
