@@ -151,19 +151,19 @@ std::optional<Tip> tip_of(const std::vector<Ring>& rings, std::size_t region, bo
       const std::vector<Stretch> met = stretches_from(k, step, lo, hi);
       if (met.size() > 1) return w.end = End::Fork, w.fork_k = k, w.fork_lo = lo, w.fork_hi = hi, w;
       if (met.empty()) return w.end = End::Gone, w;
-      const Stretch* next = &met.front();
-      if (!w.first_inside) w.first_inside = {mid, (next->lo->v_at(mid) + next->hi->v_at(mid)) / 2};
-      const FT w0 = next->hi->v_at(u0) - next->lo->v_at(u0), w1 = next->hi->v_at(u1) - next->lo->v_at(u1);
+      const Stretch& next = met.front();
+      if (!w.first_inside) w.first_inside = {mid, (next.lo->v_at(mid) + next.hi->v_at(mid)) / 2};
+      const FT w0 = next.hi->v_at(u0) - next.lo->v_at(u0), w1 = next.hi->v_at(u1) - next.lo->v_at(u1);
       if (w0 >= wide) {  // it widens at a step of its sides: the tip ends there, as wide as it was
         w.end = End::Step, w.u = u0, w.v_lo = lo, w.v_hi = hi;
         return w;
       }
       if (w1 >= wide) {
-        w.end = End::Wide, w.lo = next->lo, w.hi = next->hi;
+        w.end = End::Wide, w.lo = next.lo, w.hi = next.hi;
         w.u = u0 + (u1 - u0) * (wide - w0) / (w1 - w0);
         return w;
       }
-      lo = next->lo->v_at(u1), hi = next->hi->v_at(u1);
+      lo = next.lo->v_at(u1), hi = next.hi->v_at(u1);
     }
     // Past the face's last vertex: it ends there, which must be within reach too.
     w.end = CGAL::abs(us[static_cast<std::size_t>(step > 0 ? us.size() - 1 : 0)] - chord.at) <= reach ? End::Gone
@@ -182,7 +182,7 @@ std::optional<Tip> tip_of(const std::vector<Ring>& rings, std::size_t region, bo
       if (walked >= kMaxBranchSteps) return false;
       const Branch b = open.back();
       open.pop_back();
-      const auto& u0 = us[static_cast<std::size_t>(b.k)];
+      const FT& u0 = us[static_cast<std::size_t>(b.k)];
       if (CGAL::abs(u0 - chord.at) > reach) return false;
       if (b.k + step < 0 || b.k + step >= static_cast<std::ptrdiff_t>(us.size())) continue;
       const FT& u1 = us[static_cast<std::size_t>(b.k + step)];
