@@ -480,6 +480,81 @@ TEST(TipRepair, ATipNarrowerThanWIsPartedOffWhereTheFaceIsWWide) {
   EXPECT_EQ(far.tips, 0);
 }
 
+TEST(TipRepair, WhereTheNarrowestChordPartsNoTipTheNextNarrowestMay) {
+  // The box's top H(h) ends on the right in a tip 20 mm long, W + margin high 6.02 mm from its end;
+  // its slanted side has vertices 0.5 mm and 3 mm from the end. A tip's reach is 4 mm: from the
+  // narrowest chord, 0.5 mm from the end, the face widens to W 5.52 mm away, out of reach, so that
+  // chord parts nothing; from the next, 3 mm from the end, the face ends 3 mm one way and widens
+  // 3.02 mm the other. That chord parts the tip, where the face is W + margin high, and the plan
+  // has no place narrower than W left. Trying the narrowest chord alone, no tip goes.
+  const Box b{.d = 10};
+  const double run = 20, W = 3, margin = 0.01, reach = 4;
+  std::vector<PlanPolyline> lines = box_with_a_tip(b, run, 3);
+  PlanPolyline& slanted = lines.back();
+  slanted.points.insert(slanted.points.begin() + 1, {b.x1 - 0.5, b.h - b.d + b.d * 0.5 / run});
+  const PlanAnalysis before = analyze_plan(lines, {.min_strip_mm = W});
+  const auto narrow = problems_of(before, PlanProblemKind::NarrowStrip);
+  ASSERT_EQ(narrow.size(), 1u) << listing(before);
+  EXPECT_EQ(narrow[0].from.X, b.x1 - 0.5);
+  EXPECT_EQ(narrow[0].narrow_chords, 2);
+
+  const TipRepair repaired = blunt_narrow_tips(lines, {.min_strip_mm = W, .margin_mm = margin, .max_tip_mm = reach});
+  EXPECT_EQ(repaired.tips, 1);
+  const PlanAnalysis after = analyze_plan(repaired.lines, {.min_strip_mm = W});
+  EXPECT_TRUE(after.problems.empty()) << listing(after);
+  const double cut_X = b.x1 - run * (W + margin) / b.d;
+  int cuts_there = 0;
+  for (const PlanPolyline& line : repaired.lines)
+    for (std::size_t i = 0; i + 1 < line.points.size(); ++i)
+      cuts_there += line.kind == LineKind::Cut && std::abs(line.points[i].X - cut_X) < 1e-9 &&
+                    std::abs(line.points[i + 1].X - cut_X) < 1e-9;
+  EXPECT_EQ(cuts_there, 1);
+  const std::int32_t tip = region_at(after, {b.x1 - 1, b.h - b.d + 0.2});
+  ASSERT_GE(tip, 0);
+  EXPECT_EQ(tip, region_at(after, {b.mid(), 0.5 * (b.h - b.d)})) << "the tip joins the front V(d)";
+}
+
+TEST(TipRepair, ATipThatGaveItsNeighbourAPlaceGoesBackFromARoundKept) {
+  // Three boxes, each top face ending on the right in a tip. The middle and right tips go cleanly
+  // (a place fewer each). The left top also has a strip 0.5 mm high under a notch, which stays; its
+  // tip's slanted side has a vertex 5.5 mm from its end, 0.52 mm from where the tip is parted, so
+  // that the front face taking the tip becomes narrower than W along X there. The round of all three
+  // has 3 -> 2 places: kept; without the left tip, 1: kept instead.
+  const Box left{.d = 10, .x0 = 10, .x1 = 60}, middle{.d = 10, .x0 = 80, .x1 = 130},
+      right{.d = 10, .x0 = 150, .x1 = 200};
+  const double run = 20, W = 3;
+  std::vector<PlanPolyline> lines = {
+      {LineKind::Outline, {{0, -kHalf}, {kWidth, -kHalf}, {kWidth, kHalf}, {0, kHalf}, {0, -kHalf}}},
+      {LineKind::Valley, {{0, 0}, {left.x0, 0}}},
+      {LineKind::Valley, {{left.x1, 0}, {middle.x0, 0}}},
+      {LineKind::Valley, {{middle.x1, 0}, {right.x0, 0}}},
+      {LineKind::Valley, {{right.x1, 0}, {kWidth, 0}}}};
+  std::vector<PlanPolyline> tipped = box_with_a_tip(left, run, 3);
+  PlanPolyline& slanted = tipped.back();
+  slanted.points.insert(slanted.points.begin() + 2, {left.x1 - 5.5, left.h - left.d + left.d * 5.5 / run});
+  const double top = left.h, floor_of_notch = left.h - left.d + 0.5;
+  line_at(tipped, top).points = {{left.x0, top}, {left.x0 + 5, top}};
+  tipped.push_back(
+      {LineKind::Cut,
+       {{left.x0 + 5, top}, {left.x0 + 5, floor_of_notch}, {left.x0 + 15, floor_of_notch}, {left.x0 + 15, top}}});
+  tipped.push_back({LineKind::Valley, {{left.x0 + 15, top}, {left.x1 - run, top}}});
+  add_box(lines, tipped);
+  add_box(lines, box_with_a_tip(middle, run, 2));
+  add_box(lines, box_with_a_tip(right, run, 2));
+  const PlanAnalysis before = analyze_plan(lines, {.min_strip_mm = W});
+  ASSERT_EQ(problems_of(before, PlanProblemKind::NarrowStrip).size(), 3u) << listing(before);
+  ASSERT_EQ(before.errors, 3) << listing(before);
+
+  const TipRepair repaired = blunt_narrow_tips(lines, {.min_strip_mm = W, .rounds = 1});
+  EXPECT_EQ(repaired.rounds, 1);
+  EXPECT_EQ(repaired.tips, 2);
+  const PlanAnalysis after = analyze_plan(repaired.lines, {.min_strip_mm = W});
+  const auto narrow = problems_of(after, PlanProblemKind::NarrowStrip);
+  ASSERT_EQ(narrow.size(), 1u) << listing(after);
+  EXPECT_EQ(narrow[0].region, region_at(after, {left.mid(), top - 1})) << "the left top, with its notch and tip";
+  EXPECT_EQ(narrow[0].value_mm, 0.5);
+}
+
 // A tip is cut where its face is W + margin wide. With a vertex of the face (on its slanted side)
 // 0.005 mm from there, the cut goes on that vertex's line rather than part a sliver that thin: past
 // it, or short of it (toward the tip) while the face is W wide there; else the tip stays. A second

@@ -381,12 +381,14 @@ bool Analyzer::crosses_between(std::size_t r, const FT& X, const FT& lo, const F
 }
 
 void Analyzer::check_strips() {
-  const std::vector<FaceChords> chords = narrowest_chords(rings, cut_out, W);
+  std::vector<FaceChords> chords = narrowest_chords(rings, cut_out, W);
   narrowest.assign(faces.size(), {});
+  other_chords.assign(faces.size(), {});
   for (std::size_t r = 0; r < faces.size(); ++r)
     for (const bool along_Y : {true, false}) {
       const std::size_t axis = along_Y ? 0 : 1;
       const int narrow = chords[r].narrow[axis];
+      other_chords[r][axis] = std::move(chords[r].others[axis]);
       const std::optional<Chord>& chord = narrowest[r][axis] = chords[r].narrowest[axis];
       if (!chord) continue;
       const Point a = along_Y ? Point(chord->at, chord->lo) : Point(chord->lo, chord->at);

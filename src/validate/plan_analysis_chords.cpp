@@ -40,16 +40,12 @@ NT v_at(const NT& u0, const NT& v0, const NT& u1, const NT& v1, const NT& u) {
   return u == u0 ? v0 : u == u1 ? v1 : crossing_v(u0, v0, u1, v1, u);
 }
 
-// What the chord search found: where the narrowest chord is (the vertex on its line and the face's
-// edges its ends lie on, each by its ends, u0 first: the exact chord is made from them), if any, and
-// how many chords narrower than W there are.
+// What the chord search found: where the narrowest chord is, if any, where the others narrower than
+// W are, and how many there are.
 struct ChordSearch {
-  struct Place {
-    const Point* vertex;
-    std::array<const Point*, 2> lo, hi;
-  };
-  std::optional<Place> narrowest;
+  std::optional<ChordPlace> narrowest;
   int narrow = 0;
+  std::vector<ChordPlace> others;  // the other chords narrower than W, in the order found
 };
 
 // The shortest chord through a vertex, along Y (vertical chords at each vertex X) or along X, that is
@@ -135,8 +131,13 @@ ChordSearch search_chords(const std::vector<Ring>& rings, bool along_Y, const NT
         const NT length = piece.hi.v - piece.lo.v;
         if (!CGAL::is_positive(length) || !(length < W)) continue;
         ++found.narrow;
-        if (!found.narrowest || length < best_length)
-          found.narrowest = {vertices[i].p, piece.lo.edge->ends, piece.hi.edge->ends}, best_length = length;
+        const ChordPlace place{vertices[i].p, piece.lo.edge->ends, piece.hi.edge->ends, CGAL::to_double(length)};
+        if (!found.narrowest || length < best_length) {
+          if (found.narrowest) found.others.push_back(*found.narrowest);
+          found.narrowest = place, best_length = length;
+        } else {
+          found.others.push_back(place);
+        }
       }
     i = j;
   }
@@ -151,6 +152,11 @@ FT exact_v(const std::array<const Point*, 2>& edge, bool along_Y, const FT& u) {
 }
 
 }  // namespace
+
+Chord chord_of(const ChordPlace& place, bool along_Y) {
+  const FT at = coordinate<FT>(*place.vertex, along_Y);
+  return Chord{at, exact_v(place.lo, along_Y, at), exact_v(place.hi, along_Y, at)};
+}
 
 // The searches run on the vertices' intervals, which make no lazy number and decide all but a few
 // faces' comparisons (an uncertain one throws: res_dragon_full, 31 of 4,272 searches), in parallel:
@@ -180,10 +186,9 @@ std::vector<FaceChords> narrowest_chords(const std::vector<std::vector<Ring>>& r
       if (!in) in = search_chords<FT>(rings[f], along_Y, W);
       chords[f].narrow[static_cast<std::size_t>(axis)] = in->narrow;
       if (!in->narrowest) continue;
-      const ChordSearch::Place& place = *in->narrowest;
-      const FT at = coordinate<FT>(*place.vertex, along_Y);
-      chords[f].narrowest[static_cast<std::size_t>(axis)] =
-          Chord{at, exact_v(place.lo, along_Y, at), exact_v(place.hi, along_Y, at)};
+      chords[f].narrowest[static_cast<std::size_t>(axis)] = chord_of(*in->narrowest, along_Y);
+      std::vector<ChordPlace>& others = chords[f].others[static_cast<std::size_t>(axis)] = std::move(in->others);
+      std::ranges::stable_sort(others, {}, &ChordPlace::length);
     }
   }
   return chords;

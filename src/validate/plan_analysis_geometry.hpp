@@ -77,6 +77,17 @@ struct Chord {
   exact::FT at, lo, hi;  // the chord runs from lo to hi along the measured axis, at `at` on the other
 };
 
+/// Where a chord of a face lies: the vertex on its line and the face's edges its ends lie on, each
+/// by its ends (u0 first); the exact chord is made from them (chord_of).
+struct ChordPlace {
+  const exact::Point* vertex;
+  std::array<const exact::Point*, 2> lo, hi;
+  double length;  // about: the order in which the tip repair tries a face's chords
+};
+
+/// The exact chord at `place`, along Y or along X.
+Chord chord_of(const ChordPlace& place, bool along_Y);
+
 /// A face's shortest chords through one of its vertices, along Y ([0]) and along X ([1]), longer
 /// than zero and shorter than W, if any, and how many such chords it has each way. A chord is the
 /// face's stretch on the line just before it or just after it, each side on its own (the strip
@@ -84,6 +95,7 @@ struct Chord {
 struct FaceChords {
   std::array<std::optional<Chord>, 2> narrowest;
   std::array<int, 2> narrow = {0, 0};
+  std::array<std::vector<ChordPlace>, 2> others;  // the other chords narrower than W, about narrowest first
 };
 
 /// The chords of each face the rings bound (rings[f]), none sought where skip[f] is set.
@@ -123,6 +135,7 @@ struct Analyzer {
   std::vector<FoldEdge> folds;
   std::vector<std::vector<std::size_t>> folds_of;
   std::vector<std::array<std::optional<Chord>, 2>> narrowest;  // per region, along Y and along X (check_strips)
+  std::vector<std::array<std::vector<ChordPlace>, 2>> other_chords;  // the others narrower than W (check_strips)
   PlanAnalysis result;
 
   explicit Analyzer(const AnalysisOptions& o) : options(o), tolerance(o.tolerance_mm), W(o.min_strip_mm) {}
