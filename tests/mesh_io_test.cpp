@@ -277,6 +277,31 @@ TEST(MeshIo, MalformedHeadersAreRefusedBeforeTheReaderSeesThem) {
   expect_input_error(dir / "inf.stl", "not finite");
 }
 
+// A gzip file may hold several members one after another (`cat a.gz b.gz`), read as one stream: its
+// footer gives the last member's size alone, so it is read by the stream, not at once.
+TEST(MeshIo, AGzipFileOfTwoMembersIsReadWhole) {
+  const TempDir dir;
+  const TriangleMesh box = test::box({0, 0, 0}, {1, 2, 3});
+  test::write_obj(dir / "box.obj", box);
+  std::ifstream in(dir / "box.obj", std::ios::binary);
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::size_t half = text.find("\nf ") + 1;  // the vertices, then the faces
+  test::write_text(dir / "vertices.txt", text.substr(0, half));
+  test::write_text(dir / "faces.txt", text.substr(half));
+  test::gzip_file(dir / "vertices.txt", dir / "vertices.gz");
+  test::gzip_file(dir / "faces.txt", dir / "faces.gz");
+  std::string both;
+  for (const char* part : {"vertices.gz", "faces.gz"}) {
+    std::ifstream gz(dir / part, std::ios::binary);
+    both += std::string{std::istreambuf_iterator<char>(gz), std::istreambuf_iterator<char>()};
+  }
+  test::write_text(dir / "box.obj.gz", both);
+  const LoadedMesh plain = load_mesh(dir / "box.obj"), gzipped = load_mesh(dir / "box.obj.gz");
+  EXPECT_EQ(gzipped.mesh.triangles.size(), 12u);
+  EXPECT_EQ(gzipped.mesh.positions, plain.mesh.positions);
+  EXPECT_EQ(gzipped.mesh.triangles, plain.mesh.triangles);
+}
+
 // A gzip stream is read only up to 256 MiB: a small file that unpacks to more is refused there.
 TEST(MeshIo, AGzipStreamUnpackingPast256MiBIsRefused) {
   const TempDir dir;

@@ -8,7 +8,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libopenmesh-dev libglm-dev libembree-dev libtbb-dev
-  libcli11-dev nlohmann-json3-dev libpng-dev libgif-dev zlib1g-dev
+  libcli11-dev nlohmann-json3-dev libpng-dev libgif-dev zlib1g-dev libdeflate-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libdxflib-dev libcairo2-dev fonts-dejavu-core libtinygltf-dev libmimalloc-dev
   python3 python3-ezdxf poppler-utils
