@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <functional>
 #include <glm/common.hpp>
@@ -278,7 +279,9 @@ TEST(MeshIo, MalformedHeadersAreRefusedBeforeTheReaderSeesThem) {
 }
 
 // A gzip file may hold several members one after another (`cat a.gz b.gz`), read as one stream: its
-// footer gives the last member's size alone, so it is read by the stream, not at once.
+// footer gives the last member's size alone. Here both unpack to as many bytes (a comment pads the
+// shorter), so the first member alone fills the room the footer makes: it is read whole all the
+// same, by the stream.
 TEST(MeshIo, AGzipFileOfTwoMembersIsReadWhole) {
   const TempDir dir;
   const TriangleMesh box = test::box({0, 0, 0}, {1, 2, 3});
@@ -286,8 +289,14 @@ TEST(MeshIo, AGzipFileOfTwoMembersIsReadWhole) {
   std::ifstream in(dir / "box.obj", std::ios::binary);
   const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   const std::size_t half = text.find("\nf ") + 1;  // the vertices, then the faces
-  test::write_text(dir / "vertices.txt", text.substr(0, half));
-  test::write_text(dir / "faces.txt", text.substr(half));
+  std::string vertices = text.substr(0, half), faces = text.substr(half);
+  std::string& shorter = vertices.size() < faces.size() ? vertices : faces;
+  const std::size_t pad = std::max(vertices.size(), faces.size()) - shorter.size();
+  ASSERT_GE(pad, 2u);
+  shorter.append(1, '#').append(pad - 2, ' ').append(1, '\n');
+  ASSERT_EQ(vertices.size(), faces.size());
+  test::write_text(dir / "vertices.txt", vertices);
+  test::write_text(dir / "faces.txt", faces);
   test::gzip_file(dir / "vertices.txt", dir / "vertices.gz");
   test::gzip_file(dir / "faces.txt", dir / "faces.gz");
   std::string both;
@@ -300,6 +309,20 @@ TEST(MeshIo, AGzipFileOfTwoMembersIsReadWhole) {
   EXPECT_EQ(gzipped.mesh.triangles.size(), 12u);
   EXPECT_EQ(gzipped.mesh.positions, plain.mesh.positions);
   EXPECT_EQ(gzipped.mesh.triangles, plain.mesh.triangles);
+}
+
+// A gzip file whose footer gives another size than its data unpack to is corrupt, whether read at
+// once or by the stream.
+TEST(MeshIo, AGzipFileWhoseFooterLiesIsRefused) {
+  const TempDir dir;
+  test::write_obj(dir / "box.obj", test::box({0, 0, 0}, {1, 2, 3}));
+  test::gzip_file(dir / "box.obj", dir / "box.obj.gz");
+  std::ifstream in(dir / "box.obj.gz", std::ios::binary);
+  std::string gz{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  in.close();
+  gz[gz.size() - 4] = static_cast<char>(gz[gz.size() - 4] + 1);  // one byte more than it holds
+  test::write_text(dir / "box.obj.gz", gz);
+  expect_input_error(dir / "box.obj.gz", "truncated or corrupt gzip");
 }
 
 // A gzip stream is read only up to 256 MiB: a small file that unpacks to more is refused there.

@@ -516,7 +516,7 @@ TEST(TipRepair, WhereTheNarrowestChordPartsNoTipTheNextNarrowestMay) {
 
 TEST(TipRepair, ATipThatGaveItsNeighbourAPlaceGoesBackFromARoundKept) {
   // Three boxes, each top face ending on the right in a tip. The middle and right tips go cleanly
-  // (a place fewer each). The left top also has a strip 0.5 mm high under a notch, which stays; its
+  // (a place fewer each). The left top also has a strip 2 mm high under a notch, which stays; its
   // tip's slanted side has a vertex 5.5 mm from its end, 0.52 mm from where the tip is parted, so
   // that the front face taking the tip becomes narrower than W along X there. The round of all three
   // has 3 -> 2 places: kept; without the left tip, 1: kept instead.
@@ -532,7 +532,7 @@ TEST(TipRepair, ATipThatGaveItsNeighbourAPlaceGoesBackFromARoundKept) {
   std::vector<PlanPolyline> tipped = box_with_a_tip(left, run, 3);
   PlanPolyline& slanted = tipped.back();
   slanted.points.insert(slanted.points.begin() + 2, {left.x1 - 5.5, left.h - left.d + left.d * 5.5 / run});
-  const double top = left.h, floor_of_notch = left.h - left.d + 0.5;
+  const double top = left.h, floor_of_notch = left.h - left.d + 2;
   line_at(tipped, top).points = {{left.x0, top}, {left.x0 + 5, top}};
   tipped.push_back(
       {LineKind::Cut,
@@ -552,7 +552,7 @@ TEST(TipRepair, ATipThatGaveItsNeighbourAPlaceGoesBackFromARoundKept) {
   const auto narrow = problems_of(after, PlanProblemKind::NarrowStrip);
   ASSERT_EQ(narrow.size(), 1u) << listing(after);
   EXPECT_EQ(narrow[0].region, region_at(after, {left.mid(), top - 1})) << "the left top, with its notch and tip";
-  EXPECT_EQ(narrow[0].value_mm, 0.5);
+  EXPECT_EQ(narrow[0].from.X, left.x1 - 3) << "the left tip, back, narrowest";
 }
 
 // A tip is cut where its face is W + margin wide. With a vertex of the face (on its slanted side)

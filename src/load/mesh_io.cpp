@@ -16,6 +16,8 @@
 #include <glm/geometric.hpp>
 #include <iterator>
 #include <memory>
+#include <new>
+#include <optional>
 #include <sstream>
 #include <string_view>
 
@@ -190,23 +192,37 @@ std::size_t unpacked_size_hint(const std::string& packed) {
       std::min({std::uintmax_t{hint}, std::uintmax_t{1032} * packed.size(), kLargestMeshBytes + 1}));
 }
 
-// Unpacked at once by libdeflate into the room its size hint makes, where that hint is right and the
-// file one member: unpacking res_dragon_full 183 -> 128 ms, bad_motorbike 64 -> 40 ms (loading them
-// 616 -> 552 and 393 -> 343 ms, medians of 7). Else (several members, a hint that lies, corrupt
-// data) by zlib's stream, which reads them all and names what is wrong.
-std::string read_gzipped(const std::filesystem::path& file) {
+// A gzip file unpacked at once by libdeflate into the room its size hint makes, where that hint is
+// right and the file one member: unpacking res_dragon_full 183 -> 128 ms, bad_motorbike 64 -> 40 ms
+// (loading them 616 -> 552 and 393 -> 343 ms, medians of 7); else none (several members, a hint
+// that lies, corrupt data, no room), and zlib's stream reads it (read_gzipped).
+std::optional<std::string> unpacked_at_once(const std::filesystem::path& file) {
+  std::error_code error;
+  if (const std::uintmax_t size = std::filesystem::file_size(file, error); error || size > kLargestMeshBytes)
+    return std::nullopt;
   const std::string packed = read_plain(file);
-  if (const std::size_t hint = unpacked_size_hint(packed); hint > 0 && hint <= kLargestMeshBytes) {
-    std::string bytes(hint, '\0');
-    const std::unique_ptr<libdeflate_decompressor, decltype(&libdeflate_free_decompressor)> unpacker(
-        libdeflate_alloc_decompressor(), &libdeflate_free_decompressor);
-    std::size_t read = 0, written = 0;
-    if (unpacker &&
-        libdeflate_gzip_decompress_ex(unpacker.get(), packed.data(), packed.size(), bytes.data(), bytes.size(), &read,
-                                      &written) == LIBDEFLATE_SUCCESS &&
-        read == packed.size() && written == bytes.size())
-      return bytes;
+  const std::size_t hint = unpacked_size_hint(packed);
+  if (hint == 0 || hint > kLargestMeshBytes) return std::nullopt;
+  std::string bytes;
+  try {
+    bytes.resize(hint);
+  } catch (const std::bad_alloc&) {
+    return std::nullopt;
   }
+  const std::unique_ptr<libdeflate_decompressor, decltype(&libdeflate_free_decompressor)> unpacker(
+      libdeflate_alloc_decompressor(), &libdeflate_free_decompressor);
+  std::size_t read = 0, written = 0;
+  if (!unpacker || libdeflate_gzip_decompress_ex(unpacker.get(), packed.data(), packed.size(), bytes.data(),
+                                                 bytes.size(), &read, &written) != LIBDEFLATE_SUCCESS)
+    return std::nullopt;
+  if (read != packed.size() || written != bytes.size()) return std::nullopt;  // another member follows
+  return bytes;
+}
+
+// Several members, a hint that lies or corrupt data: zlib's stream reads all members and names what
+// is wrong.
+std::string read_gzipped(const std::filesystem::path& file) {
+  if (std::optional<std::string> bytes = unpacked_at_once(file)) return std::move(*bytes);
   gzFile gz = gzopen(file.c_str(), "rb");
   if (!gz) fail(file, "cannot open file");
   std::string bytes;

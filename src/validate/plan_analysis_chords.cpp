@@ -49,8 +49,8 @@ struct ChordSearch {
 };
 
 // The shortest chord through a vertex, along Y (vertical chords at each vertex X) or along X, that is
-// longer than zero (a corner's tip is no strip) and shorter than W, on one number type, and how many
-// such chords there are. A chord is a stretch of the face along the
+// longer than zero (a corner's tip is no strip) and shorter than W, on one number type, where the
+// other such chords are, and how many there are. A chord is a stretch of the face along the
 // line just before it or just after it (half-open crossing rules on each side), each side on its
 // own: where a side of the face runs along the line, as a notch's wall does, the face on the line's
 // other side may be narrower than the closed face on the line. Taken as the union of the two sides,

@@ -78,7 +78,8 @@ struct Chord {
 };
 
 /// Where a chord of a face lies: the vertex on its line and the face's edges its ends lie on, each
-/// by its ends (u0 first); the exact chord is made from them (chord_of).
+/// by its ends (u0 first); the exact chord is made from them (chord_of). It points into the rings
+/// searched, and holds while they do, unchanged.
 struct ChordPlace {
   const exact::Point* vertex;
   std::array<const exact::Point*, 2> lo, hi;
