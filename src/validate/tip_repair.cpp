@@ -544,6 +544,7 @@ TipRepair blunt_narrow_tips(const std::vector<PlanPolyline>& lines, const TipRep
   const auto keep_round = [&](TipCutter& cutter, const std::vector<PlanPolyline>& before) -> std::optional<Kept> {
     const PlanAnalysis& was = cutter.analyzer().result;
     const double low = was.sheet.min_Y + was.main_fold_Y;  // the drawing's frame
+    const std::size_t merged_before = points_merged_in_files(before, low);
     const auto cut_faces = [&](const PlanAnalysis& now) {
       std::vector<Point> insides;
       for (const PlanRegion& region : now.regions) insides.emplace_back(region.inside.X, region.inside.Y);
@@ -560,7 +561,7 @@ TipRepair blunt_narrow_tips(const std::vector<PlanPolyline>& lines, const TipRep
     bool pruned = false;
     for (int attempt = 0;; ++attempt) {
       Kept kept{cutter.lines(), std::make_unique<Analyzer>(analysis), {}, cutter.tips()};
-      if (kept.tips == 0 || points_merged_in_files(kept.lines, low) > points_merged_in_files(before, low)) return best;
+      if (kept.tips == 0 || points_merged_in_files(kept.lines, low) > merged_before) return best;
       kept.analyzer->run(kept.lines);
       const PlanAnalysis& now = kept.analyzer->result;
       if (!stands(now)) return best;
