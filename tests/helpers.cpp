@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <glm/geometric.hpp>
+#include <iterator>
 #include <limits>
 #include <numbers>
 #include <random>
@@ -160,6 +161,11 @@ void write_text(const std::filesystem::path& file, const std::string& text) {
   if (!out) throw std::runtime_error("cannot write " + file.string());
 }
 
+std::string read_bytes(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 namespace {
 
 std::string number(double v) {
@@ -254,8 +260,7 @@ void write_stl_binary(const std::filesystem::path& file, const TriangleMesh& mes
 }
 
 void gzip_file(const std::filesystem::path& from, const std::filesystem::path& to) {
-  std::ifstream in(from, std::ios::binary);
-  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::string bytes = read_bytes(from);
   gzFile gz = gzopen(to.c_str(), "wb");
   if (!gz || gzwrite(gz, bytes.data(), static_cast<unsigned>(bytes.size())) != static_cast<int>(bytes.size()))
     throw std::runtime_error("cannot gzip to " + to.string());

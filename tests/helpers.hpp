@@ -78,6 +78,8 @@ struct TempDir {
 };
 
 void write_text(const std::filesystem::path& file, const std::string& text);
+/// The file's bytes, as they are.
+std::string read_bytes(const std::filesystem::path& file);
 void write_obj(const std::filesystem::path& file, const TriangleMesh& mesh);
 void write_off(const std::filesystem::path& file, const TriangleMesh& mesh);
 void write_ply_ascii(const std::filesystem::path& file, const TriangleMesh& mesh);

@@ -176,24 +176,19 @@ TEST(MeshIo, BadInputsAreReportedWithFileAndProblem) {
   const TempDir dir;
   const TriangleMesh box = test::box({0, 0, 0}, {1, 2, 3});
   test::write_stl_binary(dir / "whole.stl", box);
-  std::ifstream in(dir / "whole.stl", std::ios::binary);
-  const std::string stl{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::string stl = test::read_bytes(dir / "whole.stl");
   test::write_text(dir / "cut.stl", stl.substr(0, stl.size() - 20));
   test::write_stl_ascii(dir / "whole_ascii.stl", box);
-  std::ifstream in_ascii(dir / "whole_ascii.stl", std::ios::binary);
-  const std::string ascii{std::istreambuf_iterator<char>(in_ascii), std::istreambuf_iterator<char>()};
+  const std::string ascii = test::read_bytes(dir / "whole_ascii.stl");
   test::write_text(dir / "cut_ascii.stl", ascii.substr(0, ascii.size() / 2));
   test::write_off(dir / "whole.off", box);
-  std::ifstream in_off(dir / "whole.off", std::ios::binary);
-  const std::string off{std::istreambuf_iterator<char>(in_off), std::istreambuf_iterator<char>()};
+  const std::string off = test::read_bytes(dir / "whole.off");
   test::write_text(dir / "cut.off", off.substr(0, off.size() / 2));
   test::write_ply_ascii(dir / "whole.ply", box);
-  std::ifstream in_ply(dir / "whole.ply", std::ios::binary);
-  const std::string ply{std::istreambuf_iterator<char>(in_ply), std::istreambuf_iterator<char>()};
+  const std::string ply = test::read_bytes(dir / "whole.ply");
   test::write_text(dir / "cut.ply", ply.substr(0, ply.size() - 30));
   test::gzip_file(dir / "whole.off", dir / "whole.off.gz");
-  std::ifstream in_gz(dir / "whole.off.gz", std::ios::binary);
-  const std::string gz{std::istreambuf_iterator<char>(in_gz), std::istreambuf_iterator<char>()};
+  const std::string gz = test::read_bytes(dir / "whole.off.gz");
   test::write_text(dir / "cut.off.gz", gz.substr(0, gz.size() / 2));
   test::write_text(dir / "empty.obj", "");
   test::write_text(dir / "garbage.ply", "this is not a mesh\n");
@@ -286,8 +281,7 @@ TEST(MeshIo, AGzipFileOfTwoMembersIsReadWhole) {
   const TempDir dir;
   const TriangleMesh box = test::box({0, 0, 0}, {1, 2, 3});
   test::write_obj(dir / "box.obj", box);
-  std::ifstream in(dir / "box.obj", std::ios::binary);
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::string text = test::read_bytes(dir / "box.obj");
   const std::size_t half = text.find("\nf ") + 1;  // the vertices, then the faces
   std::string vertices = text.substr(0, half), faces = text.substr(half);
   std::string& shorter = vertices.size() < faces.size() ? vertices : faces;
@@ -300,10 +294,7 @@ TEST(MeshIo, AGzipFileOfTwoMembersIsReadWhole) {
   test::gzip_file(dir / "vertices.txt", dir / "vertices.gz");
   test::gzip_file(dir / "faces.txt", dir / "faces.gz");
   std::string both;
-  for (const char* part : {"vertices.gz", "faces.gz"}) {
-    std::ifstream gz(dir / part, std::ios::binary);
-    both += std::string{std::istreambuf_iterator<char>(gz), std::istreambuf_iterator<char>()};
-  }
+  for (const char* part : {"vertices.gz", "faces.gz"}) both += test::read_bytes(dir / part);
   test::write_text(dir / "box.obj.gz", both);
   const LoadedMesh plain = load_mesh(dir / "box.obj"), gzipped = load_mesh(dir / "box.obj.gz");
   EXPECT_EQ(gzipped.mesh.triangles.size(), 12u);
@@ -317,9 +308,7 @@ TEST(MeshIo, AGzipFileWhoseFooterLiesIsRefused) {
   const TempDir dir;
   test::write_obj(dir / "box.obj", test::box({0, 0, 0}, {1, 2, 3}));
   test::gzip_file(dir / "box.obj", dir / "box.obj.gz");
-  std::ifstream in(dir / "box.obj.gz", std::ios::binary);
-  std::string gz{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  in.close();
+  std::string gz = test::read_bytes(dir / "box.obj.gz");
   gz[gz.size() - 4] = static_cast<char>(gz[gz.size() - 4] + 1);  // one byte more than it holds
   test::write_text(dir / "box.obj.gz", gz);
   expect_input_error(dir / "box.obj.gz", "truncated or corrupt gzip");
