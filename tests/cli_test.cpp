@@ -358,11 +358,7 @@ TEST(Cli, SourceDateEpochDatesThePdfAndTwoRunsGiveTheSameBytes) {
   unsetenv("SOURCE_DATE_EPOCH");
   ASSERT_EQ(first.status, 0) << first.output;
   ASSERT_EQ(second.status, 0) << second.output;
-  auto bytes = [](const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return std::string{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  };
-  EXPECT_EQ(bytes(dir / "first" / "house.pdf"), bytes(dir / "second" / "house.pdf"));
+  EXPECT_EQ(test::read_bytes(dir / "first" / "house.pdf"), test::read_bytes(dir / "second" / "house.pdf"));
   const CommandRun info = run_shell("TZ=UTC pdfinfo -isodates " + quoted(dir / "first" / "house.pdf"));
   EXPECT_NE(info.output.find("2023-11-14T22:13:20"), std::string::npos) << info.output;
 }
@@ -380,8 +376,7 @@ TEST(Cli, FabricationOptionsReachTheFiles) {
   EXPECT_NE(info.output.find("fold style perforated (cut 1.5 mm, gap 0.5 mm, inset 0.7 mm)"), std::string::npos)
       << info.output;
   EXPECT_NE(info.output.find("card 180x240 mm, W 3 mm"), std::string::npos) << info.output;
-  std::ifstream dxf(dir / "house.dxf");
-  const std::string text{std::istreambuf_iterator<char>(dxf), std::istreambuf_iterator<char>()};
+  const std::string text = test::read_bytes(dir / "house.dxf");
   EXPECT_NE(text.find("PERF_MOUNTAIN"), std::string::npos);
   EXPECT_EQ(text.find("\nMOUNTAIN\n"), std::string::npos) << "no score layer when perforating";
 }

@@ -355,11 +355,6 @@ struct OmTraits : OpenMesh::DefaultTraits {
 };
 using OmMesh = OpenMesh::TriMesh_ArrayKernelT<OmTraits>;
 
-std::string slurp(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
 // The box folded at an angle, as thin paper and as 0.4 mm card.
 std::vector<FoldedPopup> folded_boxes(double angle_deg) {
   std::vector<FoldedPopup> popups;
@@ -401,7 +396,7 @@ TEST(Fold3d, MeshFilesReadBackWithTheSameVerticesFacesAndColours) {
     }
 
     // And by hand: OBJ lines and materials, the PLY header and its exact binary size.
-    std::istringstream lines(slurp(dir / "box.obj"));
+    std::istringstream lines(test::read_bytes(dir / "box.obj"));
     std::size_t v = 0, f = 0;
     std::set<std::string> used;
     std::string mtllib;
@@ -415,10 +410,10 @@ TEST(Fold3d, MeshFilesReadBackWithTheSameVerticesFacesAndColours) {
     EXPECT_EQ(f, popup.triangles.size());
     EXPECT_EQ(mtllib, "box.mtl");
     EXPECT_EQ(used.size(), colours.size());
-    const std::string materials = slurp(dir / "box.mtl");
+    const std::string materials = test::read_bytes(dir / "box.mtl");
     for (const std::string& m : used) EXPECT_NE(materials.find("newmtl " + m + "\n"), std::string::npos) << m;
 
-    const std::string bytes = slurp(dir / "box.ply");
+    const std::string bytes = test::read_bytes(dir / "box.ply");
     const std::size_t header_end = bytes.find("end_header\n");
     ASSERT_NE(header_end, std::string::npos);
     const std::string header = bytes.substr(0, header_end);

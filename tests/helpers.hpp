@@ -78,7 +78,7 @@ struct TempDir {
 };
 
 void write_text(const std::filesystem::path& file, const std::string& text);
-/// The file's bytes, as they are.
+/// The file's bytes, as they are. \throws std::runtime_error if it cannot be opened.
 std::string read_bytes(const std::filesystem::path& file);
 void write_obj(const std::filesystem::path& file, const TriangleMesh& mesh);
 void write_off(const std::filesystem::path& file, const TriangleMesh& mesh);

@@ -69,6 +69,28 @@ std::string listing(const PlanAnalysis& a) {
   return text;
 }
 
+// How many cut segments of the lines run along the line X (both ends within `tolerance` of it).
+int cuts_at_X(const std::vector<PlanPolyline>& lines, double X, double tolerance = 0) {
+  int n = 0;
+  for (const PlanPolyline& line : lines)
+    for (std::size_t i = 0; i + 1 < line.points.size(); ++i)
+      n += line.kind == LineKind::Cut && std::abs(line.points[i].X - X) <= tolerance &&
+           std::abs(line.points[i + 1].X - X) <= tolerance;
+  return n;
+}
+
+// How many cut segments of the lines run from a to b, either way, exactly.
+int cuts_from_to(const std::vector<PlanPolyline>& lines, PlanPoint a, PlanPoint b) {
+  const auto at = [](PlanPoint p, PlanPoint q) { return p.X == q.X && p.Y == q.Y; };
+  int n = 0;
+  for (const PlanPolyline& line : lines)
+    for (std::size_t i = 0; i + 1 < line.points.size(); ++i) {
+      const PlanPoint &p = line.points[i], &q = line.points[i + 1];
+      n += line.kind == LineKind::Cut && ((at(p, a) && at(q, b)) || (at(p, b) && at(q, a)));
+    }
+  return n;
+}
+
 double ring_area(const std::vector<PlanPoint>& ring) {
   double twice = 0;
   for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
@@ -503,12 +525,7 @@ TEST(TipRepair, WhereTheNarrowestChordPartsNoTipTheNextNarrowestMay) {
   const PlanAnalysis after = analyze_plan(repaired.lines, {.min_strip_mm = W});
   EXPECT_TRUE(after.problems.empty()) << listing(after);
   const double cut_X = b.x1 - run * (W + margin) / b.d;
-  int cuts_there = 0;
-  for (const PlanPolyline& line : repaired.lines)
-    for (std::size_t i = 0; i + 1 < line.points.size(); ++i)
-      cuts_there += line.kind == LineKind::Cut && std::abs(line.points[i].X - cut_X) < 1e-9 &&
-                    std::abs(line.points[i + 1].X - cut_X) < 1e-9;
-  EXPECT_EQ(cuts_there, 1);
+  EXPECT_EQ(cuts_at_X(repaired.lines, cut_X, 1e-9), 1);
   const std::int32_t tip = region_at(after, {b.x1 - 1, b.h - b.d + 0.2});
   ASSERT_GE(tip, 0);
   EXPECT_EQ(tip, region_at(after, {b.mid(), 0.5 * (b.h - b.d)})) << "the tip joins the front V(d)";
@@ -585,11 +602,7 @@ TEST(TipRepair, ACutWithinAHundredthOfAMillimetreOfAVertexLineGoesOnItOrNowhere)
     EXPECT_EQ(repaired.tips, c.parted ? 2 : 1);
     const PlanAnalysis after = analyze_plan(repaired.lines, {.min_strip_mm = W});
     EXPECT_EQ(after.errors, c.parted ? 0 : 1) << listing(after);
-    int cuts_there = 0;
-    for (const PlanPolyline& line : repaired.lines)
-      for (std::size_t i = 0; i + 1 < line.points.size(); ++i)
-        cuts_there += line.kind == LineKind::Cut && line.points[i].X == vertex_X && line.points[i + 1].X == vertex_X;
-    EXPECT_EQ(cuts_there, c.parted ? 1 : 0);
+    EXPECT_EQ(cuts_at_X(repaired.lines, vertex_X), c.parted ? 1 : 0);
   }
 }
 
@@ -622,13 +635,7 @@ TEST(TipRepair, ABranchOfAForkThatEndsIsPartedWhereItForks) {
   ASSERT_GE(wedge, 0);
   EXPECT_EQ(wedge, region_at(after, {b.mid(), b.h - 1}));
   EXPECT_EQ(after.regions[static_cast<std::size_t>(wedge)].orientation, Orientation::H);
-  int cuts_on_P = 0;  // the cut parting the wedge, up P's line to the fold
-  for (const PlanPolyline& line : repaired.lines)
-    for (std::size_t i = 0; i + 1 < line.points.size(); ++i)
-      cuts_on_P += line.kind == LineKind::Cut && line.points[i].X == P.X && line.points[i + 1].X == P.X &&
-                   std::min(line.points[i].Y, line.points[i + 1].Y) == P.Y &&
-                   std::max(line.points[i].Y, line.points[i + 1].Y) == b.h - b.d;
-  EXPECT_EQ(cuts_on_P, 1);
+  EXPECT_EQ(cuts_from_to(repaired.lines, P, {P.X, b.h - b.d}), 1) << "the cut parting the wedge, up to the fold";
 }
 
 TEST(TipRepair, RoundsGoOnWhileTheLastTookEnoughPlacesOff) {
@@ -737,13 +744,8 @@ TEST(TipRepair, ATipGoesOnlyToAFaceWhosePlaneKeepsItOnTheCard) {
   const auto narrow = problems_of(after, PlanProblemKind::NarrowStrip);
   ASSERT_EQ(narrow.size(), 2u) << listing(after);
   EXPECT_EQ(after.errors, 2) << listing(after);
-  int cuts_on_the_fold = 0;  // the cut parting the wedge, from the tip's side to the box's
-  for (const PlanPolyline& line : repaired.lines)
-    for (std::size_t i = 0; i + 1 < line.points.size(); ++i)
-      cuts_on_the_fold += line.kind == LineKind::Cut && line.points[i].Y == 0 && line.points[i + 1].Y == 0 &&
-                          std::min(line.points[i].X, line.points[i + 1].X) == slant_at_0 &&
-                          std::max(line.points[i].X, line.points[i + 1].X) == left.x1;
-  EXPECT_EQ(cuts_on_the_fold, 1);
+  EXPECT_EQ(cuts_from_to(repaired.lines, {slant_at_0, 0}, {left.x1, 0}), 1)
+      << "the cut parting the wedge, from the tip's side to the box's";
   const std::int32_t floor_wedge = region_at(after, {left.x1 - 0.2, -1});
   ASSERT_GE(floor_wedge, 0);
   EXPECT_EQ(after.regions[static_cast<std::size_t>(floor_wedge)].orientation, Orientation::V);

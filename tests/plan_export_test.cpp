@@ -33,11 +33,6 @@ Plan plan_of_oa_mesh(TriangleMesh oa_mesh, const Sheet& sheet) {
 
 std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 
-std::string read_text(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 nlohmann::json read_back(const std::filesystem::path& dxf, const std::filesystem::path& svg) {
   const test::CommandResult r = test::shell("/usr/bin/python3 " + std::string(ORIGAMIC_TESTS_DIR) + "/read_plan.py " +
                                             quoted(dxf) + " " + quoted(svg));
@@ -683,7 +678,7 @@ TEST_F(HousePlan, EveryFileNamesItsUnitsModelSettingsAndFoldStyle) {
   const std::string svg_text = back["svg_title"].get<std::string>() + back["svg_desc"].get<std::string>();
   const std::string svg_metadata = back["svg_metadata"];
   // PNG: walk the chunks (length, type, data, CRC) and collect the tEXt keyword/text pairs and pHYs.
-  const std::string png = read_text(dir / "plan.png");
+  const std::string png = test::read_bytes(dir / "plan.png");
   std::map<std::string, std::string> texts;
   std::string phys;
   for (std::size_t at = 8; at + 12 <= png.size();) {

@@ -706,8 +706,7 @@ TEST(Supports, AFaceWhoseHoleWouldTakeMoreThanTheHolesMayIsHeldAtAnyCost) {
 // to face -1, and the run crashed. Such a face is not given away; the plan stands.
 TEST(Supports, AFaceNoNeighbourCanTakeIsNeverGivenAway) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
-  std::ifstream in(test::models_dir() / "res_knot.off", std::ios::binary);
-  std::string knot((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string knot = test::read_bytes(test::models_dir() / "res_knot.off");
   const std::string joined = "\n3  371 358 360\n";
   const std::size_t at = knot.find(joined);
   if (at == std::string::npos) GTEST_SKIP() << "res_knot.off is not the file this test scrambles";
