@@ -44,9 +44,6 @@ using tips::FaceLines;
 using tips::Tip;
 using tips::tip_of;
 
-// ---------------------------------------------------------------------------------------------
-// Tips parted off (blunt_narrow_tips).
-
 // The bounded face of the arrangement each point lies in (none on an edge or a vertex), located all
 // at once by a sweep.
 std::vector<std::optional<Face>> faces_at(const Arrangement& arr, const std::vector<Point>& points) {
@@ -301,83 +298,102 @@ std::set<std::int32_t> narrow_places_grew(const PlanAnalysis& before, const Plan
   return grew;
 }
 
+// The places narrower than W an analysis finds.
+std::ptrdiff_t narrow_places(const PlanAnalysis& a) {
+  return std::ranges::count_if(a.problems, [](const PlanProblem& p) { return p.kind == PlanProblemKind::NarrowStrip; });
+}
+
+// Whether a plan stands: no error but places narrower than W.
+bool stands(const PlanAnalysis& a) {
+  return std::ranges::none_of(
+      a.problems, [](const PlanProblem& p) { return is_error(p.kind) && p.kind != PlanProblemKind::NarrowStrip; });
+}
+
+// A round's tips as kept: the lines, their analysis, per region of it the face of the cut
+// arrangement it lies in.
+struct KeptRound {
+  std::vector<PlanPolyline> lines;
+  std::unique_ptr<Analyzer> analyzer;
+  std::vector<std::int32_t> cut_face;
+  int tips = 0;
+};
+
+// The round the cutter has cut, as kept: its tips as they are if the plan with them stands, has
+// fewer places narrower than W, merges no more points in a file than the lines `before` did, and
+// `keep` accepts it. A round refused is tried again, up to `retries` times, without the tips from
+// or to the faces that now have more places than before. A round kept may still have given some
+// faces more places than they had: once, their tips go back and the round without them is kept if
+// it has fewer places still: over the 37 models at W = 3 mm, 26 of the 26 rounds so tried were kept
+// without them, and places 3,892 -> 3,802 (rounds stopped after one that gained under 1 %; tried
+// twice, the same). None if no try is kept.
+std::optional<KeptRound> kept_round(TipCutter& cutter, const std::vector<PlanPolyline>& before,
+                                    const TipRepairOptions& options, const TipRoundCheck& keep) {
+  const PlanAnalysis& was = cutter.analyzer().result;
+  const double low = was.sheet.min_Y + was.main_fold_Y;  // the drawing's frame
+  const std::size_t merged_before = points_merged_in_files(before, low);
+  // The cutter's tips as they are, analysed; none if there is none, two points become one in a
+  // file, or the plan no longer stands.
+  const auto analysed = [&]() -> std::optional<KeptRound> {
+    KeptRound round{cutter.lines(), std::make_unique<Analyzer>(AnalysisOptions{.min_strip_mm = options.min_strip_mm}),
+                    {}, cutter.tips()};
+    if (round.tips == 0 || points_merged_in_files(round.lines, low) > merged_before) return std::nullopt;
+    round.analyzer->run(round.lines);
+    if (!stands(round.analyzer->result)) return std::nullopt;
+    return round;
+  };
+  const auto better = [&](const KeptRound& round, const PlanAnalysis& than) {
+    const PlanAnalysis& now = round.analyzer->result;
+    return narrow_places(now) < narrow_places(than) && (!keep || keep(round.lines, now));
+  };
+  const auto cut_faces = [&](const PlanAnalysis& now) {
+    std::vector<Point> insides;
+    for (const PlanRegion& region : now.regions) insides.emplace_back(region.inside.X, region.inside.Y);
+    std::vector<std::int32_t> faces;
+    for (const std::optional<Face>& f : faces_at(cutter.analyzer().arr, insides)) faces.push_back(f ? (*f)->data() : -1);
+    return faces;
+  };
+  // Names the round's regions by the cut arrangement's faces, and takes back the tips from or to
+  // the faces that have more places than before; whether that leaves some tips, fewer than tried.
+  const auto take_back_grown = [&](KeptRound& round) {
+    round.cut_face = cut_faces(round.analyzer->result);
+    const std::set<std::int32_t> grew = narrow_places_grew(was, round.analyzer->result, round.cut_face);
+    if (grew.empty()) return false;
+    cutter.take_back(grew);
+    return cutter.tips() != 0 && cutter.tips() != round.tips;
+  };
+  std::optional<KeptRound> kept;
+  for (int attempt = 0;; ++attempt) {
+    kept = analysed();
+    if (!kept) return std::nullopt;
+    if (better(*kept, was)) break;
+    if (attempt >= options.retries || !take_back_grown(*kept)) return std::nullopt;
+  }
+  if (!take_back_grown(*kept)) return kept;
+  std::optional<KeptRound> pruned = analysed();
+  if (!pruned || !better(*pruned, kept->analyzer->result)) return kept;
+  pruned->cut_face = cut_faces(pruned->analyzer->result);
+  return pruned;
+}
+
 }  // namespace
 
 TipRepair blunt_narrow_tips(const std::vector<PlanPolyline>& lines, const TipRepairOptions& options,
                             const TipRoundCheck& keep) {
-  const AnalysisOptions analysis{.min_strip_mm = options.min_strip_mm};
   const auto lock = exact_run_lock();
-  const auto narrow = [](const PlanAnalysis& a) {
-    return std::ranges::count_if(a.problems,
-                                 [](const PlanProblem& p) { return p.kind == PlanProblemKind::NarrowStrip; });
-  };
-  const auto stands = [](const PlanAnalysis& a) {
-    return std::ranges::none_of(
-        a.problems, [](const PlanProblem& p) { return is_error(p.kind) && p.kind != PlanProblemKind::NarrowStrip; });
-  };
   TipRepair out{lines, {}, {}, 0, 0};
   // Each round's analysis is the next one's start.
-  auto current = std::make_unique<Analyzer>(analysis);
+  auto current = std::make_unique<Analyzer>(AnalysisOptions{.min_strip_mm = options.min_strip_mm});
   current->run(lines);
   for (const PlanRegion& region : current->result.regions) out.origin.push_back(region.inside);
-  // A round's tips as kept: the lines, their analysis, per region of it the face of the cut
-  // arrangement it lies in; none where the round is refused.
-  struct Kept {
-    std::vector<PlanPolyline> lines;
-    std::unique_ptr<Analyzer> analyzer;
-    std::vector<std::int32_t> cut_face;
-    int tips = 0;
-  };
-  const auto keep_round = [&](TipCutter& cutter, const std::vector<PlanPolyline>& before) -> std::optional<Kept> {
-    const PlanAnalysis& was = cutter.analyzer().result;
-    const double low = was.sheet.min_Y + was.main_fold_Y;  // the drawing's frame
-    const std::size_t merged_before = points_merged_in_files(before, low);
-    const auto cut_faces = [&](const PlanAnalysis& now) {
-      std::vector<Point> insides;
-      for (const PlanRegion& region : now.regions) insides.emplace_back(region.inside.X, region.inside.Y);
-      std::vector<std::int32_t> faces;
-      for (const std::optional<Face>& f : faces_at(cutter.analyzer().arr, insides))
-        faces.push_back(f ? (*f)->data() : -1);
-      return faces;
-    };
-    // A round kept may still have given some faces more places than they had: once, their tips go
-    // back and the round without them is kept if it has fewer places still: over the 37 models at
-    // W = 3 mm, 26 of the 26 rounds so tried were kept without them, and places 3,892 -> 3,802
-    // (rounds stopped after one that gained under 1 %; tried twice, the same).
-    std::optional<Kept> best;
-    bool pruned = false;
-    for (int attempt = 0;; ++attempt) {
-      Kept kept{cutter.lines(), std::make_unique<Analyzer>(analysis), {}, cutter.tips()};
-      if (kept.tips == 0 || points_merged_in_files(kept.lines, low) > merged_before) return best;
-      kept.analyzer->run(kept.lines);
-      const PlanAnalysis& now = kept.analyzer->result;
-      if (!stands(now)) return best;
-      const bool better = narrow(now) < narrow(best ? best->analyzer->result : was) && (!keep || keep(kept.lines, now));
-      if (!better && (best || attempt >= options.retries)) return best;
-      kept.cut_face = cut_faces(now);
-      const int tried = kept.tips;
-      // Refused, or kept for the first time: the tips from or to the faces that now have more places
-      // than before go back, and the rest are tried again.
-      const std::set<std::int32_t> grew = narrow_places_grew(was, now, kept.cut_face);
-      if (better) {
-        best = std::move(kept);
-        if (pruned) return best;
-        pruned = true;
-      }
-      if (grew.empty()) return best;
-      cutter.take_back(grew);
-      if (cutter.tips() == 0 || cutter.tips() == tried) return best;
-    }
-  };
-  for (int round = 0; round < options.rounds && narrow(current->result) > 0; ++round) {
-    std::optional<Kept> kept;
+  for (int round = 0; round < options.rounds && narrow_places(current->result) > 0; ++round) {
+    std::optional<KeptRound> kept;
     {
       TipCutter cutter(*current, options);  // it cuts `current`'s arrangement: gone with it below
       cutter.run();
-      kept = keep_round(cutter, out.lines);
+      kept = kept_round(cutter, out.lines, options, keep);
     }
     if (!kept) break;
-    const auto places_before = narrow(current->result), places_after = narrow(kept->analyzer->result);
+    const auto places_before = narrow_places(current->result), places_after = narrow_places(kept->analyzer->result);
     // Each new region comes from the region of the cut arrangement its inside point lies in.
     std::vector<PlanPoint> origin;
     for (std::size_t i = 0; i < kept->cut_face.size(); ++i)
