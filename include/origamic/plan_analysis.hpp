@@ -132,12 +132,13 @@ struct TipRepairOptions {
   double min_strip_mm = 0;  // W
   double margin_mm = 0.01;  // the new end is this much wider than W
   double max_tip_mm = 12;   // tips narrower than W along more of their length stay
-  int rounds = 4;
+  int rounds = 4;  // at most (the design asks for DesignOptions::tip_rounds)
   // A round refused (no fewer places, or the check given refuses it) is tried this many times more,
-  // each time without the tips from or to the faces that have more places than before. Most tips
-  // leave their face narrow elsewhere, and a few make places where they go: on the 37 models at
-  // W = 3 mm, 3 rounds, places 4,674 -> 4,504 (the same with 2 retries), tips parted 836 -> 2,462,
-  // mean p95 1.774 -> 1.782 W; the tips' time over the 37, 4.5 -> 7.5 s.
+  // each time without the tips from or to the faces that have more places than before (a round
+  // kept is tried once more so whatever this is). Most tips leave their face narrow elsewhere, and
+  // a few make places where they go: when it was chosen (on the 37 models at W = 3 mm, 3 rounds, no
+  // round kept tried again), places 4,674 -> 4,504 with 1 retry, the same with 2; tips parted
+  // 836 -> 2,462, mean p95 1.774 -> 1.782 W; the tips' time over the 37, 4.5 -> 7.5 s.
   int retries = 1;
   // Rounds go on while the last one kept took at least this share of the places narrower than W
   // off: each round analyses the whole plan again (twice where it is tried again without some of

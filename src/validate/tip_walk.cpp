@@ -59,9 +59,6 @@ FaceLines face_lines(const std::vector<Ring>& rings, bool along_Y) {
   return face;
 }
 
-// Walks across the chord of a face narrower than W: one way the face must end within `reach`, the
-// other it must widen to `wide`; the tip is cut where it does, or on a vertex line of the face
-// within kSliver_mm of there where the face is still W wide.
 std::optional<Tip> tip_of(const FaceLines& face, std::size_t region, bool along_Y, const Chord& chord, const FT& W,
                           const FT& wide, const FT& reach) {
   // Every edge ends on vertex lines, and every slab walked starts on one within reach of the chord:
