@@ -26,6 +26,7 @@ namespace origamic::raster_card {
 class ErrorCounts {
  public:
   static constexpr int kBinsPerW = 256;
+  static constexpr int kBins = 1 << 14;
   explicit ErrorCounts(double W) : bin_mm_(W / kBinsPerW), tree_(kBins + 1, 0) { assert(W > 0); }
   // The counts of the errors given, those not negative (a pixel off the model has none): as add(e, 1)
   // for each in turn, the tree built once (linear: an add walks it, a cache miss a level; the card
@@ -73,11 +74,13 @@ class ErrorCounts {
     return fares_with([](int) { return std::int64_t{0}; }, 0, 0.0);
   }
 
+  // The bin of an error: bins 0 .. kBins - 1.
+  int bin_of(double error_mm) const { return bin(error_mm); }
+
   // The first error past bin b.
   double past(int b) const { return b + 1 >= kBins ? std::numeric_limits<double>::infinity() : (b + 1) * bin_mm_; }
 
  private:
-  static constexpr int kBins = 1 << 14;
   int bin(double error_mm) const {
     return static_cast<int>(std::min<double>(kBins - 1, error_mm / bin_mm_));  // clamped before the cast
   }
@@ -110,6 +113,7 @@ class RasterCard {
 
   double error_at(int c, int r) const { return error_(c, r); }
   ErrorCounts& counts() { return counts_; }
+  const ErrorCounts& counts() const { return counts_; }
 
  private:
   // The error of model pixel (c, r) as the raster plan shows it (off the sheet: as a hole).

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <ranges>
 #include <set>
 #include <tuple>
 #include <utility>
@@ -414,6 +415,37 @@ std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& gr
       given.push_back({col, first, last, taker, giver, kept_row, away, false});
     }
   if (onto && std::ranges::none_of(given, &Rows::closes)) return std::nullopt;
+  // The face at a pixel once the moves are made: the taker of the last run given there (the runs
+  // are listed column by column), else the face there now, f in onto's plane part of onto.
+  const auto moved_face = [&](int col, int row) {
+    const auto in_col = std::ranges::equal_range(given, col, {}, &Rows::col);
+    const auto last = std::ranges::find_if(std::views::reverse(in_col),
+                                           [&](const Rows& g) { return g.first <= row && row <= g.last; });
+    const std::int32_t now = last != std::views::reverse(in_col).end() ? last->taker : face(col, row);
+    return onto && now == f ? *onto : now;
+  };
+  // Each face that gave rows keeps min_run_px of its run there, counted as the move leaves it: f
+  // moving gives rows at one fold as it takes as many at the other (a support W wide keeps W; on
+  // the plan before the move, 107 of the 434 moves refused over the 37 models at W = 3 mm). A face
+  // whose run there was shorter than min_run_px before the move is a place narrower than W
+  // already: it need only keep a row (kept_row, above), or give its whole run. Refusing those too,
+  // the refits and fold spreads of the 37 models at W = 3 mm left res_knot at 2.13 W with 10
+  // planes refit (then 1.99 W, 15) and 183 faces between two folds closer than W (then 178; places
+  // in all 3,880 and 3,879). Checked before the plan is copied: most moves refused are refused here
+  // (res_dragon_full: 76 of 132 that came this far).
+  for (const auto& [col, first, last, taker, giver, kept_row, away, closes, gives_all] : given) {
+    if (closes || gives_all) continue;
+    int run_before = 0;  // from its row beside the old boundary on, up to min_run_px
+    for (int row = away > 0 ? first : last;
+         run_before < min_run_px && 0 <= row && row < face.rows && face(col, row) == giver; row += away)
+      ++run_before;
+    if (run_before < min_run_px) continue;
+    const std::int32_t kept = giver == f && onto ? *onto : giver;
+    for (int k = 1; k < min_run_px; ++k) {
+      const int row = kept_row + away * k;
+      if (row < 0 || row >= face.rows || moved_face(col, row) != kept) return std::nullopt;
+    }
+  }
   RasterPlan moved_planes = plan;
   moved_planes.faces[static_cast<std::size_t>(f)].depth_mm = depth_mm;
   std::vector<std::uint8_t> gave(plan.faces.size(), 0);
@@ -430,27 +462,6 @@ std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& gr
     moved_planes.faces[static_cast<std::size_t>(*onto)].pixels +=
         std::exchange(moved_planes.faces[static_cast<std::size_t>(f)].pixels, 0);
     gave[static_cast<std::size_t>(*onto)] = 1;  // and is one piece of paper with it
-  }
-  // Each face that gave rows keeps min_run_px of its run there, counted as the move leaves it: f
-  // moving gives rows at one fold as it takes as many at the other (a support W wide keeps W; on
-  // the plan before the move, 107 of the 434 moves refused over the 37 models at W = 3 mm). A face
-  // whose run there was shorter than min_run_px before the move is a place narrower than W
-  // already: it need only keep a row (kept_row, above), or give its whole run. Refusing those too,
-  // the refits and fold spreads of the 37 models at W = 3 mm left res_knot at 2.13 W with 10
-  // planes refit (then 1.99 W, 15) and 183 faces between two folds closer than W (then 178; places
-  // in all 3,880 and 3,879).
-  for (const auto& [col, first, last, taker, giver, kept_row, away, closes, gives_all] : given) {
-    if (closes || gives_all) continue;
-    int run_before = 0;  // from its row beside the old boundary on, up to min_run_px
-    for (int row = away > 0 ? first : last;
-         run_before < min_run_px && 0 <= row && row < face.rows && face(col, row) == giver; row += away)
-      ++run_before;
-    if (run_before < min_run_px) continue;
-    const std::int32_t kept = giver == f && onto ? *onto : giver;
-    for (int k = 1; k < min_run_px; ++k) {
-      const int row = kept_row + away * k;
-      if (row < 0 || row >= face.rows || moved_planes.face(col, row) != kept) return std::nullopt;
-    }
   }
   // A face that gave pixels and is now in two parts would be two pieces of paper, the one without
   // the fold unheld.
