@@ -151,16 +151,23 @@ class Spreader {
     };
     if (may_close(it->above, it->below)) moves.push_back({it->above, below.depth_mm, it->below});
     if (may_close(it->below, it->above)) moves.push_back({it->below, above.depth_mm, it->above});
+    // The moves that leave each face they take rows from W of its run there (or none), else those
+    // that leave it options_.giver_keeps_px.
     std::vector<Tried> tried;
-    for (const Move& move : moves)
-      if (std::optional<Tried> t = try_move(move)) tried.push_back(std::move(*t));
-    std::ranges::stable_sort(tried, {}, &Tried::fared);
-    const auto made = std::ranges::find_if(tried, [&](const Tried& t) {
-      std::vector<std::int32_t> unheld = faces_unheld_on_raster(maps_.grid, t.plan, allow_dangling_);
-      std::erase_if(unheld, [&](std::int32_t g) { return t.plan.faces[static_cast<std::size_t>(g)].pixels == 0; });
-      return std::ranges::includes(unheld_, unheld);
-    });
-    if (made == tried.end()) return std::nullopt;
+    for (const int giver_keeps_px : {plan_.block_px, options_.giver_keeps_px}) {
+      if (giver_keeps_px <= 0 || giver_keeps_px > plan_.block_px) break;
+      for (const Move& move : moves)
+        if (std::optional<Tried> t = try_move(move, giver_keeps_px)) tried.push_back(std::move(*t));
+      std::ranges::stable_sort(tried, {}, &Tried::fared);
+      std::erase_if(tried, [&](const Tried& t) {
+        std::vector<std::int32_t> unheld = faces_unheld_on_raster(maps_.grid, t.plan, allow_dangling_);
+        std::erase_if(unheld, [&](std::int32_t g) { return t.plan.faces[static_cast<std::size_t>(g)].pixels == 0; });
+        return !std::ranges::includes(unheld_, unheld);
+      });
+      if (!tried.empty()) break;
+    }
+    if (tried.empty()) return std::nullopt;
+    const auto made = tried.begin();
     const RasterFace& f = face(made->move.face);
     RefitPlane moved{{}, f.orientation, f.support, f.depth_mm, made->move.to_mm, made->move.onto.has_value()};
     // Where the face is: a face closed onto another keeps no pixel, so it is found before the move.
@@ -203,12 +210,12 @@ class Spreader {
 
   // The move (to a plane, or into another face's: move_plane's `onto`), if move_plane makes it, it
   // leaves fewer pairs in the face's columns and the card bears it; the card is left as it was.
-  std::optional<Tried> try_move(const Move& move) {
+  std::optional<Tried> try_move(const Move& move, int giver_keeps_px) {
     const RasterFace& f = face(move.face);
     if (move.face <= kFloorFace || f.hole || !(move.to_mm > 0) || barred_[static_cast<std::size_t>(move.face)])
       return std::nullopt;
     std::optional<RasterPlan> moved =
-        move_plane(plan_, maps_.grid, move.face, move.to_mm, tolerance_mm_, plan_.block_px,
+        move_plane(plan_, maps_.grid, move.face, move.to_mm, tolerance_mm_, giver_keeps_px,
                    std::pair{boxes_[static_cast<std::size_t>(move.face)].first_col,
                              boxes_[static_cast<std::size_t>(move.face)].last_col},
                    move.onto);
