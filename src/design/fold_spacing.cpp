@@ -151,23 +151,25 @@ class Spreader {
     };
     if (may_close(it->above, it->below)) moves.push_back({it->above, below.depth_mm, it->below});
     if (may_close(it->below, it->above)) moves.push_back({it->below, above.depth_mm, it->above});
-    // The moves that leave each face they take rows from W of its run there (or none), else those
-    // that leave it options_.giver_keeps_px.
+    // Of the moves that leave each face they take rows from W of its run there (or none), the one
+    // the card bears best that leaves no face unheld on the raster that was held; where none does,
+    // of those that leave such a face options_.giver_keeps_px.
+    const auto holds = [&](const Tried& t) {
+      std::vector<std::int32_t> unheld = faces_unheld_on_raster(maps_.grid, t.plan, allow_dangling_);
+      std::erase_if(unheld, [&](std::int32_t g) { return t.plan.faces[static_cast<std::size_t>(g)].pixels == 0; });
+      return std::ranges::includes(unheld_, unheld);
+    };
     std::vector<Tried> tried;
+    auto made = tried.end();
     for (const int giver_keeps_px : {plan_.block_px, options_.giver_keeps_px}) {
-      if (giver_keeps_px <= 0 || giver_keeps_px > plan_.block_px) break;
+      tried.clear();
       for (const Move& move : moves)
         if (std::optional<Tried> t = try_move(move, giver_keeps_px)) tried.push_back(std::move(*t));
       std::ranges::stable_sort(tried, {}, &Tried::fared);
-      std::erase_if(tried, [&](const Tried& t) {
-        std::vector<std::int32_t> unheld = faces_unheld_on_raster(maps_.grid, t.plan, allow_dangling_);
-        std::erase_if(unheld, [&](std::int32_t g) { return t.plan.faces[static_cast<std::size_t>(g)].pixels == 0; });
-        return !std::ranges::includes(unheld_, unheld);
-      });
-      if (!tried.empty()) break;
+      made = std::ranges::find_if(tried, holds);
+      if (made != tried.end() || !(0 < options_.giver_keeps_px && options_.giver_keeps_px < plan_.block_px)) break;
     }
-    if (tried.empty()) return std::nullopt;
-    const auto made = tried.begin();
+    if (made == tried.end()) return std::nullopt;
     const RasterFace& f = face(made->move.face);
     RefitPlane moved{{}, f.orientation, f.support, f.depth_mm, made->move.to_mm, made->move.onto.has_value()};
     // Where the face is: a face closed onto another keeps no pixel, so it is found before the move.
@@ -208,8 +210,9 @@ class Spreader {
     return fold_pairs_in_columns(plan, maps_.grid, tolerance_mm_, box.first_col, box.last_col);
   }
 
-  // The move (to a plane, or into another face's: move_plane's `onto`), if move_plane makes it, it
-  // leaves fewer pairs in the face's columns and the card bears it; the card is left as it was.
+  // The move (to a plane, or into another face's: move_plane's `onto`), if move_plane makes it with
+  // each face it takes rows from keeping giver_keeps_px of its run there (or none), it leaves fewer
+  // pairs in the face's columns and the card bears it; the card is left as it was.
   std::optional<Tried> try_move(const Move& move, int giver_keeps_px) {
     const RasterFace& f = face(move.face);
     if (move.face <= kFloorFace || f.hole || !(move.to_mm > 0) || barred_[static_cast<std::size_t>(move.face)])

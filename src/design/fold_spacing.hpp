@@ -41,15 +41,18 @@ struct FoldSpacingOptions {
   // Exact plans built at most: where one does not stand, the moves beside the faces it leaves
   // unheld are taken back and the rest built again. Over the 37 models at W = 2, 3 and 5 mm a
   // second plan stood on 4 (bad_motorbike at 3 mm kept 17 of its 19 moves; arch_temple,
-  // csg_menger_slice and res_armadillo at 2 mm, all but one); none has needed a third.
+  // csg_menger_slice and res_armadillo at 2 mm, all but one); none has needed a third (measured
+  // with giver_keeps_px 0).
   int exact_builds = 3;
-  // Where no move parts a pair while each face it takes rows from keeps W of its run there (or
-  // none: a run under W is a place narrower than W), one that leaves it this many pixels may (0:
-  // none). Over the 37 models at W = 2 / 3 / 5 mm, at 2 px: faces between two folds under W apart
-  // 224 / 149 / 111 -> 198 / 117 / 106, all places narrower than W 6,228 / 3,834 / 2,177 -> 6,267 /
-  // 3,830 / 2,188, the mean p95 the same (1.91 / 1.72 / 1.62 W). At 1 px the first spread plans of
-  // res_dragon_full and seedlike/sphere did not stand (the exact plan joins the folds of a face at
-  // most 2 px tall, Plan::collapsed_faces) and were built again: 0.5 s and 0.15 s longer.
+  // Where no move parts a fold pair while each face it takes rows from keeps W of its run there (or
+  // none: a run under W is a place narrower than W), one that leaves such a face this many pixels
+  // may (0: no second try; 2 px is 0.5 mm at 4 px/mm). Over the 37 models at W = 2 / 3 / 5 mm, at
+  // 2 px: fold pairs 224 / 149 / 111 -> 198 / 117 / 106, all places narrower than W 6,228 / 3,834 /
+  // 2,177 -> 6,267 / 3,830 / 2,188, faces narrower than W everywhere 296 / 243 / 174 -> 314 / 249 /
+  // 177, the mean p95 1.914 / 1.714 / 1.622 -> 1.914 / 1.716 / 1.619 W. At 1 px, 185 / 117 / 109
+  // pairs, but the first spread plans of res_dragon_full and seedlike/sphere did not stand and were
+  // built again (0.5 s and 0.15 s longer); at 2 px both stood at once. Spread first at 1 px and
+  // again keeping W where that plan was refused: 155 / 98 / 89 pairs, and that time besides.
   int giver_keeps_px = 2;
 };
 
@@ -68,8 +71,8 @@ using FoldSpacingCheck = std::function<bool(const Plan& given, const Plan& parte
 /// the plan given, and `keep` accepts it; the moves are listed in SupportReport::planes_spread.
 /// Where it does not stand, the faces whose moves changed a pixel of, or next to, a face it leaves
 /// unheld may not move, and the pairs are spread again (up to `exact_builds` plans). A move leaves
-/// each face it takes rows from W of its run there, or none, or, where no move of a pair does,
-/// options.giver_keeps_px.
+/// each face it takes rows from W of its run there or none of it; where no such move parts a pair,
+/// one may leave such a face options.giver_keeps_px.
 /// \pre W (the raster plan's min_strip_mm) > 0.
 SupportedPlan spread_fold_pairs(const RasterMaps& maps, SupportedPlan supported, const Sheet& sheet,
                                 const PlanOptions& plan_options, bool allow_dangling, const FoldSpacingCheck& keep,

@@ -54,7 +54,8 @@ class ErrorCounts {
 
   // The bin of the 95th percentile of these errors and `more` (count_up_to(b): how many of them lie
   // in bins 0 .. b; `more_pixels` in all, `more_mm` their sum), and the sum of all: less is a better
-  // card, the 95th percentile first.
+  // card, the 95th percentile first. `more` may take some of these errors out as it puts others in
+  // (count_up_to(b) net of those, more_pixels and more_mm too): a face's pixels in another plane.
   template <typename CountUpTo>
   std::pair<int, double> fares_with(CountUpTo count_up_to, std::int64_t more_pixels, double more_mm) const {
     const std::int64_t n = pixels_ + more_pixels;

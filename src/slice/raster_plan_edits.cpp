@@ -419,9 +419,9 @@ std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& gr
   // are listed column by column), else the face there now, f in onto's plane part of onto.
   const auto moved_face = [&](int col, int row) {
     const auto in_col = std::ranges::equal_range(given, col, {}, &Rows::col);
-    const auto last = std::ranges::find_if(std::views::reverse(in_col),
-                                           [&](const Rows& g) { return g.first <= row && row <= g.last; });
-    const std::int32_t now = last != std::views::reverse(in_col).end() ? last->taker : face(col, row);
+    const auto covering = std::ranges::find_if(std::views::reverse(in_col),
+                                               [&](const Rows& g) { return g.first <= row && row <= g.last; });
+    const std::int32_t now = covering != std::views::reverse(in_col).end() ? covering->taker : face(col, row);
     return onto && now == f ? *onto : now;
   };
   // Each face that gave rows keeps min_run_px of its run there, counted as the move leaves it: f
@@ -431,8 +431,8 @@ std::optional<RasterPlan> move_plane(const RasterPlan& plan, const PixelGrid& gr
   // already: it need only keep a row (kept_row, above), or give its whole run. Refusing those too,
   // the refits and fold spreads of the 37 models at W = 3 mm left res_knot at 2.13 W with 10
   // planes refit (then 1.99 W, 15) and 183 faces between two folds closer than W (then 178; places
-  // in all 3,880 and 3,879). Checked before the plan is copied: most moves refused are refused here
-  // (res_dragon_full: 76 of 132 that came this far).
+  // in all 3,880 and 3,879). Checked before the plan is copied: most moves that come this far are
+  // refused here (res_dragon_full: 76 of 132).
   for (const auto& [col, first, last, taker, giver, kept_row, away, closes, gives_all] : given) {
     if (closes || gives_all) continue;
     int run_before = 0;  // from its row beside the old boundary on, up to min_run_px
