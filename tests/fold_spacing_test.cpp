@@ -289,6 +289,21 @@ TEST(FoldSpacing, GiversKeepingUnderWPartPairsThatGiversKeepingWCannot) {
   EXPECT_TRUE(analyze_plan(keeping_less.plan.lines, AnalysisOptions{}).valid()) << "its lines stand too";
 }
 
+// A spread plan is kept with as many more places in all as the pairs it parts: a strip between two
+// folds cannot be folded, another place can be cut with care. ../shared/models' res_knot at
+// W = 3 mm: its spread parts 15 of its 17 pairs at 12 more places (with half as many allowed, the
+// whole plan was refused and all 17 stayed).
+TEST(FoldSpacing, ASpreadAddingFewerPlacesThanThePairsItPartsIsKept) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  DesignOptions options;
+  options.placement.up = UpAxis::Z;
+  options.allow_narrow = true;
+  const DesignResult r = design(test::models_dir() / "res_knot.off", options);
+  EXPECT_EQ(r.supports.planes_spread.size(), 15u);
+  EXPECT_EQ(std::ranges::count_if(r.narrow_strips, [](const PlanProblem& p) { return p.folds_apart_mm > 0; }), 2);
+  EXPECT_TRUE(plan_stands(r.plan, false));
+}
+
 // A plan the supports drew in the mirror image, its drawing in the user's frame not standing, has its
 // fold pairs spread and its planes refit in that image too: bad_motorbike at W = 2 mm, whose every
 // spread plan and refit had failed in the user's frame (a face V(32.38) dangling there, 17 mm^2).
