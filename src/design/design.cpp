@@ -181,13 +181,12 @@ class NarrowPlaces {
 
 // Issue 23: fold pairs under W parted (spread_fold_pairs), kept where the exact plan has fewer
 // places between two folds, and no more places in all than the pairs it parts: a strip between
-// two folds cannot be folded at all, a place elsewhere can be cut with care. Kept only with no
-// more places, 5 of the 27 plans the 37 models gave at W = 3 mm were refused, each with 1 or 2
-// more places and 1 to 10 fewer fold pairs (res_dragon_full: 34 -> 24 and 420 -> 421). With half
-// the pairs parted allowed (before faces beside a pair could leave a neighbour 2 px,
-// FoldSpacingOptions::giver_keeps_px), such moves' plans were refused whole on 4 models (res_knot
-// 17 -> 2 pairs at 12 more places): over the 37 at W = 2 / 3 / 5 mm pairs 198 / 117 / 106, now
-// 124 / 95 / 76, places 6,267 / 3,830 / 2,188, now 6,275 / 3,844 / 2,193.
+// two folds cannot be folded at all, a place elsewhere can be cut with care. With none more
+// allowed, 5 of the 27 plans the 37 models gave at W = 3 mm were refused (res_dragon_full: 34 ->
+// 24 pairs, 420 -> 421 places); with half as many, the plans of 4 models whose moves left a
+// neighbour 2 px (FoldSpacingOptions::giver_keeps_px) were refused whole (res_knot: 17 -> 2 pairs,
+// 12 more places). Over the 37 at W = 2 / 3 / 5 mm, half -> as many: pairs 198 / 117 / 106 -> 124
+// / 95 / 76, places 6,267 / 3,830 / 2,188 -> 6,275 / 3,844 / 2,193.
 SupportedPlan spread_folds(RasterMaps& maps, SupportedPlan supported, const DesignOptions& options,
                            NarrowPlaces& narrow) {
   const auto fold_pairs = [](const std::vector<PlanProblem>& places) {
