@@ -230,15 +230,22 @@ TEST(FoldSpacing, FoldsAPixelApartWhereTheModelIsFlatBecomeOneStep) {
   EXPECT_EQ(between, 0);
 }
 
+// The options of a design of a model of ../shared/models (up z) that ends where the supports leave
+// the plan: no fold pairs spread, no tips parted.
+DesignOptions as_the_supports_leave_it() {
+  DesignOptions options;
+  options.placement.up = UpAxis::Z;
+  options.spread_fold_pairs = false;
+  options.tip_rounds = 0;
+  return options;
+}
+
 // Where the exact plan of all the moves does not stand (it snaps folds the raster plan's do not
 // show), the moves beside the faces it leaves unheld are taken back and the rest built again:
 // ../shared/models' motorbike, whose 19 moves were all lost for one face, keeps most of them.
 TEST(FoldSpacing, MovesBesideAFaceTheExactPlanLeavesUnheldAreTakenBackAndTheRestKept) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
-  DesignOptions options;
-  options.placement.up = UpAxis::Z;
-  options.spread_fold_pairs = false;
-  options.tip_rounds = 0;  // the plan as the supports leave it
+  const DesignOptions options = as_the_supports_leave_it();
   const DesignResult r = design(test::models_dir() / "bad_motorbike.obj.gz", options);
   const double W = r.raster_plan.min_strip_mm;
   ASSERT_TRUE(plan_stands(r.plan, false));
@@ -263,10 +270,7 @@ TEST(FoldSpacing, MovesBesideAFaceTheExactPlanLeavesUnheldAreTakenBackAndTheRest
 // ../shared/models' prim_torus at W = 3 mm, as its supports leave it.
 TEST(FoldSpacing, GiversKeepingUnderWPartPairsThatGiversKeepingWCannot) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
-  DesignOptions options;
-  options.placement.up = UpAxis::Z;
-  options.spread_fold_pairs = false;
-  options.tip_rounds = 0;
+  const DesignOptions options = as_the_supports_leave_it();
   const DesignResult r = design(test::models_dir() / "prim_torus.stl", options);
   const double W = r.raster_plan.min_strip_mm;
   ASSERT_TRUE(plan_stands(r.plan, false));
