@@ -116,12 +116,61 @@ TEST(FoldSpacing, APlanTheCheckRefusesIsLeftAsItIs) {
   ASSERT_TRUE(raised.has_value());
   SupportedPlan supported{*raised, build_plan(s.maps, *raised, sheet, PlanOptions{}), {}};
   int asked = 0;
-  const auto refuse = [&](const Plan&, const Plan&) { return ++asked, false; };
+  const auto refuse = [&](const Plan&, const Plan&) { return ++asked, FoldSpacingVerdict{}; };
   const SupportedPlan spread = spread_fold_pairs(s.maps, std::move(supported), sheet, PlanOptions{}, false, refuse);
   EXPECT_EQ(asked, 1);
   EXPECT_TRUE(spread.report.planes_spread.empty());
   EXPECT_EQ(spread.raster_plan.faces[s.front_top].depth_mm, 57.1);
   EXPECT_EQ(spread.raster_plan.face.values, raised->face.values);
+}
+
+// A check that refuses a plan for places it adds beside one move: the pairs are spread again
+// without that move, and the plan of the others kept. Two treads under W, as below, side by side:
+// the check names two places worse on the left tread and none better there, then takes the plan.
+TEST(FoldSpacing, AMoveBesidePlacesTheCheckNamesWorseIsNotMadeAgain) {
+  const Sheet sheet;
+  const auto step = [](double x0, double x1) {
+    return test::merged(test::box({x0, 0, 0}, {x1, 60, 30}), test::box({x0, 0, 30}, {x1, 40, 40}));
+  };
+  const RayScene scene(test::merged(step(20, 90), step(120, 190)));
+  const RasterMaps maps = raster(scene, sheet, RasterOptions{});
+  const PixelGrid& grid = maps.grid;
+  RasterPlan treads = slice(maps, segment(maps, SegmentOptions{}), SliceOptions{});
+  const double tolerance = fold_snap_tolerance_mm(PlanOptions{}, treads, grid);
+  // The low fronts V(40), left and right by the column of their first pixel.
+  std::vector<std::pair<int, std::int32_t>> fronts;
+  for (std::size_t f = kFloorFace + 1; f < treads.faces.size(); ++f)
+    if (treads.faces[f].orientation == Orientation::V && treads.faces[f].depth_mm == 40) {
+      const auto at = std::ranges::find(treads.face.values, static_cast<std::int32_t>(f));
+      fronts.emplace_back(static_cast<int>((at - treads.face.values.begin()) % grid.cols),
+                          static_cast<std::int32_t>(f));
+    }
+  ASSERT_EQ(fronts.size(), 2u);
+  std::ranges::sort(fronts);
+  const std::int32_t left = fronts[0].second, right = fronts[1].second;
+  for (const std::int32_t front : {left, right}) {
+    std::optional<RasterPlan> back = move_plane(treads, grid, front, 32.9, tolerance, 1);
+    ASSERT_TRUE(back.has_value());
+    treads = std::move(*back);
+  }
+  ASSERT_EQ(fold_pairs_under_W(treads, grid, tolerance).size(), 2u);
+  SupportedPlan supported{treads, build_plan(maps, treads, sheet, PlanOptions{}), {}};
+  ASSERT_TRUE(plan_stands(supported.plan, false));
+
+  int asked = 0;
+  const auto check = [&](const Plan&, const Plan&) {
+    // On the left tread (H(40) from Y = 7.1 to 10, X = 20 to 90).
+    if (++asked == 1) return FoldSpacingVerdict{false, {{55, 8.5}, {60, 9}}, {}};
+    return FoldSpacingVerdict{true, {}, {}};
+  };
+  const SupportedPlan spread = spread_fold_pairs(maps, std::move(supported), sheet, PlanOptions{}, false, check);
+  EXPECT_EQ(asked, 2);
+  ASSERT_EQ(spread.report.planes_spread.size(), 1u);
+  EXPECT_GT(spread.report.planes_spread.front().at.X, 105);
+  EXPECT_NEAR(spread.raster_plan.faces[right].depth_mm, 33, 1e-5);
+  EXPECT_EQ(spread.raster_plan.faces[left].depth_mm, 32.9);
+  EXPECT_TRUE(plan_stands(spread.plan, false));
+  EXPECT_EQ(narrow_between_folds(spread.plan, spread.raster_plan.min_strip_mm), 1);
 }
 
 // A tread under W between two folds: a low box before a tall one, its front moved from 40 to 32.9

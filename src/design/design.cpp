@@ -179,6 +179,14 @@ class NarrowPlaces {
   std::deque<std::pair<std::vector<PlanPolyline>, std::vector<PlanProblem>>> measured_;
 };
 
+// Where the places of `places` lie that `others` has not (a place is where its analysis points).
+std::vector<PlanPoint> places_not_in(const std::vector<PlanProblem>& places, const std::vector<PlanProblem>& others) {
+  std::vector<PlanPoint> at;
+  for (const PlanProblem& p : places)
+    if (std::ranges::none_of(others, [&](const PlanProblem& o) { return o.at == p.at; })) at.push_back(p.at);
+  return at;
+}
+
 // Issue 23: fold pairs under W parted (spread_fold_pairs), kept where the exact plan has fewer
 // places between two folds, and no more places in all than the pairs it parts: a strip between
 // two folds cannot be folded at all, a place elsewhere can be cut with care. With none more
@@ -196,7 +204,12 @@ SupportedPlan spread_folds(RasterMaps& maps, SupportedPlan supported, const Desi
     const std::vector<PlanProblem>&before = narrow.of(given), &after = narrow.of(parted);
     const auto parted_pairs = fold_pairs(before) - fold_pairs(after);
     const auto more_places = static_cast<std::ptrdiff_t>(after.size()) - static_cast<std::ptrdiff_t>(before.size());
-    return parted_pairs > 0 && more_places <= parted_pairs;
+    FoldSpacingVerdict verdict{parted_pairs > 0 && more_places <= parted_pairs, {}, {}};
+    if (!verdict.keep) {
+      verdict.worse_at = places_not_in(after, before);
+      verdict.better_at = places_not_in(before, after);
+    }
+    return verdict;
   };
   const PlanBuilder build = drawn_as(maps, supported, options);
   return spread_fold_pairs(maps, std::move(supported), options.sheet, options.plan, options.supports.allow_dangling,

@@ -121,6 +121,7 @@ class Spreader {
   struct Made {
     std::int32_t face = -1;
     std::vector<PixelAt> changed;
+    std::int32_t other = -1;  // the other face beside the strip the move parted
   };
   const std::vector<Made>& made() const { return made_; }  // in order
 
@@ -181,7 +182,7 @@ class Spreader {
     }
     plan_ = std::move(made->plan);
     if (!made->move.onto) moved.at = first_pixel(made->move.face);
-    made_.push_back({made->move.face, std::move(made->changed)});
+    made_.push_back({made->move.face, std::move(made->changed), made->move.face == it->above ? it->below : it->above});
     return moved;
   }
 
@@ -272,7 +273,7 @@ bool bar_moves_beside_unheld(const Spreader& spreader, const RasterPlan& spread_
     return f >= 0 && needs_support(plan.faces[static_cast<std::size_t>(f)].status, allow_dangling);
   };
   bool more = false;
-  for (const auto& [moved, changed] : spreader.made()) {
+  for (const auto& [moved, changed, _] : spreader.made()) {
     if (barred[static_cast<std::size_t>(moved)]) continue;
     const bool beside = std::ranges::any_of(changed, [&](const PixelAt& p) {
       for (int dr = -1; dr <= 1; ++dr)
@@ -281,6 +282,33 @@ bool bar_moves_beside_unheld(const Spreader& spreader, const RasterPlan& spread_
       return false;
     });
     if (beside) barred[static_cast<std::size_t>(moved)] = true, more = true;
+  }
+  return more;
+}
+
+// The faces of the moves that have more than one place `verdict` names worse than it names better
+// within W of the pixels they changed (a move parts its pair, one place better: a place more is the
+// trade the design accepts), and the other faces beside their strips, barred from moving; whether
+// any move's face was not barred before. Places beside two moves count against both.
+bool bar_moves_adding_places(const Spreader& spreader, const PixelGrid& grid, double W,
+                             const FoldSpacingVerdict& verdict, std::vector<bool>& barred) {
+  const double half_px = 0.5 / grid.px_per_mm;
+  bool more = false;
+  for (const auto& [moved, changed, other] : spreader.made()) {
+    if (barred[static_cast<std::size_t>(moved)] || changed.empty()) continue;
+    PixelBox box{changed.front().c, changed.front().c, changed.front().r, changed.front().r};
+    for (const PixelAt& p : changed) grow(box, p.c, p.r);
+    // In plan mm, W beyond the pixels' edges: rows run down as Y falls.
+    const double X0 = grid.X(box.first_col) - half_px - W, X1 = grid.X(box.last_col) + half_px + W;
+    const double Y0 = grid.Y(box.last_row) - half_px - W, Y1 = grid.Y(box.first_row) + half_px + W;
+    const auto near = [&](const std::vector<PlanPoint>& at) {
+      return std::ranges::count_if(at, [&](PlanPoint p) { return X0 <= p.X && p.X <= X1 && Y0 <= p.Y && p.Y <= Y1; });
+    };
+    // The pair stays: moving the other face instead would change the same strip.
+    if (near(verdict.worse_at) - near(verdict.better_at) > 1) {
+      barred[static_cast<std::size_t>(moved)] = true, more = true;
+      if (other > kFloorFace) barred[static_cast<std::size_t>(other)] = true;
+    }
   }
   return more;
 }
@@ -323,9 +351,15 @@ SupportedPlan spread_fold_pairs(const RasterMaps& maps, SupportedPlan supported,
       continue;
     }
     if (!before) before = plan_fares(maps, supported.plan, W, allow_dangling);
-    if (fared.p95_W > before->p95_W + options.may_add_p95_W || fared.mean_W > before->mean_W + options.may_add_mean_W ||
-        (keep && !keep(supported.plan, plan)))
+    if (fared.p95_W > before->p95_W + options.may_add_p95_W || fared.mean_W > before->mean_W + options.may_add_mean_W)
       return supported;
+    if (const FoldSpacingVerdict verdict = keep ? keep(supported.plan, plan) : FoldSpacingVerdict{true, {}, {}};
+        !verdict.keep) {
+      // The moves beside the places the plan adds are not made again, and the rest are.
+      if (attempt + 1 >= options.exact_builds || !bar_moves_adding_places(spreader, maps.grid, W, verdict, barred))
+        return supported;
+      continue;
+    }
     supported.raster_plan = std::move(spread_plan);
     supported.plan = std::move(plan);
     if (!build) supported.report.drawn_in_mirror_image = false;  // drawn here, from the raster plan moved

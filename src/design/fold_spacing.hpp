@@ -56,9 +56,15 @@ struct FoldSpacingOptions {
   int giver_keeps_px = 2;
 };
 
-/// Whether the plan with the fold pairs parted is to be kept instead of the plan given (the design
-/// compares their places narrower than W, measured exactly on their lines).
-using FoldSpacingCheck = std::function<bool(const Plan& given, const Plan& parted)>;
+/// The design's word on a plan with fold pairs parted, against the plan given (it compares their
+/// places narrower than W, measured exactly on their lines): whether to keep it, and where not, the
+/// places the parted plan has that the given has not (`worse_at`) and those it has parted
+/// (`better_at`), so that the moves beside the places they add may be left out.
+struct FoldSpacingVerdict {
+  bool keep = false;
+  std::vector<PlanPoint> worse_at, better_at;
+};
+using FoldSpacingCheck = std::function<FoldSpacingVerdict(const Plan& given, const Plan& parted)>;
 
 /// For each fold pair, the nearest W apart first, one of the two faces beside the strip (not the
 /// back plane or the floor) moves its plane, its folds with it (move_plane): to W (and 2
@@ -70,7 +76,9 @@ using FoldSpacingCheck = std::function<bool(const Plan& given, const Plan& parte
 /// The exact plan of all moves is kept if it stands, shows the model within the options' bounds of
 /// the plan given, and `keep` accepts it; the moves are listed in SupportReport::planes_spread.
 /// Where it does not stand, the faces whose moves changed a pixel of, or next to, a face it leaves
-/// unheld may not move, and the pairs are spread again (up to `exact_builds` plans). A move leaves
+/// unheld may not move, and the pairs are spread again (up to `exact_builds` plans); likewise where
+/// `keep` refuses it, the faces whose moves have more than one place it names worse than better
+/// within W of the pixels they changed (a move parts a pair: one place more is a fair trade). A move leaves
 /// each face it takes rows from W of its run there or none of it; where no such move parts a pair,
 /// one may leave such a face options.giver_keeps_px.
 /// \pre W (the raster plan's min_strip_mm) > 0.
