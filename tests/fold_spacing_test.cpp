@@ -160,8 +160,8 @@ TEST(FoldSpacing, AMoveBesidePlacesTheCheckNamesWorseIsNotMadeAgain) {
   int asked = 0;
   const auto check = [&](const Plan&, const Plan&) {
     // On the left tread (H(40) from Y = 7.1 to 10, X = 20 to 90).
-    if (++asked == 1) return FoldSpacingVerdict{false, {{55, 8.5}, {60, 9}}, {}};
-    return FoldSpacingVerdict{true, {}, {}};
+    if (++asked == 1) return FoldSpacingVerdict{.worse_at = {{55, 8.5}, {60, 9}}};
+    return FoldSpacingVerdict{.keep = true};
   };
   const SupportedPlan spread = spread_fold_pairs(maps, std::move(supported), sheet, PlanOptions{}, false, check);
   EXPECT_EQ(asked, 2);

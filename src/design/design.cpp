@@ -179,7 +179,8 @@ class NarrowPlaces {
   std::deque<std::pair<std::vector<PlanPolyline>, std::vector<PlanProblem>>> measured_;
 };
 
-// Where the places of `places` lie that `others` has not (a place is where its analysis points).
+// Where the places of `places` lie that `others` has not, a place being where its analysis points
+// (the middle of its narrowest chord): a place a move only shifted counts once in each list.
 std::vector<PlanPoint> places_not_in(const std::vector<PlanProblem>& places, const std::vector<PlanProblem>& others) {
   std::vector<PlanPoint> at;
   for (const PlanProblem& p : places)
@@ -204,7 +205,7 @@ SupportedPlan spread_folds(RasterMaps& maps, SupportedPlan supported, const Desi
     const std::vector<PlanProblem>&before = narrow.of(given), &after = narrow.of(parted);
     const auto parted_pairs = fold_pairs(before) - fold_pairs(after);
     const auto more_places = static_cast<std::ptrdiff_t>(after.size()) - static_cast<std::ptrdiff_t>(before.size());
-    FoldSpacingVerdict verdict{parted_pairs > 0 && more_places <= parted_pairs, {}, {}};
+    FoldSpacingVerdict verdict{.keep = parted_pairs > 0 && more_places <= parted_pairs};
     if (!verdict.keep) {
       verdict.worse_at = places_not_in(after, before);
       verdict.better_at = places_not_in(before, after);

@@ -39,10 +39,11 @@ struct FoldSpacingOptions {
   // And this much worse at its mean error, in W, likewise.
   double may_add_mean_W = 0.02;
   // Exact plans built at most: where one does not stand, the moves beside the faces it leaves
-  // unheld are taken back and the rest built again. Over the 37 models at W = 2, 3 and 5 mm a
-  // second plan stood on 4 (bad_motorbike at 3 mm kept 17 of its 19 moves; arch_temple,
-  // csg_menger_slice and res_armadillo at 2 mm, all but one); none has needed a third (measured
-  // with giver_keeps_px 0).
+  // unheld are taken back and the rest built again; so too where the check refuses one for its
+  // places. Over the 37 models at W = 2, 3 and 5 mm a second plan stood on 4 (bad_motorbike at
+  // 3 mm kept 17 of its 19 moves; arch_temple, csg_menger_slice and res_armadillo at 2 mm, all but
+  // one; measured with giver_keeps_px 0). prim_cone at 3 mm takes the third: its first does not
+  // stand, its second adds places.
   int exact_builds = 3;
   // Where no move parts a fold pair while each face it takes rows from keeps W of its run there (or
   // none: a run under W is a place narrower than W), one that leaves such a face this many pixels
@@ -62,7 +63,7 @@ struct FoldSpacingOptions {
 /// (`better_at`), so that the moves beside the places they add may be left out.
 struct FoldSpacingVerdict {
   bool keep = false;
-  std::vector<PlanPoint> worse_at, better_at;
+  std::vector<PlanPoint> worse_at = {}, better_at = {};
 };
 using FoldSpacingCheck = std::function<FoldSpacingVerdict(const Plan& given, const Plan& parted)>;
 
@@ -77,10 +78,10 @@ using FoldSpacingCheck = std::function<FoldSpacingVerdict(const Plan& given, con
 /// the plan given, and `keep` accepts it; the moves are listed in SupportReport::planes_spread.
 /// Where it does not stand, the faces whose moves changed a pixel of, or next to, a face it leaves
 /// unheld may not move, and the pairs are spread again (up to `exact_builds` plans); likewise where
-/// `keep` refuses it, the faces whose moves have more than one place it names worse than better
-/// within W of the pixels they changed (a move parts a pair: one place more is a fair trade). A move leaves
-/// each face it takes rows from W of its run there or none of it; where no such move parts a pair,
-/// one may leave such a face options.giver_keeps_px.
+/// `keep` refuses it, the faces of the moves with more than one place it names worse than better
+/// within W of a pixel they changed (a move parts a pair: one place more is a fair trade), and the
+/// faces beside their strips. A move leaves each face it takes rows from W of its run there or none
+/// of it; where no such move parts a pair, one may leave such a face options.giver_keeps_px.
 /// \pre W (the raster plan's min_strip_mm) > 0.
 SupportedPlan spread_fold_pairs(const RasterMaps& maps, SupportedPlan supported, const Sheet& sheet,
                                 const PlanOptions& plan_options, bool allow_dangling, const FoldSpacingCheck& keep,
