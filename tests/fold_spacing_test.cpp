@@ -357,6 +357,20 @@ TEST(FoldSpacing, ASpreadAddingFewerPlacesThanThePairsItPartsIsKept) {
   EXPECT_TRUE(plan_stands(r.plan, false));
 }
 
+// A spread plan refused for the places it adds is spread again without the moves beside them:
+// ../shared/models' prim_cone at W = 3 mm, whose first spread plan did not stand and whose second
+// parted 7 of its 13 pairs at 9 more places and was refused whole; its third parts 4 for fewer.
+TEST(FoldSpacing, ARefusedSpreadIsSpreadAgainWithoutTheMovesBesideThePlacesItAdds) {
+  if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
+  DesignOptions options;
+  options.placement.up = UpAxis::Z;
+  options.allow_narrow = true;
+  const DesignResult r = design(test::models_dir() / "prim_cone.stl", options);
+  EXPECT_EQ(r.supports.planes_spread.size(), 4u) << "none, and 13 pairs, when a refused plan was dropped whole";
+  EXPECT_EQ(std::ranges::count_if(r.narrow_strips, [](const PlanProblem& p) { return p.folds_apart_mm > 0; }), 9);
+  EXPECT_TRUE(plan_stands(r.plan, false));
+}
+
 // A plan the supports drew in the mirror image, its drawing in the user's frame not standing, has its
 // fold pairs spread and its planes refit in that image too: bad_motorbike at W = 2 mm, whose every
 // spread plan and refit had failed in the user's frame (a face V(32.38) dangling there, 17 mm^2).
