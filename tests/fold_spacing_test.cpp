@@ -342,16 +342,21 @@ TEST(FoldSpacing, GiversKeepingUnderWPartPairsThatGiversKeepingWCannot) {
   EXPECT_TRUE(analyze_plan(keeping_less.plan.lines, AnalysisOptions{}).valid()) << "its lines stand too";
 }
 
+// A model of ../shared/models (up z) designed at the default options, places narrower than W allowed.
+DesignResult designed_allowing_narrow_places(const char* model) {
+  DesignOptions options;
+  options.placement.up = UpAxis::Z;
+  options.allow_narrow = true;
+  return design(test::models_dir() / model, options);
+}
+
 // A spread plan is kept with as many more places in all as the pairs it parts: a strip between two
 // folds cannot be folded, another place can be cut with care. ../shared/models' res_knot at
 // W = 3 mm: its spread parts 15 of its 17 pairs at 12 more places (with half as many allowed, the
 // whole plan was refused and all 17 stayed).
 TEST(FoldSpacing, ASpreadAddingFewerPlacesThanThePairsItPartsIsKept) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
-  DesignOptions options;
-  options.placement.up = UpAxis::Z;
-  options.allow_narrow = true;
-  const DesignResult r = design(test::models_dir() / "res_knot.off", options);
+  const DesignResult r = designed_allowing_narrow_places("res_knot.off");
   EXPECT_EQ(r.supports.planes_spread.size(), 15u);
   EXPECT_EQ(std::ranges::count_if(r.narrow_strips, [](const PlanProblem& p) { return p.folds_apart_mm > 0; }), 2);
   EXPECT_TRUE(plan_stands(r.plan, false));
@@ -362,10 +367,7 @@ TEST(FoldSpacing, ASpreadAddingFewerPlacesThanThePairsItPartsIsKept) {
 // parted 7 of its 13 pairs at 9 more places and was refused whole; its third parts 4 for fewer.
 TEST(FoldSpacing, ARefusedSpreadIsSpreadAgainWithoutTheMovesBesideThePlacesItAdds) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
-  DesignOptions options;
-  options.placement.up = UpAxis::Z;
-  options.allow_narrow = true;
-  const DesignResult r = design(test::models_dir() / "prim_cone.stl", options);
+  const DesignResult r = designed_allowing_narrow_places("prim_cone.stl");
   EXPECT_EQ(r.supports.planes_spread.size(), 4u) << "none, and 13 pairs, when a refused plan was dropped whole";
   EXPECT_EQ(std::ranges::count_if(r.narrow_strips, [](const PlanProblem& p) { return p.folds_apart_mm > 0; }), 9);
   EXPECT_TRUE(plan_stands(r.plan, false));
