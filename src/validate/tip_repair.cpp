@@ -80,19 +80,26 @@ Point on_plan(bool along_Y, const FT& u, const FT& v) { return along_Y ? Point(u
 // The fold edges between two faces, by their labels.
 using FoldCounts = std::map<std::pair<std::int32_t, std::int32_t>, int>;
 
+// Each halfedge of a face's outer boundaries, in order.
+template <typename Visit>
+void for_each_outer_halfedge(Face f, Visit visit) {
+  for (auto ccb = f->outer_ccbs_begin(); ccb != f->outer_ccbs_end(); ++ccb) {
+    auto he = *ccb;
+    do visit(Halfedge(he));
+    while (++he != *ccb);
+  }
+}
+
 // The lowest and highest Y of a face's outer boundary.
 struct YRange {
   FT lowest, highest;
 };
 YRange y_range(Face f) {
   FT lowest = f->outer_ccb()->source()->point().y(), highest = lowest;
-  for (auto ccb = f->outer_ccbs_begin(); ccb != f->outer_ccbs_end(); ++ccb) {
-    auto he = *ccb;
-    do {
-      const FT& y = he->target()->point().y();
-      lowest = CGAL::min(lowest, y), highest = CGAL::max(highest, y);
-    } while (++he != *ccb);
-  }
+  for_each_outer_halfedge(f, [&](Halfedge he) {
+    const FT& y = he->target()->point().y();
+    lowest = CGAL::min(lowest, y), highest = CGAL::max(highest, y);
+  });
   return {lowest, highest};
 }
 
@@ -268,12 +275,9 @@ class TipCutter {
   // hold all of its face's folds with a neighbour stays, or that neighbour would come loose.
   bool leaves_neighbours_a_fold(Face f, std::int32_t region, const FoldCounts& folds_between) const {
     std::map<std::int32_t, int> tip_folds;
-    for (auto ccb = f->outer_ccbs_begin(); ccb != f->outer_ccbs_end(); ++ccb) {
-      auto he = *ccb;
-      do
-        if (!he->twin()->face()->is_unbounded() && is_fold(he)) ++tip_folds[he->twin()->face()->data()];
-      while (++he != *ccb);
-    }
+    for_each_outer_halfedge(f, [&](Halfedge he) {
+      if (!he->twin()->face()->is_unbounded() && is_fold(he)) ++tip_folds[he->twin()->face()->data()];
+    });
     return std::ranges::none_of(tip_folds, [&](const auto& g) {
       const auto all = folds_between.find({region, g.first});
       return all != folds_between.end() && g.second == all->second;
@@ -295,20 +299,17 @@ class TipCutter {
     };
     std::int32_t best = -1;
     double best_gap = std::numeric_limits<double>::infinity();
-    for (auto ccb = f->outer_ccbs_begin(); ccb != f->outer_ccbs_end(); ++ccb) {
-      auto he = *ccb;
-      do {
-        const Arrangement::Face_const_handle other = he->twin()->face();
-        const std::int32_t n = other->data();
-        if (!other->is_unbounded() && n >= 0 && n != static_cast<std::int32_t>(tip.region) &&
-            !a_.cut_out[static_cast<std::size_t>(n)] && a_.place[static_cast<std::size_t>(n)].placed &&
-            keeps_on_card(a_.place[static_cast<std::size_t>(n)])) {
-          const Place& theirs = a_.place[static_cast<std::size_t>(n)];
-          const double gap = std::abs(key_of_plane(theirs.orientation, CGAL::to_double(theirs.depth), Y) - key);
-          if (gap < best_gap) best_gap = gap, best = n;
-        }
-      } while (++he != *ccb);
-    }
+    for_each_outer_halfedge(f, [&](Halfedge he) {
+      const Arrangement::Face_const_handle other = he->twin()->face();
+      const std::int32_t n = other->data();
+      if (!other->is_unbounded() && n >= 0 && n != static_cast<std::int32_t>(tip.region) &&
+          !a_.cut_out[static_cast<std::size_t>(n)] && a_.place[static_cast<std::size_t>(n)].placed &&
+          keeps_on_card(a_.place[static_cast<std::size_t>(n)])) {
+        const Place& theirs = a_.place[static_cast<std::size_t>(n)];
+        const double gap = std::abs(key_of_plane(theirs.orientation, CGAL::to_double(theirs.depth), Y) - key);
+        if (gap < best_gap) best_gap = gap, best = n;
+      }
+    });
     return best;
   }
 
@@ -321,13 +322,10 @@ class TipCutter {
       for (auto& [t, from] : given_) {
         if (t->data() == from) continue;
         bool joined = false;
-        for (auto ccb = t->outer_ccbs_begin(); ccb != t->outer_ccbs_end() && !joined; ++ccb) {
-          auto he = *ccb;
-          do {
-            const Face other = he->twin()->face();
-            joined = joined || (other->data() == t->data() && !tips.contains(other));
-          } while (++he != *ccb && !joined);
-        }
+        for_each_outer_halfedge(t, [&](Halfedge he) {
+          const Face other = he->twin()->face();
+          joined = joined || (other->data() == t->data() && !tips.contains(other));
+        });
         if (!joined) a_.arr.non_const_handle(t)->set_data(from), again = true;
       }
     }
