@@ -289,20 +289,25 @@ DesignOptions as_the_supports_leave_it() {
   return options;
 }
 
+// A design as the supports leave it (as_the_supports_leave_it) with its fold pairs spread.
+SupportedPlan spread_as_supported(const DesignResult& supported, const FoldSpacingOptions& spreading) {
+  const DesignOptions options = as_the_supports_leave_it();
+  return spread_fold_pairs(supported.maps, {supported.raster_plan, supported.plan, {}}, options.sheet, options.plan,
+                           false, {}, spreading);
+}
+
 // Where the exact plan of all the moves does not stand (it snaps folds the raster plan's do not
 // show), the moves beside the faces it leaves unheld are taken back and the rest built again:
 // ../shared/models' motorbike, whose 19 moves were all lost for one face, keeps most of them.
 TEST(FoldSpacing, MovesBesideAFaceTheExactPlanLeavesUnheldAreTakenBackAndTheRestKept) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
-  const DesignOptions options = as_the_supports_leave_it();
-  const DesignResult r = design(test::models_dir() / "bad_motorbike.obj.gz", options);
+  const DesignResult r = design(test::models_dir() / "bad_motorbike.obj.gz", as_the_supports_leave_it());
   const double W = r.raster_plan.min_strip_mm;
   ASSERT_TRUE(plan_stands(r.plan, false));
   const int pairs_before = narrow_between_folds(r.plan, W);
   // Every face a move takes rows from keeping W of its run, as the moves below were counted.
   const auto spread_with = [&](int exact_builds) {
-    return spread_fold_pairs(r.maps, {r.raster_plan, r.plan, {}}, options.sheet, options.plan, false, {},
-                             {.exact_builds = exact_builds, .giver_keeps_px = 0});
+    return spread_as_supported(r, {.exact_builds = exact_builds, .giver_keeps_px = 0});
   };
   const SupportedPlan once = spread_with(1);
   EXPECT_TRUE(once.report.planes_spread.empty()) << "the case this test is about: all moves at once do not stand";
@@ -319,18 +324,16 @@ TEST(FoldSpacing, MovesBesideAFaceTheExactPlanLeavesUnheldAreTakenBackAndTheRest
 // ../shared/models' prim_torus at W = 3 mm, as its supports leave it.
 TEST(FoldSpacing, GiversKeepingUnderWPartPairsThatGiversKeepingWCannot) {
   if (test::models_dir().empty()) GTEST_SKIP() << "../shared/models not found";
-  const DesignOptions options = as_the_supports_leave_it();
-  const DesignResult r = design(test::models_dir() / "prim_torus.stl", options);
+  const DesignResult r = design(test::models_dir() / "prim_torus.stl", as_the_supports_leave_it());
   const double W = r.raster_plan.min_strip_mm;
   ASSERT_TRUE(plan_stands(r.plan, false));
   const auto spread_with = [&](int giver_keeps_px) {
-    return spread_fold_pairs(r.maps, {r.raster_plan, r.plan, {}}, options.sheet, options.plan, false, {},
-                             {.giver_keeps_px = giver_keeps_px});
+    return spread_as_supported(r, {.giver_keeps_px = giver_keeps_px});
   };
   const SupportedPlan keeping_W = spread_with(0), keeping_less = spread_with(2);
   const int before = narrow_between_folds(r.plan, W), after_W = narrow_between_folds(keeping_W.plan, W),
             after_less = narrow_between_folds(keeping_less.plan, W);
-  const double tolerance = fold_snap_tolerance_mm(options.plan, r.raster_plan, r.maps.grid);
+  const double tolerance = fold_snap_tolerance_mm(PlanOptions{}, r.raster_plan, r.maps.grid);
   EXPECT_EQ(before, 7);
   EXPECT_EQ(after_W, 4) << "the case this test is about: pairs that every face keeping W leaves";
   EXPECT_EQ(fold_pairs_under_W(keeping_W.raster_plan, r.maps.grid, tolerance).size(), 4u);
