@@ -342,6 +342,56 @@ TEST(ChainPoints, AJunctionTheModelsEdgeRunsThroughMovesSquareOntoIt) {
   EXPECT_TRUE(chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}, {}}).moved.empty());
 }
 
+// The staircase's edge runs through its corner j = (12, 12); a third chain leaves j left and up,
+// its pixel edges' points on the picture's break along a line of slope 1/2 through (6, 13.6). That
+// leg crosses the edge at a sine of 1 / sqrt 10, 2.77 mm off, more than a pixel: the junction moves
+// to the foot of the perpendicular from j onto the edge, 0.75 / sqrt 2 = 0.53 mm across, not to
+// the crossing, and it had stayed on its corner. Where a fold snaps at j, it stays.
+TEST(ChainPoints, AJunctionTheModelsEdgeRunsThroughMovesOntoItWhereAThirdLegCrossesItFarOff) {
+  StaircaseOnAnEdge s;
+  const LatticePoint j{12, 12};
+  Chain before{2, 3, {}}, after{4, 3, {}}, third{2, 4, {j}};
+  const auto at_j = std::ranges::find_if(s.stairs.corners, [&](LatticePoint p) { return p.u == j.u && p.v == j.v; });
+  ASSERT_NE(at_j, s.stairs.corners.end());
+  before.corners.assign(s.stairs.corners.begin(), at_j + 1);
+  after.corners.assign(at_j, s.stairs.corners.end());
+  // Left, left, up, three times over, less the last up: 8 pixel edges, each point on the line.
+  const double X0 = 6, Y0 = 13.6, slope = -0.5;  // Y - Y0 = slope (X - X0)
+  for (int k = 0; k < 8; ++k) {
+    const LatticePoint from = third.corners.back();
+    const bool up = k % 3 == 2;
+    const LatticePoint to = up ? LatticePoint{from.u, from.v - 2} : LatticePoint{from.u - 2, from.v};
+    third.corners.push_back(to);
+    const int u = (from.u + to.u) / 2, v = (from.v + to.v) / 2;
+    float t = 0;
+    if (up) {  // a column edge: its point at the line's X on its row's Y, from the left column's centre
+      t = static_cast<float>((X0 + (s.lattice.Y(v) - Y0) / slope - s.lattice.X(u - 1)) / s.lattice.px_mm);
+      s.right((u / 2) - 1, (v - 1) / 2) = t;
+    } else {  // a row edge: its point at the line's Y on its column's X, down from the row above's centre
+      t = static_cast<float>((s.lattice.Y(v - 1) - (Y0 + slope * (s.lattice.X(u) - X0))) / s.lattice.px_mm);
+      s.below((u - 1) / 2, v / 2 - 1) = t;
+    }
+    ASSERT_GT(t, 0.0f);
+    ASSERT_LT(t, 1.0f);
+  }
+  const std::vector<Chain> chains = {before, after, third};
+  const chains::JunctionMoves moves = chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}, {}});
+  ASSERT_EQ(moves.moved.size(), 1u);
+  const chains::MovedJunction& m = moves.moved[0];
+  EXPECT_EQ(m.corner.u, j.u);
+  EXPECT_EQ(m.corner.v, j.v);
+  EXPECT_EQ(m.u_on_lattice, -1);
+  EXPECT_EQ(m.v_on_lattice, -1);
+  EXPECT_LE(s.off_edge(m.X, m.Y), 1e-9);
+  const double X = s.lattice.X(j.u), Y = s.lattice.Y(j.v);
+  EXPECT_NEAR(m.X - X, m.Y - Y, 1e-9);  // along the edge's normal (1, 1)
+  EXPECT_NEAR(std::hypot(m.X - X, m.Y - Y), 0.75 / std::sqrt(2.0), 1e-9);
+  // A fold snapping at j onto its line half a pixel below meets the edge 1.35 mm off: the junction
+  // stays on its corner, not taken off the fold's line onto the edge.
+  const chains::ChainEnds fold_below_j{.fold_Y = {Y - 0.5, std::nullopt}};
+  EXPECT_TRUE(chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}, fold_below_j}).moved.empty());
+}
+
 // A loop (a slice's level contour closing round a dome, no junction on it) drawn on the picture's
 // breaks all round: it starts and ends on its first edge's point, not on the lattice corner it was
 // traced from, which the drawing went out to and back from in a spike.
