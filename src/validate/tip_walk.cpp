@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Issue 23: where a face narrower than W ends in a tip (tip_walk.hpp), walked across the chord on
+// Issue 23: where a face narrower than W ends in a tip (tips.hpp), walked across the chord on
 // exact numbers. One exact run at a time: see exact_runs.hpp.
 #define CGAL_HAS_NO_THREADS 1
 
-#include "tip_walk.hpp"
-
 #include <algorithm>
 #include <utility>
+
+#include "tips.hpp"
 
 namespace origamic::tips {
 namespace {
