@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace origamic {
@@ -50,6 +51,30 @@ struct StaircaseOnAnEdge {
     EXPECT_EQ(m.corner.v, row.corners.front().v);
     EXPECT_EQ(m.v_on_lattice, m.corner.v);
     EXPECT_NEAR(m.X, c - lattice.Y(m.corner.v), 1e-9);
+  }
+  // The staircase as two chains meeting at its corner j: up to j, and on from j.
+  std::pair<Chain, Chain> split_at(LatticePoint j) const {
+    const auto at_j = std::ranges::find_if(stairs.corners, [&](LatticePoint p) { return p.u == j.u && p.v == j.v; });
+    if (at_j == stairs.corners.end()) {
+      ADD_FAILURE() << "(" << j.u << ", " << j.v << ") is no corner of the staircase";
+      return {};
+    }
+    return {Chain{2, 3, {stairs.corners.begin(), at_j + 1}}, Chain{4, 3, {at_j, stairs.corners.end()}}};
+  }
+  // The junction at corner j moved alone onto the edge, square to it: along its normal (1, 1) by
+  // 0.75 / sqrt 2 = 0.53 mm, on no lattice line.
+  void expect_moved_square_onto_edge(const chains::JunctionMoves& moves, LatticePoint j) const {
+    ASSERT_EQ(moves.moved.size(), 1u);
+    const chains::MovedJunction& m = moves.moved[0];
+    EXPECT_EQ(m.corner.u, j.u);
+    EXPECT_EQ(m.corner.v, j.v);
+    EXPECT_EQ(m.u_on_lattice, -1);
+    EXPECT_EQ(m.v_on_lattice, -1);
+    EXPECT_EQ(m.on_fold_of, -1);
+    EXPECT_LE(off_edge(m.X, m.Y), 1e-9);
+    const double X = lattice.X(j.u), Y = lattice.Y(j.v);
+    EXPECT_NEAR(m.X - X, m.Y - Y, 1e-9);
+    EXPECT_NEAR(std::hypot(m.X - X, m.Y - Y), 0.75 / std::sqrt(2.0), 1e-9);
   }
   // A corner moved across to the edge, along X.
   std::array<double, 2> on_edge(LatticePoint corner) const {
@@ -302,29 +327,15 @@ TEST(ChainPoints, AJunctionsLegReachesPastTheContoursLastPixelEdgesUnlessBesideA
 TEST(ChainPoints, AJunctionTheModelsEdgeRunsThroughMovesSquareOntoIt) {
   StaircaseOnAnEdge s;
   const LatticePoint j{12, 12};
-  Chain before{2, 3, {}}, after{4, 3, {}}, contour{2, 4, {j}}, column{2, 4, {j}};
-  const auto at_j = std::ranges::find_if(s.stairs.corners, [&](LatticePoint p) { return p.u == j.u && p.v == j.v; });
-  ASSERT_NE(at_j, s.stairs.corners.end());
-  before.corners.assign(s.stairs.corners.begin(), at_j + 1);
-  after.corners.assign(at_j, s.stairs.corners.end());
+  const auto [before, after] = s.split_at(j);
+  Chain contour{2, 4, {j}}, column{2, 4, {j}};
   for (int k = 1; k <= 4; ++k) {
     contour.corners.push_back({j.u - 2 * k, j.v + 2 * (k - 1)});
     contour.corners.push_back({j.u - 2 * k, j.v + 2 * k});
     column.corners.push_back({j.u, j.v + 2 * k});
   }
   const std::vector<Chain> chains = {before, after, contour};
-  const chains::JunctionMoves moves = chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}, {}});
-  ASSERT_EQ(moves.moved.size(), 1u);
-  const chains::MovedJunction& m = moves.moved[0];
-  EXPECT_EQ(m.corner.u, j.u);
-  EXPECT_EQ(m.corner.v, j.v);
-  EXPECT_EQ(m.u_on_lattice, -1);
-  EXPECT_EQ(m.v_on_lattice, -1);
-  EXPECT_EQ(m.on_fold_of, -1);
-  EXPECT_LE(s.off_edge(m.X, m.Y), 1e-9);
-  const double X = s.lattice.X(j.u), Y = s.lattice.Y(j.v);
-  EXPECT_NEAR(m.X - X, m.Y - Y, 1e-9);  // along the edge's normal (1, 1)
-  EXPECT_NEAR(std::hypot(m.X - X, m.Y - Y), 0.75 / std::sqrt(2.0), 1e-9);
+  s.expect_moved_square_onto_edge(chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}, {}}), j);
   EXPECT_TRUE(chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}, {.pinned = true}}).moved.empty());
   // A straight run down the corner's lattice column crosses the edge: the junction moves along it.
   const chains::JunctionMoves along =
@@ -350,11 +361,8 @@ TEST(ChainPoints, AJunctionTheModelsEdgeRunsThroughMovesSquareOntoIt) {
 TEST(ChainPoints, AJunctionTheModelsEdgeRunsThroughMovesOntoItWhereAThirdLegCrossesItFarOff) {
   StaircaseOnAnEdge s;
   const LatticePoint j{12, 12};
-  Chain before{2, 3, {}}, after{4, 3, {}}, third{2, 4, {j}};
-  const auto at_j = std::ranges::find_if(s.stairs.corners, [&](LatticePoint p) { return p.u == j.u && p.v == j.v; });
-  ASSERT_NE(at_j, s.stairs.corners.end());
-  before.corners.assign(s.stairs.corners.begin(), at_j + 1);
-  after.corners.assign(at_j, s.stairs.corners.end());
+  const auto [before, after] = s.split_at(j);
+  Chain third{2, 4, {j}};
   // Left, left, up, three times over, less the last up: 8 pixel edges, each point on the line.
   const double X0 = 6, Y0 = 13.6, slope = -0.5;  // Y - Y0 = slope (X - X0)
   for (int k = 0; k < 8; ++k) {
@@ -375,20 +383,10 @@ TEST(ChainPoints, AJunctionTheModelsEdgeRunsThroughMovesOntoItWhereAThirdLegCros
     ASSERT_LT(t, 1.0f);
   }
   const std::vector<Chain> chains = {before, after, third};
-  const chains::JunctionMoves moves = chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}, {}});
-  ASSERT_EQ(moves.moved.size(), 1u);
-  const chains::MovedJunction& m = moves.moved[0];
-  EXPECT_EQ(m.corner.u, j.u);
-  EXPECT_EQ(m.corner.v, j.v);
-  EXPECT_EQ(m.u_on_lattice, -1);
-  EXPECT_EQ(m.v_on_lattice, -1);
-  EXPECT_LE(s.off_edge(m.X, m.Y), 1e-9);
-  const double X = s.lattice.X(j.u), Y = s.lattice.Y(j.v);
-  EXPECT_NEAR(m.X - X, m.Y - Y, 1e-9);  // along the edge's normal (1, 1)
-  EXPECT_NEAR(std::hypot(m.X - X, m.Y - Y), 0.75 / std::sqrt(2.0), 1e-9);
+  s.expect_moved_square_onto_edge(chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}, {}}), j);
   // A fold snapping at j onto its line half a pixel below meets the edge 1.35 mm off: the junction
   // stays on its corner, not taken off the fold's line onto the edge.
-  const chains::ChainEnds fold_below_j{.fold_Y = {Y - 0.5, std::nullopt}};
+  const chains::ChainEnds fold_below_j{.fold_Y = {s.lattice.Y(j.v) - 0.5, std::nullopt}};
   EXPECT_TRUE(chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}, fold_below_j}).moved.empty());
 }
 
