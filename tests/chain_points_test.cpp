@@ -13,6 +13,8 @@
 #include <utility>
 #include <vector>
 
+#include "chain_legs.hpp"
+
 namespace origamic {
 namespace {
 
@@ -52,14 +54,12 @@ struct StaircaseOnAnEdge {
     EXPECT_EQ(m.v_on_lattice, m.corner.v);
     EXPECT_NEAR(m.X, c - lattice.Y(m.corner.v), 1e-9);
   }
-  // The staircase as two chains meeting at its corner j: up to j, and on from j.
-  std::pair<Chain, Chain> split_at(LatticePoint j) const {
+  // The staircase as two chains meeting at its corner j: up to j, and on from j; none if j is not
+  // one of its corners.
+  std::optional<std::pair<Chain, Chain>> split_at(LatticePoint j) const {
     const auto at_j = std::ranges::find_if(stairs.corners, [&](LatticePoint p) { return p.u == j.u && p.v == j.v; });
-    if (at_j == stairs.corners.end()) {
-      ADD_FAILURE() << "(" << j.u << ", " << j.v << ") is no corner of the staircase";
-      return {};
-    }
-    return {Chain{2, 3, {stairs.corners.begin(), at_j + 1}}, Chain{4, 3, {at_j, stairs.corners.end()}}};
+    if (at_j == stairs.corners.end()) return std::nullopt;
+    return std::pair{Chain{2, 3, {stairs.corners.begin(), at_j + 1}}, Chain{4, 3, {at_j, stairs.corners.end()}}};
   }
   // The junction at corner j moved alone onto the edge, square to it: along its normal (1, 1) by
   // 0.75 / sqrt 2 = 0.53 mm, on no lattice line.
@@ -327,7 +327,9 @@ TEST(ChainPoints, AJunctionsLegReachesPastTheContoursLastPixelEdgesUnlessBesideA
 TEST(ChainPoints, AJunctionTheModelsEdgeRunsThroughMovesSquareOntoIt) {
   StaircaseOnAnEdge s;
   const LatticePoint j{12, 12};
-  const auto [before, after] = s.split_at(j);
+  const std::optional<std::pair<Chain, Chain>> split = s.split_at(j);
+  ASSERT_TRUE(split);
+  const auto& [before, after] = *split;
   Chain contour{2, 4, {j}}, column{2, 4, {j}};
   for (int k = 1; k <= 4; ++k) {
     contour.corners.push_back({j.u - 2 * k, j.v + 2 * (k - 1)});
@@ -354,14 +356,17 @@ TEST(ChainPoints, AJunctionTheModelsEdgeRunsThroughMovesSquareOntoIt) {
 }
 
 // The staircase's edge runs through its corner j = (12, 12); a third chain leaves j left and up,
-// its pixel edges' points on the picture's break along a line of slope 1/2 through (6, 13.6). That
-// leg crosses the edge at a sine of 1 / sqrt 10, 2.77 mm off, more than a pixel: the junction moves
-// to the foot of the perpendicular from j onto the edge, 0.75 / sqrt 2 = 0.53 mm across, not to
-// the crossing, and it had stayed on its corner. Where a fold snaps at j, it stays.
+// its pixel edges' points on the picture's break along a line through (6, 13.6) rising 1 in 2 to
+// the left (slope -1/2, Y up). That leg crosses the edge at a sine of 1 / sqrt 10, 2.77 mm off, more
+// than a pixel: the junction moves to the foot of the perpendicular from j onto the edge, 0.75 /
+// sqrt 2 = 0.53 mm across, not to the crossing, and it had stayed on its corner. Where a fold snaps
+// at j, or a support's side ends there, it stays.
 TEST(ChainPoints, AJunctionTheModelsEdgeRunsThroughMovesOntoItWhereAThirdLegCrossesItFarOff) {
   StaircaseOnAnEdge s;
   const LatticePoint j{12, 12};
-  const auto [before, after] = s.split_at(j);
+  const std::optional<std::pair<Chain, Chain>> split = s.split_at(j);
+  ASSERT_TRUE(split);
+  const auto& [before, after] = *split;
   Chain third{2, 4, {j}};
   // Left, left, up, three times over, less the last up: 8 pixel edges, each point on the line.
   const double X0 = 6, Y0 = 13.6, slope = -0.5;  // Y - Y0 = slope (X - X0)
@@ -382,12 +387,19 @@ TEST(ChainPoints, AJunctionTheModelsEdgeRunsThroughMovesOntoItWhereAThirdLegCros
     ASSERT_GT(t, 0.0f);
     ASSERT_LT(t, 1.0f);
   }
+  // Its leg lies on that line: on the break, not on the lattice.
+  const std::optional<chains::Leg> leg = chains::leg_of(third, true, s.lattice, s.breaks());
+  ASSERT_TRUE(leg);
+  EXPECT_TRUE(leg->on_break);
+  EXPECT_NEAR(leg->dy / leg->dx, slope, 1e-6);
   const std::vector<Chain> chains = {before, after, third};
   s.expect_moved_square_onto_edge(chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}, {}}), j);
   // A fold snapping at j onto its line half a pixel below meets the edge 1.35 mm off: the junction
   // stays on its corner, not taken off the fold's line onto the edge.
   const chains::ChainEnds fold_below_j{.fold_Y = {s.lattice.Y(j.v) - 0.5, std::nullopt}};
   EXPECT_TRUE(chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}, fold_below_j}).moved.empty());
+  // Where a support's side ends at j, it stays too: the side would tilt.
+  EXPECT_TRUE(chains::moved_junctions(chains, s.lattice, s.breaks(), {{}, {}, {.beside_support = true}}).moved.empty());
 }
 
 // A loop (a slice's level contour closing round a dome, no junction on it) drawn on the picture's

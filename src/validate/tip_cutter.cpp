@@ -79,7 +79,6 @@ std::vector<std::optional<Face>> faces_at(const Arrangement& arr, const std::vec
   return out;
 }
 
-// Cuts the round's tips into the arrangement and gives each to a neighbour (see `settle`).
 void TipCutter::run() {
   if (a_.narrowest.empty()) return;  // no strip widths measured: nothing to part
   const FT W(options_.min_strip_mm), wide = W + FT(options_.margin_mm), reach(options_.max_tip_mm);
@@ -101,7 +100,6 @@ void TipCutter::run() {
   settle();
 }
 
-// The tips given away from or to the faces `held` go back to their own.
 void TipCutter::take_back(const std::set<std::int32_t>& held) {
   for (const auto& [t, from] : given_)
     if (held.contains(from) || held.contains(t->data())) a_.arr.non_const_handle(t)->set_data(from);
@@ -112,7 +110,6 @@ int TipCutter::tips() const {
   return static_cast<int>(std::ranges::count_if(given_, [](const Given& g) { return g.tip->data() != g.from; }));
 }
 
-// The lines as the tips are given: those of a tip back with its own face drawn as they were.
 std::vector<PlanPolyline> TipCutter::lines() {
   std::set<Arrangement::Face_const_handle> changed;
   for (const auto& [t, from] : given_)
@@ -120,7 +117,6 @@ std::vector<PlanPolyline> TipCutter::lines() {
   return arrangement_lines(a_, changed, first_new_);
 }
 
-// The round's tips, at most one a face: along Y first.
 std::vector<Tip> TipCutter::find_tips(const FT& W, const FT& wide, const FT& reach) const {
   std::vector<Tip> tips;
   for (std::size_t r = 0; r < a_.faces.size(); ++r) {
@@ -134,7 +130,6 @@ std::vector<Tip> TipCutter::find_tips(const FT& W, const FT& wide, const FT& rea
   return tips;
 }
 
-// A tip of face r across its chords along Y (along_Y) or along X.
 std::optional<Tip> TipCutter::tip_across(std::size_t r, bool along_Y, const FT& W, const FT& wide,
                                          const FT& reach) const {
   const std::size_t axis = along_Y ? 0 : 1;
@@ -150,7 +145,6 @@ std::optional<Tip> TipCutter::tip_across(std::size_t r, bool along_Y, const FT& 
   return tip;
 }
 
-// A cut ending a hair from a point of another line would meet it in a file: that tip stays.
 std::vector<Tip> TipCutter::clear_of_points(std::vector<Tip> tips) const {
   std::vector<std::pair<double, double>> points;
   for (auto v = a_.arr.vertices_begin(); v != a_.arr.vertices_end(); ++v)
@@ -169,7 +163,6 @@ std::vector<Tip> TipCutter::clear_of_points(std::vector<Tip> tips) const {
   return tips;
 }
 
-// Each cut goes in; the face it parts keeps its label on both sides until the tip's is given.
 void TipCutter::cut_in(const std::vector<Tip>& tips) {
   struct KeepLabels : CGAL::Arr_observer<Arrangement> {
     using CGAL::Arr_observer<Arrangement>::Arr_observer;
@@ -195,7 +188,6 @@ bool TipCutter::is_fold(Halfedge he) const {
   return false;
 }
 
-// The fold edges between each pair of faces, both ways round.
 TipCutter::FoldCounts TipCutter::folds_between_faces() const {
   FoldCounts folds_between;
   for (auto e = a_.arr.edges_begin(); e != a_.arr.edges_end(); ++e) {
@@ -207,7 +199,6 @@ TipCutter::FoldCounts TipCutter::folds_between_faces() const {
   return folds_between;
 }
 
-// Which tips may go, decided on the labels as they are before any goes.
 std::vector<bool> TipCutter::tips_that_may_go(const std::vector<Tip>& tips,
                                               const std::vector<std::optional<Face>>& tip_faces,
                                               const FoldCounts& folds_between, const FT& wide) const {
@@ -227,8 +218,6 @@ std::vector<bool> TipCutter::tips_that_may_go(const std::vector<Tip>& tips,
   return may_go;
 }
 
-// Whether face `region` keeps a fold outside its tip `f` with each neighbour: a tip whose sides
-// hold all of its face's folds with a neighbour stays, or that neighbour would come loose.
 bool TipCutter::leaves_neighbours_a_fold(Face f, std::int32_t region, const FoldCounts& folds_between) const {
   std::map<std::int32_t, int> tip_folds;
   for_each_outer_halfedge(f, [&](Halfedge he) {
@@ -240,8 +229,6 @@ bool TipCutter::leaves_neighbours_a_fold(Face f, std::int32_t region, const Fold
   });
 }
 
-// The placed neighbour of the tip's face `f` whose plane is nearest the face's own at the tip's
-// inside point; -1 for none.
 std::int32_t TipCutter::nearest_neighbour(const Tip& tip, const Point& inside, Face f) const {
   const Place& own = a_.place[tip.region];
   const double Y = CGAL::to_double(inside.y());
@@ -269,7 +256,6 @@ std::int32_t TipCutter::nearest_neighbour(const Tip& tip, const Point& inside, F
   return best;
 }
 
-// A tip given to a face whose own tip went elsewhere may touch no other part of it: it goes back.
 void TipCutter::settle() {
   std::set<Arrangement::Face_const_handle> tips;
   for (const Given& g : given_) tips.insert(g.tip);

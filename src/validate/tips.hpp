@@ -61,6 +61,7 @@ class TipCutter {
   TipCutter(analysis::Analyzer& analyzer, const TipRepairOptions& options)
       : a_(analyzer), options_(options), first_new_(static_cast<std::int32_t>(analyzer.kind.size())) {}
 
+  // The analysis whose arrangement the tips are cut into.
   const analysis::Analyzer& analyzer() const { return a_; }
 
   // Cuts the round's tips into the arrangement and gives each to a neighbour (see `settle`).
@@ -69,6 +70,7 @@ class TipCutter {
   // The tips given away from or to the faces `held` go back to their own.
   void take_back(const std::set<std::int32_t>& held);
 
+  // How many tips are given to a neighbour now (not taken back).
   int tips() const;
 
   // The lines as the tips are given: those of a tip back with its own face drawn as they were.
@@ -104,6 +106,7 @@ class TipCutter {
   // Each cut goes in; the face it parts keeps its label on both sides until the tip's is given.
   void cut_in(const std::vector<Tip>& tips);
 
+  // Whether the edge lies on a mountain or a valley line.
   bool is_fold(Halfedge he) const;
 
   // The fold edges between each pair of faces, both ways round.

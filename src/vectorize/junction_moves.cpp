@@ -6,6 +6,7 @@
 #include <array>
 #include <cassert>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <optional>
 #include <utility>
@@ -62,44 +63,45 @@ std::optional<MovedJunction> meeting_point(const std::vector<Leg>& legs) {
 constexpr double kEdgeThroughSine = 0.25, kEdgeThroughOff_mm = 0.05;
 
 // Where the model's edge runs through a junction of one corner (two of its legs on a break, as
-// above, and no fold ends there) and no other leg crosses it within a pixel (a level contour gives
-// no leg, mostly; a contour's leg on a break may cross it at a shallow angle far off), the junction
-// moves to the foot of the perpendicular from its corner onto the edge: the contour ends on the
-// edge, where from the lattice corner, a fraction of a pixel beside it, a connector went to the
-// edge and left a notch. Over the 27 MANIFEST models at W = 3 mm: places under 0.25 mm wide 1,314
-// -> 1,209, chords under W 41,583 -> 40,695, but places 3,519 -> 3,522 (their faces keep other
-// chords under W, 12 a place: the notch gone, the next chord stands). A third leg crossing the edge
-// more than a pixel off had held the junction on its corner, a notch a tenth of a millimetre deep
-// (res_dragon_res4 at (96, 107.75), the crossing 0.36 mm off): moved onto the edge, the 37 models'
-// chords under W at W = 2 / 3 / 5 mm went 62,675 / 44,476 / 30,865 -> 61,264 / 43,385 / 30,136,
-// their places 6,275 / 3,833 / 2,193 -> 6,275 / 3,826 / 2,189, the likeness the same. Kept on its
-// corner where another leg runs on a lattice line too (lest that run tilt): 3,828 places, 43,678
-// chords at W = 3 mm.
+// above) and no other leg crosses it within a pixel (a level contour gives no leg, mostly; a
+// contour's leg on a break may cross it at a shallow angle far off), the junction moves to the foot
+// of the perpendicular from its corner onto the edge: the contour ends on the edge, where from the
+// lattice corner, a fraction of a pixel beside it, a connector went to the edge and left a notch.
+// Over the 27 MANIFEST models at W = 3 mm: places under 0.25 mm wide 1,314 -> 1,209, chords under W
+// 41,583 -> 40,695, but places 3,519 -> 3,522 (their faces keep other chords under W, 12 a place:
+// the notch gone, the next chord stands). A third leg crossing the edge more than a pixel off had
+// held the junction on its corner, a notch a tenth of a millimetre deep (res_dragon_res4 at (96,
+// 107.75), the crossing 0.36 mm off): moved onto the edge, the 37 models' chords under W at W = 3
+// mm went 44,476 -> 43,387, their places 3,833 -> 3,824, the mean p95 the same (1.72 W). Not where a
+// fold ends (it stays on its line), nor where a support's side ends (W wide on its lattice column,
+// it would tilt; allowed there too, 3,826 places, 43,385 chords).
 std::optional<MovedJunction> onto_the_edge(const std::vector<Leg>& legs, const std::vector<LatticePoint>& members,
-                                           const LatticeScale& lattice) {
-  if (members.size() != 1 || std::ranges::any_of(legs, [](const Leg& leg) { return leg.fold_chain >= 0; }))
+                                           const LatticeScale& lattice, bool by_support) {
+  if (members.size() != 1 || by_support ||
+      std::ranges::any_of(legs, [](const Leg& leg) { return leg.fold_chain >= 0; }))
     return std::nullopt;
   const auto off_line = [](const Leg& leg, const Leg& of) {
     return std::abs((leg.X - of.X) * of.dy - (leg.Y - of.Y) * of.dx);
   };
-  const auto through = [&](const Leg& p, const Leg& q) {
-    return p.on_break && q.on_break && std::abs(p.dx * q.dy - p.dy * q.dx) < kEdgeThroughSine &&
-           p.dx * q.dx + p.dy * q.dy < 0 && off_line(p, q) <= kEdgeThroughOff_mm &&
-           off_line(q, p) <= kEdgeThroughOff_mm;
-  };
-  for (std::size_t i = 0; i < legs.size(); ++i)
-    for (std::size_t j = i + 1; j < legs.size(); ++j) {
-      const Leg &p = legs[i], &q = legs[j];
-      if (!through(p, q)) continue;
-      // Along the legs' mean direction (|p - q| > sqrt 2 for unit legs at over 90 degrees), through
-      // the midpoint of their points.
-      const double along_X = p.dx - q.dx, along_Y = p.dy - q.dy, length = std::hypot(along_X, along_Y);
-      const double dx = along_X / length, dy = along_Y / length;
-      const double X0 = (p.X + q.X) / 2, Y0 = (p.Y + q.Y) / 2;
-      const double t = (lattice.X(members.front().u) - X0) * dx + (lattice.Y(members.front().v) - Y0) * dy;
-      return MovedJunction{{}, X0 + t * dx, Y0 + t * dy};
+  // Of the pairs of legs the edge may run through, the most nearly one line: whatever the chains'
+  // order, the same pair.
+  const Leg *p = nullptr, *q = nullptr;
+  double best_sine = kEdgeThroughSine;
+  for (const Leg& a : legs)
+    for (const Leg& b : legs) {
+      const double sine = std::abs(a.dx * b.dy - a.dy * b.dx);
+      if (&a < &b && a.on_break && b.on_break && sine < best_sine && a.dx * b.dx + a.dy * b.dy < 0 &&
+          off_line(a, b) <= kEdgeThroughOff_mm && off_line(b, a) <= kEdgeThroughOff_mm)
+        best_sine = sine, p = &a, q = &b;
     }
-  return std::nullopt;
+  if (!p) return std::nullopt;
+  // Along the legs' mean direction (|p - q| > sqrt 2 for unit legs at over 90 degrees), through
+  // the midpoint of their points.
+  const double along_X = p->dx - q->dx, along_Y = p->dy - q->dy, length = std::hypot(along_X, along_Y);
+  const double dx = along_X / length, dy = along_Y / length;
+  const double X0 = (p->X + q->X) / 2, Y0 = (p->Y + q->Y) / 2;
+  const double t = (lattice.X(members.front().u) - X0) * dx + (lattice.Y(members.front().v) - Y0) * dy;
+  return MovedJunction{{}, X0 + t * dx, Y0 + t * dy};
 }
 
 // The line the folds snapping at a junction end on (with one of those folds), if they all end on one.
@@ -286,15 +288,15 @@ JunctionMoves moved_junctions(const std::vector<Chain>& chains, const LatticeSca
     }
   }
   // A cluster moves whole or not at all; by a pixel at most, and not by the rays' rounding alone.
+  const double reach = kJunctionMove_px * lattice.px_mm;
   for (std::size_t c = 0; c < corner_of.size(); ++c) {
     if (clusters.members[c].empty() || clusters.held[c]) continue;
-    const double reach = kJunctionMove_px * lattice.px_mm;
     std::optional<MovedJunction> at = meeting_point(clusters.legs[c]);
     if (at && !(clusters.moves_by(c, *at, lattice) <= reach)) at.reset();
-    if (!at) at = onto_the_edge(clusters.legs[c], clusters.members[c], lattice);
+    if (!at) at = onto_the_edge(clusters.legs[c], clusters.members[c], lattice, by_support[c]);
     if (!at) continue;
     const double move = clusters.moves_by(c, *at, lattice);
-    if (move <= kJunctionMove_px * lattice.px_mm && move >= kLeastMove_mm) clusters.moved_to[c] = at;
+    if (move <= reach && move >= kLeastMove_mm) clusters.moved_to[c] = at;
   }
   follow_across_runs(chains, lattice, clusters);
   for (std::size_t c = 0; c < corner_of.size(); ++c) {
@@ -303,7 +305,7 @@ JunctionMoves moved_junctions(const std::vector<Chain>& chains, const LatticeSca
     if (!at) continue;
     // Exact lines: no move is too small to make, unlike one read off the rays.
     const double move = clusters.moves_by(c, *at, lattice);
-    if (move > 0 && move <= kJunctionMove_px * lattice.px_mm) clusters.moved_to[c] = at;
+    if (move > 0 && move <= reach) clusters.moved_to[c] = at;
   }
   follow_along_rows(chains, ends, lattice, clusters);
   for (std::size_t j = 0; j < corner_of.size(); ++j)
