@@ -54,13 +54,6 @@ struct StaircaseOnAnEdge {
     EXPECT_EQ(m.v_on_lattice, m.corner.v);
     EXPECT_NEAR(m.X, c - lattice.Y(m.corner.v), 1e-9);
   }
-  // The staircase as two chains meeting at its corner j: up to j, and on from j; none if j is not
-  // one of its corners.
-  std::optional<std::pair<Chain, Chain>> split_at(LatticePoint j) const {
-    const auto at_j = std::ranges::find_if(stairs.corners, [&](LatticePoint p) { return p.u == j.u && p.v == j.v; });
-    if (at_j == stairs.corners.end()) return std::nullopt;
-    return std::pair{Chain{2, 3, {stairs.corners.begin(), at_j + 1}}, Chain{4, 3, {at_j, stairs.corners.end()}}};
-  }
   // The junction at corner j moved alone onto the edge, square to it: along its normal (1, 1) by
   // 0.75 / sqrt 2 = 0.53 mm, on no lattice line.
   void expect_moved_square_onto_edge(const chains::JunctionMoves& moves, LatticePoint j) const {
@@ -80,6 +73,22 @@ struct StaircaseOnAnEdge {
   std::array<double, 2> on_edge(LatticePoint corner) const {
     const double Y = lattice.Y(corner.v);
     return {c - Y, Y};
+  }
+};
+
+// The staircase as two chains meeting at its corner j = (12, 12): up to j, and on from j.
+struct StaircaseSplitAtJ : StaircaseOnAnEdge {
+  const LatticePoint j{12, 12};
+  Chain before{2, 3, {}}, after{4, 3, {}};
+
+  StaircaseSplitAtJ() {
+    const auto at_j = std::ranges::find_if(stairs.corners, [&](LatticePoint p) { return p.u == j.u && p.v == j.v; });
+    if (at_j == stairs.corners.end()) {
+      ADD_FAILURE() << "j is no corner of the staircase";
+      return;
+    }
+    before.corners.assign(stairs.corners.begin(), at_j + 1);
+    after.corners.assign(at_j, stairs.corners.end());
   }
 };
 
@@ -325,11 +334,9 @@ TEST(ChainPoints, AJunctionsLegReachesPastTheContoursLastPixelEdgesUnlessBesideA
 // 0.14 mm off; not where it has no leg on the edge. Where the third chain is a straight run on its
 // lattice column, that leg crosses the edge and the junction moves along it (meeting_point).
 TEST(ChainPoints, AJunctionTheModelsEdgeRunsThroughMovesSquareOntoIt) {
-  StaircaseOnAnEdge s;
-  const LatticePoint j{12, 12};
-  const std::optional<std::pair<Chain, Chain>> split = s.split_at(j);
-  ASSERT_TRUE(split);
-  const auto& [before, after] = *split;
+  StaircaseSplitAtJ s;
+  const LatticePoint j = s.j;
+  const Chain &before = s.before, &after = s.after;
   Chain contour{2, 4, {j}}, column{2, 4, {j}};
   for (int k = 1; k <= 4; ++k) {
     contour.corners.push_back({j.u - 2 * k, j.v + 2 * (k - 1)});
@@ -362,11 +369,9 @@ TEST(ChainPoints, AJunctionTheModelsEdgeRunsThroughMovesSquareOntoIt) {
 // sqrt 2 = 0.53 mm across, not to the crossing, and it had stayed on its corner. Where a fold snaps
 // at j, or a support's side ends there, it stays.
 TEST(ChainPoints, AJunctionTheModelsEdgeRunsThroughMovesOntoItWhereAThirdLegCrossesItFarOff) {
-  StaircaseOnAnEdge s;
-  const LatticePoint j{12, 12};
-  const std::optional<std::pair<Chain, Chain>> split = s.split_at(j);
-  ASSERT_TRUE(split);
-  const auto& [before, after] = *split;
+  StaircaseSplitAtJ s;
+  const LatticePoint j = s.j;
+  const Chain &before = s.before, &after = s.after;
   Chain third{2, 4, {j}};
   // Left, left, up, three times over, less the last up: 8 pixel edges, each point on the line.
   const double X0 = 6, Y0 = 13.6, slope = -0.5;  // Y - Y0 = slope (X - X0)
