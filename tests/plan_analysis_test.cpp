@@ -572,6 +572,53 @@ TEST(TipRepair, ATipThatGaveItsNeighbourAPlaceGoesBackFromARoundKept) {
   EXPECT_EQ(narrow[0].from.X, left.x1 - 3) << "the left tip, back, narrowest";
 }
 
+// Two boxes whose tops end on the right in tips, the left one twice as long (its slanted side runs
+// 40 mm, the right one's 20 mm): parted where the tops are W + margin high, the left tip is 12.04 mm
+// long, the right one 6.02 mm, and the left moves twice the area as far. A check that refuses any
+// plan in which the left tip went (as the picture would) refuses the round of both; tried again
+// without the costlier of them, the round of the right tip alone is kept. With no such retries, no
+// tip goes.
+TEST(TipRepair, ARoundThePictureRefusesIsTriedAgainWithoutItsCostliestTips) {
+  const Box left{.d = 10, .x0 = 20, .x1 = 90}, right{.d = 10, .x0 = 120, .x1 = 190};
+  const double W = 3;
+  std::vector<PlanPolyline> lines = {
+      {LineKind::Outline, {{0, -kHalf}, {kWidth, -kHalf}, {kWidth, kHalf}, {0, kHalf}, {0, -kHalf}}},
+      {LineKind::Valley, {{0, 0}, {left.x0, 0}}},
+      {LineKind::Valley, {{left.x1, 0}, {right.x0, 0}}},
+      {LineKind::Valley, {{right.x1, 0}, {kWidth, 0}}}};
+  add_box(lines, box_with_a_tip(left, 40, 4));
+  add_box(lines, box_with_a_tip(right, 20, 2));
+  const PlanAnalysis before = analyze_plan(lines, {.min_strip_mm = W});
+  ASSERT_EQ(problems_of(before, PlanProblemKind::NarrowStrip).size(), 2u) << listing(before);
+
+  // The left tip went where the point near its end lies in a V face (the front it joins).
+  const PlanPoint left_tip{left.x1 - 0.5, left.h - left.d + 0.1};
+  int checked = 0;
+  const TipRoundCheck left_tip_stays = [&](const std::vector<PlanPolyline>&, const PlanAnalysis& analysis) {
+    ++checked;
+    const std::int32_t at = region_at(analysis, left_tip);
+    return at >= 0 && analysis.regions[static_cast<std::size_t>(at)].orientation == Orientation::H;
+  };
+  const TipRepairOptions options{.min_strip_mm = W, .max_tip_mm = 16, .rounds = 1};
+  const TipRepair repaired = blunt_narrow_tips(lines, options, left_tip_stays);
+  EXPECT_EQ(checked, 2) << "the round of both, then the right tip's alone";
+  EXPECT_EQ(repaired.rounds, 1);
+  EXPECT_EQ(repaired.tips, 1);
+  const PlanAnalysis after = analyze_plan(repaired.lines, {.min_strip_mm = W});
+  const auto narrow = problems_of(after, PlanProblemKind::NarrowStrip);
+  ASSERT_EQ(narrow.size(), 1u) << listing(after);
+  EXPECT_EQ(narrow[0].region, region_at(after, {left.mid(), left.h - left.d + 1})) << "the left top keeps its tip";
+  const std::int32_t right_tip = region_at(after, {right.x1 - 0.5, right.h - right.d + 0.1});
+  ASSERT_GE(right_tip, 0);
+  EXPECT_EQ(right_tip, region_at(after, {right.mid(), 0.5 * (right.h - right.d)})) << "the right tip joins its front";
+
+  TipRepairOptions no_picture_retries = options;
+  no_picture_retries.picture_retries = 0;
+  const TipRepair no_retries = blunt_narrow_tips(lines, no_picture_retries, left_tip_stays);
+  EXPECT_EQ(no_retries.tips, 0);
+  EXPECT_EQ(no_retries.rounds, 0);
+}
+
 // A tip is cut where its face is W + margin wide. With a vertex of the face (on its slanted side)
 // 0.005 mm from there, the cut goes on that vertex's line rather than part a sliver that thin: past
 // it, or short of it (toward the tip) while the face is W wide there; else the tip stays. A second

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -92,17 +93,29 @@ void TipCutter::run() {
   const std::vector<bool> may_go = tips_that_may_go(tips, tip_faces, folds_between, wide);
   for (std::size_t i = 0; i < tips.size(); ++i) {
     if (!may_go[i]) continue;
-    const std::int32_t best = nearest_neighbour(tips[i], insides[i], *tip_faces[i]);
-    if (best < 0) continue;
-    a_.arr.non_const_handle(*tip_faces[i])->set_data(best);
-    given_.push_back({*tip_faces[i], static_cast<std::int32_t>(tips[i].region)});
+    const Neighbour best = nearest_neighbour(tips[i], insides[i], *tip_faces[i]);
+    if (best.face < 0) continue;
+    a_.arr.non_const_handle(*tip_faces[i])->set_data(best.face);
+    double area = 0;
+    for (const Ring& ring : rings_of(*tip_faces[i])) area += ring_area(ring);
+    given_.push_back({*tip_faces[i], static_cast<std::int32_t>(tips[i].region), std::abs(area) * best.gap_mm});
   }
   settle();
 }
 
 void TipCutter::take_back(const std::set<std::int32_t>& held) {
-  for (const auto& [t, from] : given_)
-    if (held.contains(from) || held.contains(t->data())) a_.arr.non_const_handle(t)->set_data(from);
+  for (const Given& g : given_)
+    if (held.contains(g.from) || held.contains(g.tip->data())) a_.arr.non_const_handle(g.tip)->set_data(g.from);
+  settle();
+}
+
+void TipCutter::take_back_costliest() {
+  std::vector<const Given*> given;
+  for (const Given& g : given_)
+    if (g.tip->data() != g.from) given.push_back(&g);
+  std::ranges::sort(given, std::greater{}, &Given::moved_mm3);
+  for (std::size_t i = 0; i < std::max<std::size_t>(1, given.size() / 4) && i < given.size(); ++i)
+    a_.arr.non_const_handle(given[i]->tip)->set_data(given[i]->from);
   settle();
 }
 
@@ -112,8 +125,8 @@ int TipCutter::tips() const {
 
 std::vector<PlanPolyline> TipCutter::lines() {
   std::set<Arrangement::Face_const_handle> changed;
-  for (const auto& [t, from] : given_)
-    if (t->data() != from) changed.insert(t);
+  for (const Given& g : given_)
+    if (g.tip->data() != g.from) changed.insert(g.tip);
   return arrangement_lines(a_, changed, first_new_);
 }
 
@@ -229,7 +242,7 @@ bool TipCutter::leaves_neighbours_a_fold(Face f, std::int32_t region, const Fold
   });
 }
 
-std::int32_t TipCutter::nearest_neighbour(const Tip& tip, const Point& inside, Face f) const {
+TipCutter::Neighbour TipCutter::nearest_neighbour(const Tip& tip, const Point& inside, Face f) const {
   const Place& own = a_.place[tip.region];
   const double Y = CGAL::to_double(inside.y());
   const double key = key_of_plane(own.orientation, CGAL::to_double(own.depth), Y);
@@ -240,8 +253,7 @@ std::int32_t TipCutter::nearest_neighbour(const Tip& tip, const Point& inside, F
   const auto keeps_on_card = [&](const Place& p) {
     return !CGAL::is_negative(p.orientation == Orientation::V ? range.lowest + p.depth : p.depth - range.highest);
   };
-  std::int32_t best = -1;
-  double best_gap = std::numeric_limits<double>::infinity();
+  Neighbour best{-1, std::numeric_limits<double>::infinity()};
   for_each_outer_halfedge(f, [&](Halfedge he) {
     const Arrangement::Face_const_handle other = he->twin()->face();
     const std::int32_t n = other->data();
@@ -250,7 +262,7 @@ std::int32_t TipCutter::nearest_neighbour(const Tip& tip, const Point& inside, F
         keeps_on_card(a_.place[static_cast<std::size_t>(n)])) {
       const Place& theirs = a_.place[static_cast<std::size_t>(n)];
       const double gap = std::abs(key_of_plane(theirs.orientation, CGAL::to_double(theirs.depth), Y) - key);
-      if (gap < best_gap) best_gap = gap, best = n;
+      if (gap < best.gap_mm) best = {n, gap};
     }
   });
   return best;
@@ -261,14 +273,14 @@ void TipCutter::settle() {
   for (const Given& g : given_) tips.insert(g.tip);
   for (bool again = true; again;) {
     again = false;
-    for (auto& [t, from] : given_) {
-      if (t->data() == from) continue;
+    for (const Given& g : given_) {
+      if (g.tip->data() == g.from) continue;
       bool joined = false;
-      for_each_outer_halfedge(t, [&](Halfedge he) {
+      for_each_outer_halfedge(g.tip, [&](Halfedge he) {
         const Face other = he->twin()->face();
-        joined = joined || (other->data() == t->data() && !tips.contains(other));
+        joined = joined || (other->data() == g.tip->data() && !tips.contains(other));
       });
-      if (!joined) a_.arr.non_const_handle(t)->set_data(from), again = true;
+      if (!joined) a_.arr.non_const_handle(g.tip)->set_data(g.from), again = true;
     }
   }
 }

@@ -100,10 +100,18 @@ std::optional<KeptRound> kept_round(TipCutter& cutter, const std::vector<PlanPol
     if (!stands(round.analyzer->result)) return std::nullopt;
     return round;
   };
-  const auto better = [&](const KeptRound& round, const PlanAnalysis& than) {
-    const PlanAnalysis& now = round.analyzer->result;
-    return narrow_places(now) < narrow_places(than) && (!keep || keep(round.lines, now));
+  // Whether the round has fewer places than `than`, and whether the check given accepts it.
+  struct Verdict {
+    bool fewer = false, looks = false;
+    bool better() const { return fewer && looks; }
   };
+  const auto judged = [&](const KeptRound& round, const PlanAnalysis& than) {
+    const PlanAnalysis& now = round.analyzer->result;
+    Verdict v{narrow_places(now) < narrow_places(than), false};
+    v.looks = v.fewer && (!keep || keep(round.lines, now));
+    return v;
+  };
+  const auto better = [&](const KeptRound& round, const PlanAnalysis& than) { return judged(round, than).better(); };
   const auto cut_faces = [&](const PlanAnalysis& now) {
     std::vector<Point> insides;
     for (const PlanRegion& region : now.regions) insides.emplace_back(region.inside.X, region.inside.Y);
@@ -121,11 +129,18 @@ std::optional<KeptRound> kept_round(TipCutter& cutter, const std::vector<PlanPol
     return cutter.tips() != 0 && cutter.tips() != round.tips;
   };
   std::optional<KeptRound> kept;
-  for (int attempt = 0;; ++attempt) {
+  for (int attempt = 0, costly = 0;;) {
     kept = analysed();
     if (!kept) return std::nullopt;
-    if (better(*kept, was)) break;
-    if (attempt >= options.retries || !take_back_grown(*kept)) return std::nullopt;
+    const Verdict verdict = judged(*kept, was);
+    if (verdict.better()) break;
+    // Fewer places, but the check refused the picture: the tips that move the most of it go back.
+    if (verdict.fewer && costly < options.picture_retries && kept->tips > 1) {
+      ++costly;
+      cutter.take_back_costliest();
+      continue;
+    }
+    if (attempt++ >= options.retries || !take_back_grown(*kept)) return std::nullopt;
   }
   if (!take_back_grown(*kept)) return kept;
   std::optional<KeptRound> pruned = analysed();

@@ -70,6 +70,9 @@ class TipCutter {
   // The tips given away from or to the faces `held` go back to their own.
   void take_back(const std::set<std::int32_t>& held);
 
+  // The costliest quarter of the tips given (Given::moved_mm3), at least one, go back to their own.
+  void take_back_costliest();
+
   // How many tips are given to a neighbour now (not taken back).
   int tips() const;
 
@@ -88,6 +91,12 @@ class TipCutter {
   struct Given {
     Arrangement::Face_const_handle tip;
     std::int32_t from;
+    double moved_mm3 = 0;  // its area times how far its plane moves (in h + d): what it costs the picture
+  };
+  // A neighbour to give a tip to, and how far its plane lies from the tip's own there (in h + d).
+  struct Neighbour {
+    std::int32_t face = -1;
+    double gap_mm = 0;
   };
   analysis::Analyzer& a_;
   const TipRepairOptions& options_;
@@ -121,8 +130,8 @@ class TipCutter {
   bool leaves_neighbours_a_fold(Face f, std::int32_t region, const FoldCounts& folds_between) const;
 
   // The placed neighbour of the tip's face `f` whose plane is nearest the face's own at the tip's
-  // inside point; -1 for none.
-  std::int32_t nearest_neighbour(const Tip& tip, const Point& inside, Face f) const;
+  // inside point (face -1 for none).
+  Neighbour nearest_neighbour(const Tip& tip, const Point& inside, Face f) const;
 
   // A tip given to a face whose own tip went elsewhere may touch no other part of it: it goes back.
   void settle();
