@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The translation unit that validates a plan from its lines on an exact arrangement (CGAL is heavy
 // to compile: keep it here, in plan_analysis_geometry.cpp, which holds the geometry it works on, and
-// in plan_analysis_chords.cpp, its strip widths).
+// in plan_analysis_chords.cpp, its strip widths and their check).
 // One exact run at a time: see exact_runs.hpp.
 #define CGAL_HAS_NO_THREADS 1
 
@@ -37,11 +37,6 @@ using exact::nearest_double;
 using exact::Point;
 
 constexpr std::int32_t kOutside = -1;
-
-std::string face_text(const Place& place) {
-  if (!place.placed) return "unplaced";
-  return std::string(place.orientation == Orientation::V ? "V(" : "H(") + num(nearest_double(place.depth)) + ")";
-}
 
 }  // namespace
 
@@ -327,96 +322,6 @@ void Analyzer::validate_graph() {
          std::string(to_string(region.status)) + " face " + (place[r].placed ? face_text(place[r]) + " " : "") + "at " +
              point_text(region.inside) + ": " + why});
   }
-}
-
-std::optional<Analyzer::FoldPair> Analyzer::nearest_fold_pair(std::size_t r) const {
-  std::optional<FoldPair> best;
-  const auto region = static_cast<std::int32_t>(r);
-  for (const std::size_t i : folds_of[r]) {
-    const FoldEdge& below = folds[i];
-    if (below.upper != region) continue;
-    for (const std::size_t j : folds_of[r]) {
-      const FoldEdge& above = folds[j];
-      if (above.lower != region || !(below.Y < above.Y) || !(above.Y - below.Y < W)) continue;
-      if (best && !(above.Y - below.Y < best->hi - best->lo)) continue;
-      const FT X_lo = CGAL::max(below.X_lo, above.X_lo), X_hi = CGAL::min(below.X_hi, above.X_hi);
-      if (!(X_lo < X_hi)) continue;
-      if (const std::optional<FT> X = open_between(r, X_lo, X_hi, below.Y, above.Y))
-        best = FoldPair{*X, below.Y, above.Y};
-    }
-  }
-  return best;
-}
-
-std::optional<FT> Analyzer::open_between(std::size_t r, const FT& X_lo, const FT& X_hi, const FT& lo,
-                                         const FT& hi) const {
-  std::vector<FT> breaks{X_lo, X_hi};
-  for (const Ring& ring : rings[r])
-    for (const Point& p : ring)
-      if (X_lo < p.x() && p.x() < X_hi) breaks.push_back(p.x());
-  std::sort(breaks.begin(), breaks.end());
-  const auto middle = (X_lo + X_hi) / 2;
-  if (!crosses_between(r, middle, lo, hi)) return middle;
-  for (std::size_t k = 1; k < breaks.size(); ++k)
-    if (breaks[k - 1] < breaks[k]) {
-      const FT X = (breaks[k - 1] + breaks[k]) / 2;
-      if (!crosses_between(r, X, lo, hi)) return X;
-    }
-  return std::nullopt;
-}
-
-bool Analyzer::crosses_between(std::size_t r, const FT& X, const FT& lo, const FT& hi) const {
-  for (const Ring& ring : rings[r])
-    for (std::size_t k = 0; k < ring.size(); ++k) {
-      const Point &p = ring[k], &q = ring[(k + 1) % ring.size()];
-      if ((p.x() < X && q.x() < X) || (X < p.x() && X < q.x())) continue;
-      if (p.x() == q.x()) {  // along the segment's line: it meets it where their Y ranges overlap
-        if (CGAL::min(p.y(), q.y()) < hi && lo < CGAL::max(p.y(), q.y())) return true;
-        continue;
-      }
-      const FT Y = crossing_v(p.x(), p.y(), q.x(), q.y(), X);
-      if (lo < Y && Y < hi) return true;
-    }
-  return false;
-}
-
-void Analyzer::check_strips() {
-  std::vector<FaceChords> chords = narrowest_chords(rings, cut_out, W);
-  narrowest.assign(faces.size(), {});
-  other_chords.assign(faces.size(), {});
-  for (std::size_t r = 0; r < faces.size(); ++r)
-    for (const bool along_Y : {true, false}) {
-      const std::size_t axis = along_Y ? 0 : 1;
-      const int narrow = chords[r].narrow[axis];
-      other_chords[r][axis] = std::move(chords[r].others[axis]);
-      const std::optional<Chord>& chord = narrowest[r][axis] = chords[r].narrowest[axis];
-      if (!chord) continue;
-      const Point a = along_Y ? Point(chord->at, chord->lo) : Point(chord->lo, chord->at);
-      const Point b = along_Y ? Point(chord->at, chord->hi) : Point(chord->hi, chord->at);
-      const PlanPoint from = plan_point(a), to = plan_point(b);
-      const double width = nearest_double(chord->hi - chord->lo);
-      const std::string where = along_Y ? "at X = " + num(from.X) + " from Y = " + num(from.Y) + " to " + num(to.Y)
-                                        : "at Y = " + num(from.Y) + " from X = " + num(from.X) + " to " + num(to.X);
-      PlanProblem problem{PlanProblemKind::NarrowStrip,
-                          plan_point(CGAL::midpoint(a, b)),
-                          from,
-                          to,
-                          static_cast<std::int32_t>(r),
-                          width,
-                          "face " + (place[r].placed ? face_text(place[r]) + " " : "") + "at " +
-                              point_text(result.regions[r].inside) + " is " + num(width) + " mm wide along " +
-                              (along_Y ? "Y " : "X ") + where + ", under W = " + num(options.min_strip_mm) + " mm" +
-                              (narrow > 1 ? " (" + std::to_string(narrow) + " such places)" : "")};
-      problem.narrow_chords = narrow;
-      if (const std::optional<FoldPair> pair = along_Y ? nearest_fold_pair(r) : std::nullopt) {
-        const PlanPoint lo = plan_point(Point(pair->X, pair->lo)), hi = plan_point(Point(pair->X, pair->hi));
-        problem.folds_apart_mm = nearest_double(pair->hi - pair->lo);
-        problem.message += "; two of its folds, at Y = " + num(lo.Y) + " and " + num(hi.Y) + ", lie " +
-                           num(problem.folds_apart_mm) + " mm apart at X = " + num(lo.X);
-        ++result.narrow_between_folds;
-      }
-      add(std::move(problem));
-    }
 }
 
 void Analyzer::finish() {

@@ -46,6 +46,11 @@ std::string point_text(PlanPoint p) { return "(" + num(p.X) + ", " + num(p.Y) + 
 
 PlanPoint plan_point(const Point& p) { return {exact::nearest_coordinate(p, 0), exact::nearest_coordinate(p, 1)}; }
 
+std::string face_text(const Place& place) {
+  if (!place.placed) return "unplaced";
+  return std::string(place.orientation == Orientation::V ? "V(" : "H(") + num(exact::nearest_double(place.depth)) + ")";
+}
+
 // ---------------------------------------------------------------------------------------------
 // The arrangement of every line, clipped to the sheet.
 

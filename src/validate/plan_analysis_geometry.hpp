@@ -116,6 +116,9 @@ struct Place {
   exact::FT depth = 0;
 };
 
+/// "V(d)" or "H(h)", "unplaced" for a face no fold reaches.
+std::string face_text(const Place& place);
+
 // A fold edge between two regions (lower and upper), on its line Y, from X_lo to X_hi.
 struct FoldEdge {
   std::int32_t lower, upper;
