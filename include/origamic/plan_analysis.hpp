@@ -140,14 +140,14 @@ struct TipRepairOptions {
   // round kept tried again), places 4,674 -> 4,504 with 1 retry, the same with 2; tips parted
   // 836 -> 2,462, mean p95 1.774 -> 1.782 W; the tips' time over the 37, 4.5 -> 7.5 s.
   int retries = 1;
-  // A round with fewer places that the check given refuses (the design's: the picture) is tried up
-  // to this many times more, each time without the costliest quarter of its tips (their area times
-  // how far their plane moves). Over the 37 models at W = 2 / 3 / 5 mm places 6,273 / 3,824 / 2,186
-  // -> 6,235 / 3,766 / 2,157, the mean p95 the same to 0.001 W (res_dragon_full 1.80 -> 1.81 W,
-  // 419 -> 390 places); without the costlier half, at most twice, 3,803 at 3 mm. Giving the picture
-  // 0.15 W of p95 more instead (kTipsMayAddP95_W, design.cpp) gave 3,744 at 3 mm, but five
-  // models' p95 0.04-0.06 W higher.
-  int picture_retries = 4;
+  // A round with fewer places that the check given refuses (the design's: the picture) is tried
+  // this many times more, each time without the costliest quarter of its tips (their area times how
+  // far their plane moves). Over the 37 models at W = 2 / 3 / 5 mm places 6,273 / 3,824 / 2,186 ->
+  // 6,235 / 3,766 / 2,157, the mean p95 the same to 0.001 W (res_dragon_full 1.80 -> 1.81 W, 419 ->
+  // 390 places); 2, 3 or 4 times, the same 3,766 at 3 mm; without the costlier half, at most twice,
+  // 3,803. Giving the picture 0.15 W of p95 more instead (kTipsMayAddP95_W, design.cpp) gave 3,744,
+  // but five models' p95 0.04-0.06 W higher.
+  int picture_retries = 1;
   // Rounds go on while the last one kept took at least this share of the places narrower than W
   // off: each round analyses the whole plan again (twice where it is tried again without some of
   // its tips), and after one that gained little the next mostly gains nothing. res_dragon_full at

@@ -3,10 +3,12 @@
 // plan_analysis_geometry.hpp): the tips' rounds (tip_repair.cpp) draw their plans with it.
 #define CGAL_HAS_NO_THREADS 1
 
-#include <map>
+#include <algorithm>
+#include <cstddef>
+#include <functional>
 #include <optional>
 #include <set>
-#include <tuple>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -57,22 +59,30 @@ std::vector<PlanPolyline> arrangement_lines(const Analyzer& a, const std::set<Fa
     if (!same(p, q)) segments.push_back({p, q, k});
   }
   // Segments of one kind joined end to end where no other of that kind meets them.
-  std::map<std::pair<double, double>, std::vector<std::size_t>> at;
+  // The segments ending at each point, in order (only looked up: a hash map keeps the result).
+  struct PointHash {
+    std::size_t operator()(const std::pair<double, double>& p) const {
+      return std::hash<double>{}(p.first) * 0x9E3779B97F4A7C15ull ^ std::hash<double>{}(p.second);
+    }
+  };
+  std::unordered_map<std::pair<double, double>, std::vector<std::size_t>, PointHash> at;
   const auto key = [](PlanPoint p) { return std::pair{p.X, p.Y}; };
-  std::map<std::tuple<int, double, double>, int> degree;
-  for (const Segment& s : segments)
-    ++degree[{static_cast<int>(s.kind), s.p.X, s.p.Y}], ++degree[{static_cast<int>(s.kind), s.q.X, s.q.Y}];
+  at.reserve(2 * segments.size());
   for (std::size_t i = 0; i < segments.size(); ++i)
     at[key(segments[i].p)].push_back(i), at[key(segments[i].q)].push_back(i);
   std::vector<bool> used(segments.size(), false);
   std::vector<PlanPolyline> lines;
-  const auto through = [&](PlanPoint p, LineKind k) { return degree[{static_cast<int>(k), p.X, p.Y}] == 2; };
+  // Whether exactly two segments of kind k end at p.
+  const auto through = [&](PlanPoint p, LineKind k) {
+    const std::vector<std::size_t>& here = at.at(key(p));
+    return std::ranges::count_if(here, [&](std::size_t j) { return segments[j].kind == k; }) == 2;
+  };
   const auto extend = [&](PlanPolyline& line) {
     for (;;) {
       const PlanPoint end = line.points.back();
       if (!through(end, line.kind)) return;
       std::optional<std::size_t> next;
-      for (const std::size_t j : at[key(end)])
+      for (const std::size_t j : at.at(key(end)))
         if (!used[j] && segments[j].kind == line.kind) next = j;
       if (!next) return;
       used[*next] = true;

@@ -33,10 +33,14 @@ using tips::TipCutter;
 // one with another: the design's own plans have a few (res_bunny: 1), which its reader takes as
 // drawn.
 std::size_t points_merged_in_files(const std::vector<PlanPolyline>& lines, double low) {
-  std::set<std::pair<double, double>> exact, filed;
+  std::vector<std::pair<double, double>> exact, filed;
   for (const PlanPolyline& line : lines)
-    for (const PlanPoint& p : line.points) exact.emplace(p.X, p.Y), filed.emplace(p.X, (p.Y - low) + low);
-  return exact.size() - filed.size();
+    for (const PlanPoint& p : line.points) exact.emplace_back(p.X, p.Y), filed.emplace_back(p.X, (p.Y - low) + low);
+  const auto distinct = [](std::vector<std::pair<double, double>>& points) {
+    std::ranges::sort(points);
+    return static_cast<std::size_t>(std::ranges::unique(points).begin() - points.begin());
+  };
+  return distinct(exact) - distinct(filed);
 }
 
 // The faces of `before` with more narrow places after a round of tips (`after`, each of its regions
