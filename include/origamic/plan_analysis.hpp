@@ -144,13 +144,12 @@ struct TipRepairOptions {
   // this many times more, each time without the costliest quarter of its tips (their area times how
   // far their plane moves). Over the 37 models at W = 2 / 3 / 5 mm places 6,273 / 3,824 / 2,186 ->
   // 6,235 / 3,766 / 2,157, the mean p95 the same to 0.001 W (res_dragon_full 1.80 -> 1.81 W, 419 ->
-  // 390 places); 2, 3 or 4 times, the same 3,766 at 3 mm; without the costlier half, at most twice,
-  // 3,803. Giving the picture 0.15 W of p95 more instead (kTipsMayAddP95_W, design.cpp) gave 3,744,
-  // but five models' p95 0.04-0.06 W higher.
+  // 390 places; res_dragon_full's tips 340 -> 600 ms, their rounds now kept and more of them); 2,
+  // 3 or 4 times, the same 3,766 at 3 mm; without the costlier half, at most twice, 3,803.
   int picture_retries = 1;
   // Rounds go on while the last one kept took at least this share of the places narrower than W
-  // off: each round analyses the whole plan again (twice where it is tried again without some of
-  // its tips), and after one that gained little the next mostly gains nothing. res_dragon_full at
+  // off: each round analyses the whole plan again (again each time it is tried without some of its
+  // tips), and after one that gained little the next mostly gains nothing. res_dragon_full at
   // W = 3 mm kept a first round (426 -> 415 places, 2.6 %), then tried a second and its retry, both
   // refused: its tips took 420 ms against 220 ms with the rounds stopped after the first. Over the
   // 37 models places 3,802 at 1 %, 3,808 at 2 %, 3,834 at 3 %; their tips and final analysis 4.6,

@@ -55,6 +55,9 @@ constexpr double kTipReach_W = 4.0 / 3.0;
 // And a round is kept only if the picture stays as it was to within this: a tip is a sliver of
 // the picture, so it moves the mean p95 of the 37 models by under 0.005 W (2.48 W either way), and
 // no model's p95 by more than 0.05 W (res_bunny 1.48 -> 1.52, arch_pavilion_csg 6.91 -> 6.95).
+// At 0.15 W (or 0.3 W: the same) the 37 models at W = 3 mm had 3,744 places against 3,766, but five
+// of them a p95 0.04-0.06 W higher (res_dragon_full, res_armadillo, res_knot, bad_motorbike,
+// seedlike/torus).
 constexpr double kTipsMayAddP95_W = 0.05, kTipsMayAddMean_W = 0.02;
 
 // Faces given to neighbours far off the model mostly went one into the next (a cascade: each join
@@ -151,33 +154,27 @@ SupportedPlan supported_plan(DesignResult& sliced, const DesignOptions& options)
   return fares(third.plan) < kept_fares ? std::move(third) : std::move(kept);
 }
 
-// The places narrower than W (seed §4.4) an analysis found.
-std::vector<PlanProblem> narrow_places(const PlanAnalysis& analysis) {
+// The places of a plan narrower than W (seed §4.4), measured exactly, both ways, on its lines as
+// its DXF holds them: what `origamic validate --min-strip W` finds in the file. On the lines as
+// computed, a fold on h - d a rounding off a support's corner on the pixel lattice made steps of
+// 7e-15 mm that no file has, and places narrower than W beside them: 25 on seedlike/wedge, whose
+// DXF has 21, 222 on res_teapot against 217.
+std::vector<PlanProblem> narrow_places(const Plan& plan, double W) {
   std::vector<PlanProblem> narrow;
-  for (const PlanProblem& problem : analysis.problems)
-    if (problem.kind == PlanProblemKind::NarrowStrip) narrow.push_back(problem);
+  for (PlanProblem& problem : analyze_plan(plan_dxf_lines(plan), {.min_strip_mm = W}).problems)
+    if (problem.kind == PlanProblemKind::NarrowStrip) narrow.push_back(std::move(problem));
   return narrow;
 }
 
 // The places narrower than W of the plans measured, by their lines: a plan measured in the fold
-// pairs' check and again at the end (no tip parted off) is measured once. Each is measured exactly,
-// both ways, on its lines as its DXF holds them: what `origamic validate --min-strip W` finds in the
-// file. On the lines as computed, a fold on h - d a rounding off a support's corner on the pixel
-// lattice made steps of 7e-15 mm that no file has, and places narrower than W beside them: 25 on
-// seedlike/wedge, whose DXF has 21, 222 on res_teapot against 217.
+// pairs' check and again at the end (no tip parted off) is measured once.
 class NarrowPlaces {
  public:
   explicit NarrowPlaces(double W) : W_(W) {}
   const std::vector<PlanProblem>& of(const Plan& plan) {
     for (const auto& [lines, places] : measured_)
       if (lines == plan.lines) return places;
-    return measured_.emplace_back(plan.lines, narrow_places(analyze_plan(plan_dxf_lines(plan), {.min_strip_mm = W_})))
-        .second;
-  }
-  // The plan's lines were analysed with W as they are (`analysis`): where its DXF holds them so
-  // too, to the bit, that analysis is the file's.
-  void analysed(const Plan& plan, const PlanAnalysis& analysis) {
-    if (plan_dxf_lines(plan) == plan.lines) measured_.emplace_back(plan.lines, narrow_places(analysis));
+    return measured_.emplace_back(plan.lines, narrow_places(plan, W_)).second;
   }
 
  private:
@@ -286,7 +283,7 @@ void face_areas(Plan& plan, const std::vector<double>& area) {
 // Issue 23: the tips of faces narrower than W parted off on the exact plan (blunt_narrow_tips),
 // round after round while the plan stands, has fewer narrow places and shows the model as the
 // supported plan does; the places left are those of the plan kept, as its lines read back.
-void blunt_tips(DesignResult& result, const DesignOptions& options, NarrowPlaces& narrow) {
+void blunt_tips(DesignResult& result, const DesignOptions& options) {
   const double W = options.slice.min_strip_mm;
   const Likeness supported = likeness(result.maps, card_view(result.maps.grid, result.plan.regions, {}), W);
   // The picture is checked on the lines alone (the regions named later): a support shows its plane.
@@ -296,7 +293,7 @@ void blunt_tips(DesignResult& result, const DesignOptions& options, NarrowPlaces
   };
   TipRepair repaired = blunt_narrow_tips(
       result.plan.lines, {.min_strip_mm = W, .max_tip_mm = kTipReach_W * W, .rounds = options.tip_rounds}, keep);
-  if (repaired.rounds == 0) return narrow.analysed(result.plan, repaired.analysis);
+  if (repaired.rounds == 0) return;
   Plan& plan = result.plan;
   plan.lines = std::move(repaired.lines);
   plan.regions = regions_named(std::move(repaired.analysis.regions), repaired.origin, plan.regions);
@@ -304,7 +301,6 @@ void blunt_tips(DesignResult& result, const DesignOptions& options, NarrowPlaces
   plan.valley_mm = repaired.analysis.valley_mm;
   face_areas(plan, repaired.analysis.area_mm2);
   result.tips_parted = repaired.tips;
-  narrow.analysed(plan, repaired.analysis);
 }
 
 // The pipeline from the model read to the finished plan, into `result` (its stages timed on `clock`).
@@ -384,7 +380,7 @@ void design_loaded(LoadedMesh loaded, const std::filesystem::path& model_file, c
   starting("strip widths and likeness");
   const auto drawn = [](const PlanPolyline& line) { return line.kind != LineKind::Outline; };
   if (std::ranges::any_of(result.plan.lines, drawn)) {
-    if (options.tip_rounds > 0) blunt_tips(result, options, narrow);
+    if (options.tip_rounds > 0) blunt_tips(result, options);
     result.narrow_strips = narrow.of(result.plan);
   }
   clock.lap("narrow strips");

@@ -11,18 +11,13 @@
 #include <CGAL/Arr_observer.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <deque>
-#include <limits>
 #include <map>
-#include <memory>
 #include <optional>
-#include <set>
 #include <tuple>
 #include <unordered_map>
 #include <utility>
-#include <variant>
 
 #include "exact_kernel.hpp"
 #include "exact_runs.hpp"

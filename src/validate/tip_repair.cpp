@@ -83,12 +83,12 @@ struct KeptRound {
 
 // The round the cutter has cut, as kept: its tips as they are if the plan with them stands, has
 // fewer places narrower than W, merges no more points in a file than the lines `before` did, and
-// `keep` accepts it. A round refused is tried again, up to `retries` times, without the tips from
-// or to the faces that now have more places than before. A round kept may still have given some
-// faces more places than they had: once, their tips go back and the round without them is kept if
-// it has fewer places still: over the 37 models at W = 3 mm, 26 of the 26 rounds so tried were kept
-// without them, and places 3,892 -> 3,802 (rounds stopped after one that gained under 1 %; tried
-// twice, the same). None if no try is kept.
+// `keep` accepts it. One with fewer places that `keep` refuses is tried again without its costliest
+// tips (TipRepairOptions::picture_retries). A round refused is tried again, up to `retries` times, without the tips
+// from or to the faces that now have more places than before. A round kept may still have given some faces more places
+// than they had: once, their tips go back and the round without them is kept if it has fewer places still: over the 37
+// models at W = 3 mm, 26 of the 26 rounds so tried were kept without them, and places 3,892 -> 3,802 (rounds stopped
+// after one that gained under 1 %; tried twice, the same). None if no try is kept.
 std::optional<KeptRound> kept_round(TipCutter& cutter, const std::vector<PlanPolyline>& before,
                                     const TipRepairOptions& options, const TipRoundCheck& keep) {
   const PlanAnalysis& was = cutter.analyzer().result;
