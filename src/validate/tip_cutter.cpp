@@ -54,6 +54,13 @@ void for_each_outer_halfedge(Face f, Visit visit) {
   }
 }
 
+// A face's area: its outer rings' less its holes'.
+double area_of(Face f) {
+  double area = 0;
+  for (const Ring& ring : rings_of(f)) area += ring_area(ring);
+  return area;
+}
+
 // The lowest and highest Y of a face's outer boundary.
 struct YRange {
   FT lowest, highest;
@@ -100,9 +107,7 @@ void TipCutter::run() {
     const Neighbour best = nearest_neighbour(tips[i], insides[i], *tip_faces[i]);
     if (best.face < 0) continue;
     a_.arr.non_const_handle(*tip_faces[i])->set_data(best.face);
-    double area = 0;
-    for (const Ring& ring : rings_of(*tip_faces[i])) area += ring_area(ring);
-    given_.push_back({*tip_faces[i], static_cast<std::int32_t>(tips[i].region), std::abs(area) * best.gap_mm});
+    given_.push_back({*tip_faces[i], static_cast<std::int32_t>(tips[i].region), area_of(*tip_faces[i]) * best.gap_mm});
   }
   settle();
 }
@@ -227,8 +232,7 @@ std::vector<bool> TipCutter::tips_that_may_go(const std::vector<Tip>& tips,
     if (!f || (*f)->data() != static_cast<std::int32_t>(tips[i].region) || !seen.insert(*f).second) continue;
     // The cut must have parted a tip off, not left the face whole: a tip is at most its reach
     // long and `wide` across.
-    double area = 0;
-    for (const Ring& ring : rings_of(*f)) area += ring_area(ring);
+    const double area = area_of(*f);
     if (!(area <= options_.max_tip_mm * CGAL::to_double(wide)) || !(2 * area <= a_.result.area_mm2[tips[i].region]))
       continue;
     may_go[i] = leaves_neighbours_a_fold(*f, static_cast<std::int32_t>(tips[i].region), folds_between);
